@@ -1,0 +1,106 @@
+// kiln bench accel: build time and rays/s of both accelerators, 1 and all threads, with ratios measured
+// in the same run (the machine is shared and noisy; absolute figures drift, ratios much less).
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+#include <cstdio>
+#include <thread>
+
+#include "renderer/accel_options.h"
+#include "renderer/commands.h"
+#include "renderer/ray_sets.h"
+#include "scene/scene_loader.h"
+
+namespace kiln {
+namespace {
+
+double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+
+// Median of `repeats` timed passes; returns Mrays/s.
+double measure(const Accelerator& accel, const std::vector<Ray>& rays, bool shadow, int threads, int repeats) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
+    std::vector<double> rates;
+    for (int r = 0; r < repeats; ++r) {
+        std::atomic<uint64_t> sink{0};
+        double t0 = now();
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), 1024), [&](const tbb::blocked_range<size_t>& range) {
+            uint64_t hits = 0;
+            for (size_t i = range.begin(); i != range.end(); ++i) {
+                if (shadow) {
+                    hits += accel.occluded(rays[i]);
+                } else {
+                    Hit h;
+                    hits += accel.intersect(rays[i], h);
+                }
+            }
+            sink += hits;
+        });
+        rates.push_back(double(rays.size()) / (now() - t0) * 1e-6);
+    }
+    std::sort(rates.begin(), rates.end());
+    return rates[rates.size() / 2];
+}
+
+// CS184 student baseline (../shared/docs/CS184_BASELINE.md), primary rays, 2 threads, Mrays/s.
+double cs184Baseline(const std::string& scene) {
+    if (scene.find("maxplanck") != std::string::npos) return 3.6;
+    if (scene.find("CBbunny.dae") != std::string::npos) return 5.7;
+    return 0;
+}
+
+}  // namespace
+
+int runBench(const std::vector<std::string>& args) {
+    if (args.empty() || (args[0] != "accel" && args[0] != "-h" && args[0] != "--help"))
+        throw UsageError("usage: kiln bench accel SCENE... [--rays N] [--repeats N]");
+    ArgParser parser("bench accel", "SCENE... [--rays N] [--repeats N] [--threads N]");
+    int rays = 200000, repeats = 3, threads = int(std::thread::hardware_concurrency());
+    AcceleratorChoice choice;
+    parser.intOption("rays", "", "rays per measurement (default 200000)", rays, 1000, 1 << 28);
+    parser.intOption("repeats", "", "timed passes, median reported (default 3)", repeats, 1, 100);
+    parser.intOption("threads", "t", "the 'all threads' column (default: all cores)", threads, 1, 4096);
+    choice.addOptions(parser, false);
+    std::vector<std::string> pos = parser.parse(std::vector<std::string>(args.begin() + (args[0] == "accel"), args.end()));
+    if (parser.helpRequested()) {
+        std::fputs(parser.helpText().c_str(), stdout);
+        return 0;
+    }
+    if (pos.empty()) throw UsageError("needs at least one scene file");
+
+    std::printf("%-28s %9s %-10s %8s %9s %9s %9s %9s %8s %8s\n", "scene", "tris", "accel", "build s", "prim 1t",
+                "prim Nt", "incoh Nt", "shadow Nt", "emb/ref", "vs CS184");
+    for (const std::string& path : pos) {
+        Scene scene = loadScene(path);
+        auto embree = makeEmbreeAccelerator(scene, choice.embree);
+        auto reference = makeReferenceAccelerator(scene, choice.reference);
+        std::vector<Ray> primary = makeRaySet(RaySetKind::Camera, scene, *embree, size_t(rays), 7);
+        std::vector<Ray> incoherent = makeRaySet(RaySetKind::Random, scene, *embree, size_t(rays), 7);
+        std::vector<Ray> shadow = makeRaySet(RaySetKind::Shadow, scene, *embree, size_t(rays), 7);
+        double rate[2][4];
+        const Accelerator* accels[2] = {embree.get(), reference.get()};
+        for (int a = 0; a < 2; ++a) {
+            rate[a][0] = measure(*accels[a], primary, false, 1, repeats);
+            rate[a][1] = measure(*accels[a], primary, false, threads, repeats);
+            rate[a][2] = measure(*accels[a], incoherent, false, threads, repeats);
+            rate[a][3] = measure(*accels[a], shadow, true, threads, repeats);
+        }
+        std::string name = path.substr(path.find_last_of('/') + 1);
+        double base = cs184Baseline(path);
+        for (int a = 0; a < 2; ++a) {
+            char ratio[32] = "", vs[32] = "";
+            if (a == 0) std::snprintf(ratio, sizeof ratio, "%.2fx", rate[0][1] / rate[1][1]);
+            if (base > 0 && a == 0) std::snprintf(vs, sizeof vs, "%.1fx", rate[0][1] / base);
+            std::printf("%-28s %9llu %-10s %8.3f %9.2f %9.2f %9.2f %9.2f %8s %8s\n", a == 0 ? name.c_str() : "",
+                        (unsigned long long)scene.instancedTriangles(), a == 0 ? "embree" : "reference",
+                        accels[a]->stats().buildSeconds, rate[a][0], rate[a][1], rate[a][2], rate[a][3], ratio, vs);
+        }
+        std::fflush(stdout);
+    }
+    std::printf("\nrates in Mrays/s (median of %d); Nt = %d threads; emb/ref = Embree over reference, primary Nt;\n"
+                "vs CS184 = Embree primary Nt over the CS184 baseline (maxplanck 3.6, CBbunny 5.7 Mrays/s at 2 threads)\n",
+                repeats, threads);
+    return 0;
+}
+
+}  // namespace kiln

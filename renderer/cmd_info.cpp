@@ -1,0 +1,34 @@
+#include <cstdio>
+
+#include "renderer/cli_args.h"
+#include "renderer/commands.h"
+#include "scene/scene_info.h"
+#include "scene/scene_loader.h"
+
+namespace kiln {
+
+int runInfo(const std::vector<std::string>& args) {
+    ArgParser parser("info", "SCENE [--json]");
+    bool json = false;
+    LoadOptions load;
+    parser.flag("json", "", "print the stable JSON form (keys in docs/info-json.md)", json);
+    parser.option("camera", "", 1, "file|framed", "the file's camera as written, or the CS184 course framing (default: course framing for Z-up COLLADA)",
+                  [&](const std::vector<std::string>& v) {
+                      if (v[0] != "file" && v[0] != "framed") throw UsageError("--camera takes 'file' or 'framed', got '" + v[0] + "'");
+                      load.cameraRule = v[0] == "file" ? LoadOptions::CameraRule::File : LoadOptions::CameraRule::Framed;
+                  });
+    parser.option("env", "", 1, "MAP.exr", "add a lat-long environment light", [&](const std::vector<std::string>& v) {
+        load.environmentMap = v[0];
+    });
+    std::vector<std::string> pos = parser.parse(args);
+    if (parser.helpRequested()) {
+        std::fputs(parser.helpText().c_str(), stdout);
+        return 0;
+    }
+    if (pos.size() != 1) throw UsageError("needs exactly one scene file (see 'kiln info --help')");
+    Scene scene = loadScene(pos[0], load);
+    std::fputs((json ? sceneInfoJson(scene) : sceneInfoText(scene)).c_str(), stdout);
+    return 0;
+}
+
+}  // namespace kiln

@@ -1,0 +1,143 @@
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+
+#include "color/image_output.h"
+#include "integrators/integrator.h"
+#include "renderer/accel_options.h"
+#include "renderer/camera.h"
+#include "renderer/commands.h"
+#include "renderer/render_loop.h"
+#include "scene/scene_loader.h"
+
+namespace kiln {
+namespace {
+
+extern "C" void onInterrupt(int) { renderCancelFlag().store(true); }
+
+struct RenderOptions {
+    RenderSettings settings;
+    AcceleratorChoice accel;
+    LoadOptions load;
+    std::string integrator = "normals";
+    std::string output;  // base path, or the -f file
+    std::string display = "sRGB", view = "Standard";
+};
+
+double seconds(std::chrono::steady_clock::time_point since) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
+}
+
+}  // namespace
+
+int runRender(const std::vector<std::string>& args) {
+    RenderOptions o;
+    ArgParser parser("render", "SCENE [options]   (writes OUT.exr and OUT.png)");
+    parser.option("output", "o", 1, "OUT", "output base name: OUT.exr and OUT.png (default: scene name)",
+                  [&](const std::vector<std::string>& v) { o.output = v[0]; });
+    parser.option("file", "f", 1, "OUT.png", "CS184 form: preview file; the EXR goes beside it",
+                  [&](const std::vector<std::string>& v) { o.output = v[0]; });
+    parser.option("resolution", "r", 2, "W H", "image size (default 800 600)", [&](const std::vector<std::string>& v) {
+        o.settings.width = ArgParser::toInt("-r", v[0], 1, 32768);
+        o.settings.height = ArgParser::toInt("-r", v[1], 1, 32768);
+    });
+    parser.intOption("spp", "s", "camera samples per pixel (default 1)", o.settings.spp, 1, 1 << 20);
+    parser.intOption("threads", "t", "worker threads (default: all cores)", o.settings.threads, 1, 4096);
+    parser.intOption("tile", "", "tile size in pixels (default 32)", o.settings.tileSize, 1, 4096);
+    parser.option("seed", "", 1, "N", "random seed (default 0)", [&](const std::vector<std::string>& v) {
+        o.settings.seed = uint64_t(ArgParser::toInt("--seed", v[0], 0, 2147483647));
+    });
+    parser.option("integrator", "i", 1, "NAME", std::string("light transport: ") + integratorNames(),
+                  [&](const std::vector<std::string>& v) { o.integrator = v[0]; });
+    o.accel.addOptions(parser, true);
+    parser.option("camera", "", 1, "file|framed", "the file's camera as written, or the CS184 course "
+                  "framing (default: course framing for Z-up COLLADA)", [&](const std::vector<std::string>& v) {
+                      if (v[0] != "file" && v[0] != "framed") throw UsageError("--camera takes 'file' or 'framed', got '" + v[0] + "'");
+                      o.load.cameraRule = v[0] == "file" ? LoadOptions::CameraRule::File : LoadOptions::CameraRule::Framed;
+                  });
+    parser.option("env", "", 1, "MAP.exr", "add a lat-long environment light",
+                  [&](const std::vector<std::string>& v) { o.load.environmentMap = v[0]; });
+    parser.option("display", "", 1, "NAME", "OCIO display for the preview (default sRGB)",
+                  [&](const std::vector<std::string>& v) { o.display = v[0]; });
+    parser.option("view", "", 1, "NAME", "OCIO view for the preview (default Standard)",
+                  [&](const std::vector<std::string>& v) { o.view = v[0]; });
+    bool quiet = false;
+    parser.flag("quiet", "q", "no progress bar", quiet);
+    std::vector<std::string> pos = parser.parse(args);
+    if (parser.helpRequested()) {
+        std::fputs(parser.helpText().c_str(), stdout);
+        return 0;
+    }
+    if (pos.size() != 1) throw UsageError("needs exactly one scene file (see 'kiln render --help')");
+    o.settings.progress = !quiet;
+
+    namespace fs = std::filesystem;
+    std::string base = o.output.empty() ? fs::path(pos[0]).stem().string() : o.output;
+    std::string ext = fs::path(base).extension().string();
+    std::string previewPath = base + ".png", exrPath = base + ".exr";
+    if (ext == ".png" || ext == ".jpg" || ext == ".jpeg") {
+        previewPath = base;
+        exrPath = fs::path(base).replace_extension(".exr").string();
+    } else if (ext == ".exr") {
+        exrPath = base;
+        previewPath = fs::path(base).replace_extension(".png").string();
+    }
+    fs::path dir = fs::path(exrPath).parent_path();
+    if (!dir.empty() && !fs::is_directory(dir)) throw UsageError("output directory '" + dir.string() + "' does not exist");
+
+    auto t0 = std::chrono::steady_clock::now();
+    Scene scene = loadScene(pos[0], o.load);
+    double loadTime = seconds(t0);
+    for (const std::string& w : scene.warnings) std::fprintf(stderr, "kiln: warning: %s: %s\n", pos[0].c_str(), w.c_str());
+
+    auto t1 = std::chrono::steady_clock::now();
+    std::unique_ptr<Accelerator> accel = o.accel.build(scene);
+    double buildTime = seconds(t1);
+    std::unique_ptr<Integrator> integrator;
+    try {
+        integrator = makeIntegrator(o.integrator, scene, *accel);
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+    }
+
+    renderCancelFlag().store(false);
+    auto previous = std::signal(SIGINT, onInterrupt);
+    Film film(o.settings.width, o.settings.height);
+    RenderStats stats = renderImage(scene, *integrator, o.settings, film);
+    std::signal(SIGINT, previous);
+
+    auto t2 = std::chrono::steady_clock::now();
+    CameraModel camera(scene.camera, o.settings.width, o.settings.height);
+    Metadata meta{{"scene", pos[0]},
+                  {"integrator", integrator->name()},
+                  {"accelerator", accel->stats().description},
+                  {"spp", std::to_string(o.settings.spp)},
+                  {"mean_spp", std::to_string(double(stats.samples) / (double(o.settings.width) * o.settings.height))},
+                  {"seed", std::to_string(o.settings.seed)},
+                  {"resolution", std::to_string(o.settings.width) + "x" + std::to_string(o.settings.height)},
+                  {"render_seconds", std::to_string(stats.seconds)},
+                  {"hfov", std::to_string(camera.hFovDeg())},
+                  {"vfov", std::to_string(camera.vFovDeg())},
+                  {"interrupted", stats.interrupted ? "yes" : "no"},
+                  {"nonfinite_samples", std::to_string(stats.nonFiniteSamples)}};
+    writeExr(exrPath, film, meta);
+    writePreview(previewPath, film, o.display, o.view);
+    double writeTime = seconds(t2);
+
+    double mrays = stats.seconds > 0 ? double(stats.rays) / stats.seconds * 1e-6 : 0.0;
+    std::fprintf(stderr,
+                 "kiln: %s -> %s, %s\n"
+                 "kiln: %llu samples, %llu rays, %.2f Mrays/s; time load %.3fs, build %.3fs, render %.3fs, write %.3fs\n",
+                 pos[0].c_str(), exrPath.c_str(), previewPath.c_str(), (unsigned long long)stats.samples,
+                 (unsigned long long)stats.rays, mrays, loadTime, buildTime, stats.seconds, writeTime);
+    if (stats.nonFiniteSamples)
+        std::fprintf(stderr, "kiln: warning: %llu non-finite samples were dropped\n",
+                     (unsigned long long)stats.nonFiniteSamples);
+    if (stats.interrupted) {
+        std::fprintf(stderr, "kiln: interrupted: wrote the image so far (per-pixel sample counts in the EXR)\n");
+        return 130;
+    }
+    return 0;
+}
+
+}  // namespace kiln

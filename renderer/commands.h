@@ -1,0 +1,14 @@
+// The kiln subcommands; each returns the process exit code (0 ok, 1 failure found, 2 bad input/usage).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace kiln {
+
+int runRender(const std::vector<std::string>& args);
+int runInfo(const std::vector<std::string>& args);
+int runCrosscheck(const std::vector<std::string>& args);
+int runBench(const std::vector<std::string>& args);
+
+}  // namespace kiln

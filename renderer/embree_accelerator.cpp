@@ -1,0 +1,236 @@
+// Embree 3 traversal over the scene model's buffers (shared, not copied). Spheres are user geometry
+// that runs the same sphere test as the reference BVH; instances use Embree instancing.
+#include <embree3/rtcore.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <stdexcept>
+
+#include "renderer/accelerator.h"
+#include "renderer/shapes.h"
+
+namespace kiln {
+namespace {
+
+std::atomic<int64_t> gEmbreeBytes{0};
+
+// Embree calls this from C code, so it records the error instead of throwing through Embree; the
+// accelerator checks after every build step and turns it into an exception with Embree's message.
+void embreeError(void* userPtr, RTCError code, const char* message) {
+    auto* last = static_cast<std::string*>(userPtr);
+    if (last->empty())
+        *last = "Embree error " + std::to_string(int(code)) + ": " + (message ? message : "(no message)");
+}
+
+bool embreeMemory(void*, ssize_t bytes, bool) {
+    gEmbreeBytes += bytes;
+    return true;
+}
+
+struct SphereData {
+    const std::vector<Sphere>* spheres;
+};
+
+void sphereBounds(const RTCBoundsFunctionArguments* args) {
+    const Sphere& s = (*static_cast<const SphereData*>(args->geometryUserPtr)->spheres)[args->primID];
+    // Padded by a relative ulp so Embree's float box never clips the exact sphere.
+    float pad = s.radius * 1e-6f + 1e-30f;
+    args->bounds_o->lower_x = s.center.x - s.radius - pad;
+    args->bounds_o->lower_y = s.center.y - s.radius - pad;
+    args->bounds_o->lower_z = s.center.z - s.radius - pad;
+    args->bounds_o->upper_x = s.center.x + s.radius + pad;
+    args->bounds_o->upper_y = s.center.y + s.radius + pad;
+    args->bounds_o->upper_z = s.center.z + s.radius + pad;
+}
+
+Ray toRay(const RTCRay& r) {
+    return Ray{Vec3(r.org_x, r.org_y, r.org_z), r.tnear, Vec3(r.dir_x, r.dir_y, r.dir_z), r.tfar};
+}
+
+void sphereIntersect(const RTCIntersectFunctionNArguments* args) {
+    if (!args->valid[0]) return;
+    RTCRayHit* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);  // N == 1: we only call rtcIntersect1
+    const Sphere& s = (*static_cast<const SphereData*>(args->geometryUserPtr)->spheres)[args->primID];
+    float t;
+    if (!intersectSphere(toRay(rh->ray), s.center, s.radius, t)) return;
+    rh->ray.tfar = t;
+    Vec3 p = Vec3(rh->ray.org_x, rh->ray.org_y, rh->ray.org_z) + Vec3(rh->ray.dir_x, rh->ray.dir_y, rh->ray.dir_z) * t;
+    Vec3 n = p - s.center;
+    rh->hit.Ng_x = n.x, rh->hit.Ng_y = n.y, rh->hit.Ng_z = n.z;
+    rh->hit.u = rh->hit.v = 0;
+    rh->hit.primID = args->primID;
+    rh->hit.geomID = args->geomID;
+    rh->hit.instID[0] = args->context->instID[0];
+}
+
+void sphereOccluded(const RTCOccludedFunctionNArguments* args) {
+    if (!args->valid[0]) return;
+    RTCRay* r = reinterpret_cast<RTCRay*>(args->ray);
+    const Sphere& s = (*static_cast<const SphereData*>(args->geometryUserPtr)->spheres)[args->primID];
+    float t;
+    if (intersectSphere(toRay(*r), s.center, s.radius, t)) r->tfar = -kInfinity;
+}
+
+RTCBuildQuality toEmbree(EmbreeOptions::Quality q) {
+    switch (q) {
+        case EmbreeOptions::Quality::Low: return RTC_BUILD_QUALITY_LOW;
+        case EmbreeOptions::Quality::High: return RTC_BUILD_QUALITY_HIGH;
+        default: return RTC_BUILD_QUALITY_MEDIUM;
+    }
+}
+
+class EmbreeAccelerator final : public Accelerator {
+public:
+    EmbreeAccelerator(const Scene& scene, const EmbreeOptions& options) : scene_(scene) {
+        auto start = std::chrono::steady_clock::now();
+        int64_t bytesBefore = gEmbreeBytes.load();
+        std::string config = options.threads > 0 ? "threads=" + std::to_string(options.threads) : "";
+        device_ = rtcNewDevice(config.c_str());
+        if (!device_) throw std::runtime_error("Embree: cannot create device (error " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
+        rtcSetDeviceErrorFunction(device_, embreeError, &lastError_);
+        rtcSetDeviceMemoryMonitorFunction(device_, embreeMemory, nullptr);
+
+        RTCSceneFlags flags = RTC_SCENE_FLAG_NONE;
+        if (options.robust) flags = RTCSceneFlags(flags | RTC_SCENE_FLAG_ROBUST);
+        if (options.compact) flags = RTCSceneFlags(flags | RTC_SCENE_FLAG_COMPACT);
+        top_ = newScene(flags, options.quality);
+
+        numMeshes_ = uint32_t(scene.meshes.size());
+        std::vector<bool> proto = scene.prototypeMask();
+        std::vector<RTCScene> protoScenes(scene.meshes.size(), nullptr);
+        for (uint32_t m = 0; m < numMeshes_; ++m) {
+            if (scene.meshes[m].triangleCount() == 0) continue;
+            RTCGeometry g = meshGeometry(scene.meshes[m], options.quality);
+            if (proto[m]) {
+                protoScenes[m] = newScene(flags, options.quality);
+                rtcAttachGeometryByID(protoScenes[m], g, 0);
+                rtcReleaseGeometry(g);
+                rtcCommitScene(protoScenes[m]);
+                prototypes_.push_back(protoScenes[m]);
+            } else {
+                rtcAttachGeometryByID(top_, g, m);
+                rtcReleaseGeometry(g);
+            }
+        }
+        if (!scene.spheres.empty()) {
+            sphereData_.spheres = &scene.spheres;
+            RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_USER);
+            rtcSetGeometryUserPrimitiveCount(g, unsigned(scene.spheres.size()));
+            rtcSetGeometryUserData(g, &sphereData_);
+            rtcSetGeometryBoundsFunction(g, sphereBounds, nullptr);
+            rtcSetGeometryIntersectFunction(g, sphereIntersect);
+            rtcSetGeometryOccludedFunction(g, sphereOccluded);
+            rtcCommitGeometry(g);
+            rtcAttachGeometryByID(top_, g, numMeshes_);
+            rtcReleaseGeometry(g);
+        }
+        for (uint32_t j = 0; j < scene.instances.size(); ++j) {
+            const Instance& inst = scene.instances[j];
+            if (!protoScenes[inst.mesh]) continue;
+            RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
+            rtcSetGeometryInstancedScene(g, protoScenes[inst.mesh]);
+            float xf[12];
+            for (int r = 0; r < 3; ++r)
+                for (int c = 0; c < 4; ++c) xf[r * 4 + c] = float(inst.objectToWorld.m[r][c]);
+            rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, xf);
+            rtcCommitGeometry(g);
+            rtcAttachGeometryByID(top_, g, numMeshes_ + 1 + j);
+            rtcReleaseGeometry(g);
+        }
+        rtcCommitScene(top_);
+        if (!lastError_.empty()) throw std::runtime_error(lastError_);
+        stats_.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        stats_.memoryBytes = uint64_t(std::max<int64_t>(0, gEmbreeBytes.load() - bytesBefore));
+        stats_.description = std::string("embree ") + (options.robust ? "robust " : "") +
+                             (options.quality == EmbreeOptions::Quality::High ? "high" :
+                              options.quality == EmbreeOptions::Quality::Low ? "low" : "medium");
+    }
+
+    ~EmbreeAccelerator() override {
+        for (RTCScene s : prototypes_) rtcReleaseScene(s);
+        if (top_) rtcReleaseScene(top_);
+        if (device_) rtcReleaseDevice(device_);
+    }
+
+    bool intersect(const Ray& ray, Hit& hit) const override {
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        RTCRayHit rh;
+        setRay(rh.ray, ray);
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(top_, &ctx, &rh);
+        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+        hit.t = rh.ray.tfar;
+        hit.u = rh.hit.u;
+        hit.v = rh.hit.v;
+        hit.prim = rh.hit.primID;
+        if (rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID) {
+            hit.instance = rh.hit.instID[0] - numMeshes_ - 1;
+            hit.shape = scene_.instances[hit.instance].mesh;
+        } else {
+            hit.instance = kInvalidId;
+            hit.shape = rh.hit.geomID == numMeshes_ ? kSphereShape : rh.hit.geomID;
+        }
+        return true;
+    }
+
+    bool occluded(const Ray& ray) const override {
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        RTCRay r;
+        setRay(r, ray);
+        rtcOccluded1(top_, &ctx, &r);
+        return r.tfar == -kInfinity;
+    }
+
+    const AcceleratorStats& stats() const override { return stats_; }
+
+private:
+    static void setRay(RTCRay& r, const Ray& ray) {
+        r.org_x = ray.origin.x, r.org_y = ray.origin.y, r.org_z = ray.origin.z;
+        r.dir_x = ray.dir.x, r.dir_y = ray.dir.y, r.dir_z = ray.dir.z;
+        r.tnear = ray.tMin;
+        r.tfar = ray.tMax;
+        r.time = 0;
+        r.mask = 0xffffffffu;
+        r.id = 0;
+        r.flags = 0;
+    }
+
+    RTCScene newScene(RTCSceneFlags flags, EmbreeOptions::Quality q) {
+        RTCScene s = rtcNewScene(device_);
+        rtcSetSceneFlags(s, flags);
+        rtcSetSceneBuildQuality(s, toEmbree(q));
+        return s;
+    }
+
+    RTCGeometry meshGeometry(const TriangleMesh& mesh, EmbreeOptions::Quality q) {
+        RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+        rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, mesh.positions.data(), 0,
+                                   3 * sizeof(float), mesh.vertexCount());
+        rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, mesh.indices.data(), 0,
+                                   3 * sizeof(uint32_t), mesh.triangleCount());
+        rtcSetGeometryBuildQuality(g, toEmbree(q));
+        rtcCommitGeometry(g);
+        return g;
+    }
+
+    const Scene& scene_;
+    std::string lastError_;
+    RTCDevice device_ = nullptr;
+    RTCScene top_ = nullptr;
+    std::vector<RTCScene> prototypes_;
+    SphereData sphereData_{};
+    uint32_t numMeshes_ = 0;
+    AcceleratorStats stats_;
+};
+
+}  // namespace
+
+std::unique_ptr<Accelerator> makeEmbreeAccelerator(const Scene& scene, const EmbreeOptions& options) {
+    return std::make_unique<EmbreeAccelerator>(scene, options);
+}
+
+}  // namespace kiln

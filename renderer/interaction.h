@@ -1,0 +1,31 @@
+// Turns what traversal reports into a shading point, identically for every accelerator, and spawns
+// every secondary ray (the one place that offsets ray origins).
+#pragma once
+
+#include "renderer/ray.h"
+#include "scene/scene.h"
+
+namespace kiln {
+
+struct SurfaceInteraction {
+    Vec3 p;          // hit point, rebuilt from barycentrics (triangles) or reprojected (spheres)
+    Vec3 pError;     // conservative absolute error bound of p per axis
+    Vec3 ng;         // geometric normal, unit, facing the side the ray came from
+    Vec3 ns;         // shading normal, unit, same hemisphere as ng
+    Vec3 nsStored;   // shading normal as the file orients it (normal-shading views show this one)
+    float u = 0, v = 0;  // texture coordinates (or barycentrics when the mesh has none)
+    float t = 0;
+    uint32_t material = 0;
+    uint32_t shape = kInvalidId, prim = kInvalidId, instance = kInvalidId;
+    bool frontFace = true;  // the ray arrived on the side the geometric normal (winding) points to
+};
+
+SurfaceInteraction makeInteraction(const Scene& scene, const Ray& ray, const Hit& hit);
+
+// Origin pushed off the surface by the error bound along the normal, on the side of dir.
+Vec3 offsetRayOrigin(const SurfaceInteraction& si, const Vec3& dir);
+Ray spawnRay(const SurfaceInteraction& si, const Vec3& dir);
+// A ray to a point (shadow rays): stops short of the target by a relative bound, not a guess.
+Ray spawnRayTo(const SurfaceInteraction& si, const Vec3& target);
+
+}  // namespace kiln

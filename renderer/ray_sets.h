@@ -1,0 +1,20 @@
+// The ray distributions used to compare and benchmark accelerators: camera rays, uniformly random rays
+// through the scene bounds, secondary rays leaving surface points, and shadow rays towards lights.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "renderer/accelerator.h"
+#include "scene/scene.h"
+
+namespace kiln {
+
+enum class RaySetKind { Camera, Random, Secondary, Shadow };
+const char* toString(RaySetKind kind);
+
+// Deterministic for a given seed. Secondary and shadow rays start at points found with `finder`.
+std::vector<Ray> makeRaySet(RaySetKind kind, const Scene& scene, const Accelerator& finder, size_t count,
+                            uint64_t seed);
+
+}  // namespace kiln

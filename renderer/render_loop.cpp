@@ -1,0 +1,72 @@
+#include "renderer/render_loop.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <chrono>
+
+#include "renderer/camera.h"
+#include "renderer/progress.h"
+
+namespace kiln {
+
+std::atomic<bool>& renderCancelFlag() {
+    static std::atomic<bool> flag{false};
+    return flag;
+}
+
+RenderStats renderImage(const Scene& scene, const Integrator& integrator, const RenderSettings& settings, Film& film) {
+    RenderStats stats;
+    CameraModel camera(scene.camera, settings.width, settings.height);
+    int tile = std::max(1, settings.tileSize);
+    int tilesX = (settings.width + tile - 1) / tile, tilesY = (settings.height + tile - 1) / tile;
+    uint64_t pixels = uint64_t(settings.width) * settings.height;
+    Progress progress("render", pixels * uint64_t(settings.spp), settings.progress);
+    std::atomic<uint64_t> nonFinite{0};
+    std::atomic<bool>& cancel = renderCancelFlag();
+
+    auto renderTile = [&](int tileIndex, int firstSample, int sampleCount) {
+        int x0 = (tileIndex % tilesX) * tile, y0 = (tileIndex / tilesX) * tile;
+        int x1 = std::min(x0 + tile, settings.width), y1 = std::min(y0 + tile, settings.height);
+        RayCounter counter;
+        uint64_t work = 0, bad = 0;
+        for (int y = y0; y < y1 && !cancel.load(std::memory_order_relaxed); ++y)
+            for (int x = x0; x < x1; ++x) {
+                uint64_t pixelIndex = uint64_t(y) * settings.width + x;
+                for (int s = firstSample; s < firstSample + sampleCount; ++s) {
+                    Sampler sampler(settings.seed, pixelIndex, uint64_t(s));
+                    float jx = sampler.next1D(), jy = sampler.next1D();
+                    float lu = sampler.next1D(), lv = sampler.next1D();
+                    Ray ray = camera.generateRay(float(x) + jx, float(y) + jy, lu, lv);
+                    if (!film.add(x, y, integrator.Li(ray, sampler, counter))) ++bad;
+                }
+                work += uint64_t(sampleCount);
+            }
+        progress.add(work, counter.rays);
+        if (bad) nonFinite += bad;
+    };
+
+    tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
+    arena.execute([&] {
+        // Waves of 1, 1, 2, 4, ... samples: an interrupted render has nearly even counts everywhere.
+        int done = 0, wave = 1;
+        while (done < settings.spp && !cancel.load()) {
+            int n = std::min(wave, settings.spp - done);
+            tbb::parallel_for(tbb::blocked_range<int>(0, tilesX * tilesY, 1), [&](const tbb::blocked_range<int>& r) {
+                for (int t = r.begin(); t != r.end(); ++t) renderTile(t, done, n);
+            });
+            done += n;
+            if (done > 1) wave *= 2;
+        }
+    });
+    progress.finish();
+    stats.seconds = progress.elapsedSeconds();
+    stats.rays = progress.rays();
+    stats.samples = film.totalSamples();
+    stats.nonFiniteSamples = nonFinite.load();
+    stats.interrupted = cancel.load();
+    return stats;
+}
+
+}  // namespace kiln

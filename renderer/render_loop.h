@@ -1,0 +1,34 @@
+// The TBB tile loop: sample waves over tiles, deterministic sampling, cancellation with true counts.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+
+#include "integrators/integrator.h"
+#include "renderer/film.h"
+
+namespace kiln {
+
+struct RenderSettings {
+    int width = 800, height = 600;
+    int spp = 1;
+    int threads = 0;  // 0 = all cores
+    int tileSize = 32;
+    uint64_t seed = 0;
+    bool progress = true;
+};
+
+struct RenderStats {
+    double seconds = 0;
+    uint64_t rays = 0;
+    uint64_t samples = 0;
+    uint64_t nonFiniteSamples = 0;
+    bool interrupted = false;
+};
+
+// Set by the SIGINT handler; the loop stops at the next pixel and keeps what it has.
+std::atomic<bool>& renderCancelFlag();
+
+RenderStats renderImage(const Scene& scene, const Integrator& integrator, const RenderSettings& settings, Film& film);
+
+}  // namespace kiln

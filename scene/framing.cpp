@@ -1,0 +1,46 @@
+#include "scene/framing.h"
+
+#include <cmath>
+
+namespace kiln {
+
+void applyCs184Framing(Scene& scene) {
+    Bounds3 b = scene.worldBounds();
+    if (b.empty()) return;
+    Vec3 target = b.centroid();
+    float distance = 1.5f * length(b.diagonal());
+    Vec3 dir = scene.camera.cs184Direction;
+    // The course nudges phi away from the poles so the up vector stays defined.
+    if (std::abs(dir.y) > 0.9999f) dir = normalize(Vec3(dir.x, dir.y, dir.z + 1e-4f));
+    scene.camera.position = target + dir * distance;
+    scene.camera.forward = -dir;
+    scene.camera.up = Vec3(0, 1, 0);  // the course's up vector (sin(phi) >= 0 always)
+}
+
+void applyDefaultFraming(Scene& scene) {
+    Bounds3 b = scene.worldBounds();
+    if (b.empty()) return;
+    Camera& cam = scene.camera;
+    cam.hFovDeg = 40.0f;
+    cam.vFovDeg = 30.0f;
+    Vec3 target = b.centroid();
+    float radius = 0.5f * length(b.diagonal());
+    Vec3 dir = normalize(Vec3(0.0f, 0.25f, 1.0f));
+    float halfFov = radians(0.5f * std::min(cam.hFovDeg, cam.vFovDeg));
+    float distance = radius / std::sin(halfFov) * 1.05f;
+    cam.position = target + dir * distance;
+    cam.forward = -dir;
+    cam.up = Vec3(0, 1, 0);
+    cam.nearClip = distance * 1e-4f;
+    cam.fromFile = false;
+}
+
+void fitFovToAspect(float& hFovDeg, float& vFovDeg, float aspect) {
+    float fileAspect = std::tan(radians(hFovDeg) / 2) / std::tan(radians(vFovDeg) / 2);
+    if (fileAspect < aspect)
+        hFovDeg = 2 * degrees(std::atan(std::tan(radians(vFovDeg) / 2) * aspect));
+    else if (fileAspect > aspect)
+        vFovDeg = 2 * degrees(std::atan(std::tan(radians(hFovDeg) / 2) / aspect));
+}
+
+}  // namespace kiln

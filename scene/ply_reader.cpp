@@ -1,0 +1,308 @@
+// A direct PLY reader: binary (both endians) and ASCII, vertex positions/normals/uvs, faces as
+// polygon lists (fan-triangulated) and tristrips (-1 restarts, degenerate strip triangles dropped).
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <bit>
+#include <charconv>
+#include <cstring>
+#include <sstream>
+
+#include "scene/importers.h"
+#include "scene/scene_error.h"
+
+namespace kiln {
+namespace {
+
+enum class PlyType { Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, Float64, Invalid };
+
+PlyType parseType(const std::string& s) {
+    if (s == "char" || s == "int8") return PlyType::Int8;
+    if (s == "uchar" || s == "uint8") return PlyType::UInt8;
+    if (s == "short" || s == "int16") return PlyType::Int16;
+    if (s == "ushort" || s == "uint16") return PlyType::UInt16;
+    if (s == "int" || s == "int32") return PlyType::Int32;
+    if (s == "uint" || s == "uint32") return PlyType::UInt32;
+    if (s == "float" || s == "float32") return PlyType::Float32;
+    if (s == "double" || s == "float64") return PlyType::Float64;
+    return PlyType::Invalid;
+}
+
+size_t typeSize(PlyType t) {
+    switch (t) {
+        case PlyType::Int8: case PlyType::UInt8: return 1;
+        case PlyType::Int16: case PlyType::UInt16: return 2;
+        case PlyType::Int32: case PlyType::UInt32: case PlyType::Float32: return 4;
+        case PlyType::Float64: return 8;
+        default: return 0;
+    }
+}
+
+struct Property {
+    std::string name;
+    PlyType type = PlyType::Invalid;
+    bool isList = false;
+    PlyType countType = PlyType::Invalid;
+};
+
+struct Element {
+    std::string name;
+    uint64_t count = 0;
+    std::vector<Property> props;
+};
+
+enum class Format { Ascii, BinaryLE, BinaryBE };
+
+class MappedFile {
+public:
+    explicit MappedFile(const std::string& path) {
+        fd_ = ::open(path.c_str(), O_RDONLY);
+        if (fd_ < 0) throw SceneError(path, std::string("cannot open: ") + std::strerror(errno));
+        struct stat st {};
+        ::fstat(fd_, &st);
+        size_ = size_t(st.st_size);
+        if (size_ == 0) throw SceneError(path, "file is empty");
+        data_ = static_cast<const char*>(::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE, fd_, 0));
+        if (data_ == MAP_FAILED) throw SceneError(path, "cannot map file");
+    }
+    ~MappedFile() {
+        if (data_ && data_ != MAP_FAILED) ::munmap(const_cast<char*>(data_), size_);
+        if (fd_ >= 0) ::close(fd_);
+    }
+    const char* data() const { return data_; }
+    size_t size() const { return size_; }
+
+private:
+    int fd_ = -1;
+    const char* data_ = nullptr;
+    size_t size_ = 0;
+};
+
+// Reads values from the body, binary or ASCII, with bounds checks that name the file.
+class Cursor {
+public:
+    Cursor(const std::string& path, const char* p, const char* end, Format f) : path_(path), p_(p), end_(end), f_(f) {}
+
+    double read(PlyType t) {
+        if (f_ == Format::Ascii) return readAscii();
+        size_t n = typeSize(t);
+        if (size_t(end_ - p_) < n) throw SceneError(path_, "file ends before the data its header declares");
+        unsigned char b[8];
+        std::memcpy(b, p_, n);
+        p_ += n;
+        if ((f_ == Format::BinaryBE) != (std::endian::native == std::endian::big))
+            for (size_t i = 0; i < n / 2; ++i) std::swap(b[i], b[n - 1 - i]);
+        switch (t) {
+            case PlyType::Int8: return double(int8_t(b[0]));
+            case PlyType::UInt8: return double(b[0]);
+            case PlyType::Int16: { int16_t v; std::memcpy(&v, b, 2); return v; }
+            case PlyType::UInt16: { uint16_t v; std::memcpy(&v, b, 2); return v; }
+            case PlyType::Int32: { int32_t v; std::memcpy(&v, b, 4); return v; }
+            case PlyType::UInt32: { uint32_t v; std::memcpy(&v, b, 4); return v; }
+            case PlyType::Float32: { float v; std::memcpy(&v, b, 4); return v; }
+            case PlyType::Float64: { double v; std::memcpy(&v, b, 8); return v; }
+            default: return 0;
+        }
+    }
+    const char* position() const { return p_; }
+    void skip(size_t n) {
+        if (size_t(end_ - p_) < n) throw SceneError(path_, "file ends before the data its header declares");
+        p_ += n;
+    }
+
+private:
+    double readAscii() {
+        while (p_ < end_ && (*p_ == ' ' || *p_ == '\n' || *p_ == '\r' || *p_ == '\t')) ++p_;
+        if (p_ >= end_) throw SceneError(path_, "file ends before the data its header declares");
+        double v = 0;
+        auto [next, ec] = std::from_chars(p_, end_, v);
+        if (ec != std::errc()) throw SceneError(path_, "garbled number in PLY body");
+        p_ = next;
+        return v;
+    }
+    const std::string& path_;
+    const char* p_;
+    const char* end_;
+    Format f_;
+};
+
+}  // namespace
+
+void readPly(const std::string& path, Scene& scene) {
+    MappedFile file(path);
+    const char* data = file.data();
+    const char* end = data + file.size();
+    if (file.size() < 4 || std::strncmp(data, "ply", 3) != 0) throw SceneError(path, "not a PLY file (no 'ply' magic)");
+    const char* headerEnd = nullptr;
+    for (const char* p = data; p + 10 <= end; ++p)
+        if (std::strncmp(p, "end_header", 10) == 0) {
+            headerEnd = p + 10;
+            break;
+        }
+    if (!headerEnd) throw SceneError(path, "PLY header has no end_header");
+    while (headerEnd < end && *headerEnd != '\n') ++headerEnd;
+    if (headerEnd < end) ++headerEnd;
+
+    std::istringstream header(std::string(data, headerEnd));
+    std::string line;
+    Format format = Format::Ascii;
+    std::vector<Element> elements;
+    bool haveFormat = false;
+    while (std::getline(header, line)) {
+        std::istringstream ls(line);
+        std::string word;
+        ls >> word;
+        if (word == "format") {
+            std::string f;
+            ls >> f;
+            if (f == "ascii") format = Format::Ascii;
+            else if (f == "binary_little_endian") format = Format::BinaryLE;
+            else if (f == "binary_big_endian") format = Format::BinaryBE;
+            else throw SceneError(path, "unknown PLY format '" + f + "'");
+            haveFormat = true;
+        } else if (word == "element") {
+            Element e;
+            ls >> e.name >> e.count;
+            if (!ls) throw SceneError(path, "malformed PLY element line: '" + line + "'");
+            elements.push_back(e);
+        } else if (word == "property") {
+            if (elements.empty()) throw SceneError(path, "PLY property before any element");
+            Property p;
+            std::string t;
+            ls >> t;
+            if (t == "list") {
+                std::string ct, it;
+                ls >> ct >> it >> p.name;
+                p.isList = true;
+                p.countType = parseType(ct);
+                p.type = parseType(it);
+            } else {
+                p.type = parseType(t);
+                ls >> p.name;
+            }
+            if (p.type == PlyType::Invalid || (p.isList && p.countType == PlyType::Invalid))
+                throw SceneError(path, "unknown PLY property type in '" + line + "'");
+            elements.back().props.push_back(p);
+        }
+    }
+    if (!haveFormat) throw SceneError(path, "PLY header has no format line");
+
+    TriangleMesh mesh;
+    mesh.name = "ply";
+    size_t vertexCount = 0;
+    Cursor cur(path, headerEnd, end, format);
+    for (const Element& e : elements) {
+        if (e.name == "vertex") {
+            vertexCount = e.count;
+            int ix = -1, iy = -1, iz = -1, inx = -1, iny = -1, inz = -1, iu = -1, iv = -1;
+            for (size_t i = 0; i < e.props.size(); ++i) {
+                const std::string& n = e.props[i].name;
+                if (n == "x") ix = int(i);
+                else if (n == "y") iy = int(i);
+                else if (n == "z") iz = int(i);
+                else if (n == "nx") inx = int(i);
+                else if (n == "ny") iny = int(i);
+                else if (n == "nz") inz = int(i);
+                else if (n == "u" || n == "s" || n == "texture_u") iu = int(i);
+                else if (n == "v" || n == "t" || n == "texture_v") iv = int(i);
+            }
+            if (ix < 0 || iy < 0 || iz < 0) throw SceneError(path, "PLY vertex element lacks x, y or z");
+            bool normals = inx >= 0 && iny >= 0 && inz >= 0, uvs = iu >= 0 && iv >= 0;
+            if (e.count > (file.size() / (format == Format::Ascii ? 6 : 12)) + 1)
+                throw SceneError(path, "PLY header declares " + std::to_string(e.count) + " vertices, more than the file can hold");
+            mesh.positions.resize(3 * e.count + 1);
+            if (normals) mesh.normals.resize(3 * e.count);
+            if (uvs) mesh.uvs.resize(2 * e.count);
+            std::vector<double> row(e.props.size());
+            for (uint64_t v = 0; v < e.count; ++v) {
+                for (size_t i = 0; i < e.props.size(); ++i) {
+                    if (e.props[i].isList) {
+                        size_t n = size_t(cur.read(e.props[i].countType));
+                        for (size_t k = 0; k < n; ++k) cur.read(e.props[i].type);
+                        continue;
+                    }
+                    row[i] = cur.read(e.props[i].type);
+                }
+                mesh.positions[3 * v] = float(row[ix]);
+                mesh.positions[3 * v + 1] = float(row[iy]);
+                mesh.positions[3 * v + 2] = float(row[iz]);
+                if (normals) {
+                    mesh.normals[3 * v] = float(row[inx]);
+                    mesh.normals[3 * v + 1] = float(row[iny]);
+                    mesh.normals[3 * v + 2] = float(row[inz]);
+                }
+                if (uvs) {
+                    mesh.uvs[2 * v] = float(row[iu]);
+                    mesh.uvs[2 * v + 1] = float(row[iv]);
+                }
+            }
+        } else if (e.name == "face" || e.name == "tristrips") {
+            bool strips = e.name == "tristrips";
+            std::vector<uint32_t> poly;
+            if (!strips) mesh.indices.reserve(mesh.indices.size() + 3 * e.count);
+            for (uint64_t f = 0; f < e.count; ++f) {
+                for (const Property& p : e.props) {
+                    if (!p.isList) {
+                        cur.read(p.type);
+                        continue;
+                    }
+                    size_t n = size_t(cur.read(p.countType));
+                    bool isIndexList = p.name == "vertex_indices" || p.name == "vertex_index";
+                    poly.clear();
+                    for (size_t k = 0; k < n; ++k) {
+                        double idx = cur.read(p.type);
+                        if (!isIndexList) continue;
+                        if (strips && idx < 0) {
+                            poly.push_back(UINT32_MAX);  // strip restart
+                            continue;
+                        }
+                        if (idx < 0 || idx >= double(vertexCount))
+                            throw SceneError(path, "face " + std::to_string(f) + " has vertex index " +
+                                                       std::to_string(int64_t(idx)) + " out of range (" +
+                                                       std::to_string(vertexCount) + " vertices)");
+                        poly.push_back(uint32_t(idx));
+                    }
+                    if (!isIndexList) continue;
+                    if (!strips) {
+                        for (size_t k = 2; k < poly.size(); ++k)
+                            mesh.indices.insert(mesh.indices.end(), {poly[0], poly[k - 1], poly[k]});
+                        continue;
+                    }
+                    // Tristrip: alternate winding; drop restarts and degenerate (repeated-index) triangles.
+                    size_t run = 0;
+                    for (size_t k = 0; k < poly.size(); ++k) {
+                        if (poly[k] == UINT32_MAX) {
+                            run = 0;
+                            continue;
+                        }
+                        if (++run < 3) continue;
+                        uint32_t a = poly[k - 2], b = poly[k - 1], c = poly[k];
+                        if (a == b || b == c || a == c) continue;
+                        if (run % 2 == 1) mesh.indices.insert(mesh.indices.end(), {a, b, c});
+                        else mesh.indices.insert(mesh.indices.end(), {b, a, c});
+                    }
+                }
+            }
+        } else {
+            // Unknown element: skip its rows.
+            for (uint64_t r = 0; r < e.count; ++r)
+                for (const Property& p : e.props) {
+                    if (p.isList) {
+                        size_t n = size_t(cur.read(p.countType));
+                        for (size_t k = 0; k < n; ++k) cur.read(p.type);
+                    } else {
+                        cur.read(p.type);
+                    }
+                }
+        }
+    }
+    if (mesh.positions.empty()) throw SceneError(path, "PLY has no vertex element");
+    mesh.finalizePadding();
+    mesh.materialIds = {uint32_t(scene.materials.size())};
+    scene.materials.push_back(Material{"ply-default"});
+    scene.meshes.push_back(std::move(mesh));
+}
+
+}  // namespace kiln

@@ -1,0 +1,81 @@
+#include "scene/scene.h"
+
+namespace kiln {
+
+const char* toString(MaterialKind kind) {
+    switch (kind) {
+        case MaterialKind::Lambertian: return "lambertian";
+        case MaterialKind::Mirror: return "mirror";
+        case MaterialKind::Glass: return "glass";
+        case MaterialKind::Microfacet: return "microfacet";
+        case MaterialKind::Refraction: return "refraction";
+        case MaterialKind::Glossy: return "glossy";
+        case MaterialKind::Emission: return "emission";
+    }
+    return "unknown";
+}
+
+const char* toString(LightKind kind) {
+    switch (kind) {
+        case LightKind::Area: return "area";
+        case LightKind::MeshEmitter: return "emissive_mesh";
+        case LightKind::Point: return "point";
+        case LightKind::Spot: return "spot";
+        case LightKind::Directional: return "directional";
+        case LightKind::Ambient: return "ambient";
+        case LightKind::Environment: return "environment";
+    }
+    return "unknown";
+}
+
+void TriangleMesh::finalizePadding() {
+    if (positions.size() % 3 == 0) positions.push_back(0.0f);
+}
+
+std::vector<bool> Scene::prototypeMask() const {
+    std::vector<bool> mask(meshes.size(), false);
+    for (const Instance& inst : instances) mask[inst.mesh] = true;
+    return mask;
+}
+
+Bounds3 Scene::worldBounds() const {
+    Bounds3 b;
+    std::vector<bool> proto = prototypeMask();
+    for (size_t m = 0; m < meshes.size(); ++m) {
+        if (proto[m]) continue;
+        for (size_t v = 0; v < meshes[m].vertexCount(); ++v) b.extend(meshes[m].vertex(uint32_t(v)));
+    }
+    for (const Instance& inst : instances) {
+        const TriangleMesh& mesh = meshes[inst.mesh];
+        Bounds3 local;
+        for (size_t v = 0; v < mesh.vertexCount(); ++v) local.extend(mesh.vertex(uint32_t(v)));
+        if (local.empty()) continue;
+        for (int c = 0; c < 8; ++c) {
+            Vec3 corner{(c & 1) ? local.hi.x : local.lo.x, (c & 2) ? local.hi.y : local.lo.y,
+                        (c & 4) ? local.hi.z : local.lo.z};
+            b.extend(inst.objectToWorld.point(corner));
+        }
+    }
+    for (const Sphere& s : spheres) {
+        b.extend(s.center - Vec3(s.radius));
+        b.extend(s.center + Vec3(s.radius));
+    }
+    return b;
+}
+
+uint64_t Scene::uniqueTriangles() const {
+    uint64_t n = 0;
+    for (const TriangleMesh& m : meshes) n += m.triangleCount();
+    return n;
+}
+
+uint64_t Scene::instancedTriangles() const {
+    uint64_t n = 0;
+    std::vector<bool> proto = prototypeMask();
+    for (size_t m = 0; m < meshes.size(); ++m)
+        if (!proto[m]) n += meshes[m].triangleCount();
+    for (const Instance& inst : instances) n += meshes[inst.mesh].triangleCount();
+    return n;
+}
+
+}  // namespace kiln

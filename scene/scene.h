@@ -1,0 +1,117 @@
+// The scene model: plain data that importers fill and accelerators/integrators read.
+// Geometry is stored flat and compact so Embree can share the buffers without a copy.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "renderer/math.h"
+
+namespace kiln {
+
+enum class MaterialKind { Lambertian, Mirror, Glass, Microfacet, Refraction, Glossy, Emission };
+const char* toString(MaterialKind kind);
+
+struct Material {
+    std::string name;
+    MaterialKind kind = MaterialKind::Lambertian;
+    Color albedo{0.5f};         // Lambertian diffuse colour
+    Color reflectance{1.0f};    // mirror, glass, glossy
+    Color transmittance{1.0f};  // glass, refraction
+    float ior = 1.5f;           // glass, refraction
+    float roughness = 0.0f;     // glass, refraction (CS184 files: always 0)
+    float alpha = 0.1f;         // microfacet roughness (Beckmann alpha)
+    Color eta{1.0f};            // microfacet conductor index of refraction per channel
+    Color k{0.0f};              // microfacet conductor absorption per channel
+    float shininess = 50.0f;    // glossy (Phong exponent)
+    Color emission{0.0f};       // radiance emitted (Emission materials)
+};
+
+enum class LightKind { Area, MeshEmitter, Point, Spot, Directional, Ambient, Environment };
+const char* toString(LightKind kind);
+
+struct Light {
+    std::string name;
+    LightKind kind = LightKind::Point;
+    Color radiance{1.0f};  // area/ambient/environment: radiance; point/spot: intensity; directional: irradiance
+    Vec3 position;         // area: centre; point, spot
+    Vec3 direction{0, -1, 0};  // area: emitting side; spot: axis; directional: direction light travels
+    Vec3 dimX, dimY;           // area: full edge vectors of the rectangle
+    float spotInnerDeg = 30.0f, spotOuterDeg = 45.0f;
+    uint32_t mesh = 0;              // mesh emitter: the emissive mesh
+    std::string environmentPath;  // lat-long EXR/HDR
+    float environmentScale = 1.0f;
+};
+
+struct Camera {
+    Vec3 position{0, 0, 5};
+    Vec3 forward{0, 0, -1};
+    Vec3 up{0, 1, 0};
+    float hFovDeg = 50.0f;  // full angles, as the file states them; aspect fit happens at render time
+    float vFovDeg = 35.0f;
+    float nearClip = 0.001f, farClip = 1e30f;
+    float apertureRadius = 0.0f;  // thin lens when > 0
+    float focalDistance = 1.0f;
+    // Only the camera's direction survives the CS184 framing rule; this is that direction
+    // (from the scene centre towards the camera) when the file had a camera.
+    bool fromFile = false;
+    Vec3 cs184Direction{0, 0, 1};
+};
+
+// Triangles of one mesh; per-triangle material ids index Scene::materials.
+struct TriangleMesh {
+    std::string name;
+    // xyz per vertex; one extra padding float at the end because Embree reads vertices as 16 bytes.
+    std::vector<float> positions;
+    std::vector<uint32_t> indices;  // 3 per triangle
+    std::vector<float> normals;     // optional, xyz per vertex
+    std::vector<float> uvs;         // optional, uv per vertex
+    std::vector<uint32_t> materialIds;  // one per triangle, or one for the whole mesh
+
+    size_t vertexCount() const { return positions.size() / 3; }
+    size_t triangleCount() const { return indices.size() / 3; }
+    Vec3 vertex(uint32_t i) const { return {positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]}; }
+    uint32_t materialOf(size_t tri) const { return materialIds.size() == 1 ? materialIds[0] : materialIds[tri]; }
+    void finalizePadding();  // ensures the 16-byte read past the last vertex is legal
+};
+
+struct Sphere {
+    std::string name;
+    Vec3 center;
+    float radius = 1.0f;
+    uint32_t material = 0;
+};
+
+// One placement of a mesh. A mesh named by any instance is a prototype in object space and is not
+// drawn by itself; every other mesh is in world space.
+struct Instance {
+    uint32_t mesh = 0;
+    Mat4 objectToWorld;
+    Mat4 worldToObject;
+    static Instance place(uint32_t mesh, const Mat4& objectToWorld) {
+        return {mesh, objectToWorld, objectToWorld.inverse()};
+    }
+};
+
+struct Scene {
+    std::string sourcePath;
+    std::vector<TriangleMesh> meshes;
+    std::vector<Sphere> spheres;
+    std::vector<Instance> instances;
+    std::vector<Material> materials;
+    std::vector<Light> lights;
+    Camera camera;
+    bool hasFileCamera = false;
+    bool isCs184 = false;  // Z-up COLLADA, as every CS184 library file is: framed by the course rule
+    bool framedByCourseRule = false;
+    double loadSeconds = 0;
+    std::vector<std::string> warnings;
+
+    std::vector<bool> prototypeMask() const;  // meshes drawn only through instances
+    Bounds3 worldBounds() const;
+    uint64_t uniqueTriangles() const;     // stored triangles
+    uint64_t instancedTriangles() const;  // triangles as rendered (instances expanded)
+};
+
+}  // namespace kiln

@@ -1,0 +1,108 @@
+#include "scene/scene_loader.h"
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+#include "scene/framing.h"
+#include "scene/importers.h"
+#include "scene/scene_error.h"
+
+namespace kiln {
+namespace {
+
+std::string lowerExtension(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
+}
+
+// Spheres, lights and camera from the CGL pass; sphere materials join the scene's material list.
+void applyColladaExtras(const ColladaExtras& extras, Scene& scene) {
+    std::map<std::string, uint32_t> sphereMaterial;
+    for (size_t i = 0; i < extras.spheres.size(); ++i) {
+        Sphere s = extras.spheres[i];
+        const std::string& id = extras.sphereMaterialIds[i];
+        auto known = sphereMaterial.find(id);
+        if (known != sphereMaterial.end()) {
+            s.material = known->second;
+        } else {
+            auto it = extras.materialsById.find(id);
+            if (!id.empty() && it == extras.materialsById.end())
+                throw SceneError(scene.sourcePath, "sphere '" + s.name + "' binds unknown material '" + id + "'");
+            s.material = uint32_t(scene.materials.size());
+            scene.materials.push_back(it == extras.materialsById.end() ? Material{"default"} : it->second);
+            sphereMaterial[id] = s.material;
+        }
+        scene.spheres.push_back(s);
+    }
+    scene.lights.insert(scene.lights.end(), extras.lights.begin(), extras.lights.end());
+    if (extras.camera) {
+        scene.camera = *extras.camera;
+        scene.hasFileCamera = true;
+    }
+    scene.warnings.insert(scene.warnings.end(), extras.warnings.begin(), extras.warnings.end());
+}
+
+}  // namespace
+
+Scene loadScene(const std::string& path, const LoadOptions& options) {
+    auto start = std::chrono::steady_clock::now();
+    Scene scene;
+    scene.sourcePath = path;
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) throw SceneError(path, "no such file");
+    if (std::filesystem::is_directory(path, ec)) throw SceneError(path, "is a directory, not a scene file");
+    if (!std::ifstream(path).good()) throw SceneError(path, "cannot read file (permission?)");
+    if (std::filesystem::file_size(path, ec) == 0) throw SceneError(path, "file is empty");
+
+    std::string ext = lowerExtension(path);
+    if (ext == ".ply") {
+        readPly(path, scene);
+    } else if (ext == ".dae") {
+        ColladaExtras extras = parseColladaExtras(path);
+        importWithAssimp(path, &extras, scene);
+        applyColladaExtras(extras, scene);
+        scene.isCs184 = extras.zUp;
+    } else {
+        importWithAssimp(path, nullptr, scene);
+    }
+    validateScene(scene);
+
+    addEmissiveMeshLights(scene);
+    bool hasLight = !scene.lights.empty();
+    if (!options.environmentMap.empty()) {
+        if (!std::filesystem::exists(options.environmentMap))
+            throw SceneError(options.environmentMap, "no such environment map");
+        Light env;
+        env.name = "environment";
+        env.kind = LightKind::Environment;
+        env.environmentPath = options.environmentMap;
+        env.environmentScale = options.environmentScale;
+        env.radiance = Color(options.environmentScale);
+        scene.lights.push_back(env);
+    }
+    if (!hasLight && options.environmentMap.empty()) {
+        // Bare meshes expect the default rig; a scene file that forgot its lights gets a warning.
+        if (ext == ".dae" || ext == ".gltf" || ext == ".glb" || ext == ".fbx")
+            scene.warnings.push_back("scene has no lights; using the default light rig");
+        addDefaultLightRig(scene);
+    }
+    bool allDark = std::all_of(scene.lights.begin(), scene.lights.end(),
+                               [](const Light& l) { return maxComponent(l.radiance) <= 0; });
+    if (allDark) scene.warnings.push_back("every light has zero power: only emission will be visible");
+
+    using Rule = LoadOptions::CameraRule;
+    if (!scene.hasFileCamera) applyDefaultFraming(scene);
+    else if (options.cameraRule == Rule::Framed || (options.cameraRule == Rule::Auto && scene.isCs184))
+        applyCs184Framing(scene);
+    scene.framedByCourseRule = scene.hasFileCamera && (options.cameraRule == Rule::Framed ||
+                                                       (options.cameraRule == Rule::Auto && scene.isCs184));
+
+    scene.loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return scene;
+}
+
+}  // namespace kiln

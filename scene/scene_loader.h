@@ -1,0 +1,31 @@
+// Loads any supported scene file into the scene model, validates it and completes it (camera framing,
+// default lights for bare meshes, environment light on request).
+#pragma once
+
+#include <string>
+
+#include "scene/scene.h"
+
+namespace kiln {
+
+struct LoadOptions {
+    // Camera rule: Auto frames CS184-library COLLADA (Z-up, as every course file is) by the course rule
+    // and uses the file camera elsewhere; File and Framed force one or the other.
+    enum class CameraRule { Auto, File, Framed } cameraRule = CameraRule::Auto;
+    std::string environmentMap;   // --env: adds a lat-long environment light
+    float environmentScale = 1.0f;
+};
+
+// Throws SceneError (one line: file and problem) on anything it cannot load.
+Scene loadScene(const std::string& path, const LoadOptions& options = {});
+
+// Checks the geometry: finite vertices, indices in range, something to render.
+void validateScene(const Scene& scene);
+
+// Lights for files that bring none: a key directional light and a dim sky (ambient) fill.
+void addDefaultLightRig(Scene& scene);
+
+// Adds a light for every mesh whose material emits (sampled by area at render time).
+void addEmissiveMeshLights(Scene& scene);
+
+}  // namespace kiln

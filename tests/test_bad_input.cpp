@@ -1,0 +1,152 @@
+// Bad input: a one-line SceneError naming the file and the problem, never a crash.
+#include "scene/scene_error.h"
+#include "scene/scene_loader.h"
+#include "test_support.h"
+
+namespace kiln {
+namespace {
+
+// Expects loadScene to throw a one-line SceneError that names the file and contains `what`.
+void expectError(const std::string& path, const std::string& what) {
+    try {
+        loadScene(path);
+        FAIL() << "no error for " << path;
+    } catch (const SceneError& e) {
+        std::string msg = e.what();
+        EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+        EXPECT_EQ(msg.rfind(path, 0), 0u) << "message does not start with the file: " << msg;
+        EXPECT_NE(msg.find(what), std::string::npos) << "expected '" << what << "' in: " << msg;
+    }
+}
+
+// A minimal valid COLLADA scene; tests break one piece of it at a time.
+std::string collada(const std::string& effectExtra, const std::string& positions = "0 0 0 1 0 0 0 1 0",
+                    const std::string& indices = "0 1 2", const std::string& lights = "") {
+    return R"(<?xml version="1.0"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+<asset><up_axis>Y_UP</up_axis></asset>
+<library_lights>)" + lights + R"(</library_lights>
+<library_effects><effect id="e"><profile_COMMON><technique sid="common"><phong><diffuse><color>0.5 0.5 0.5 1</color></diffuse></phong></technique></profile_COMMON>)" +
+           effectExtra + R"(</effect></library_effects>
+<library_materials><material id="m" name="m"><instance_effect url="#e"/></material></library_materials>
+<library_geometries><geometry id="g" name="g"><mesh>
+<source id="p"><float_array id="pa" count="9">)" + positions + R"(</float_array>
+<technique_common><accessor source="#pa" count="3" stride="3"><param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/></accessor></technique_common></source>
+<vertices id="v"><input semantic="POSITION" source="#p"/></vertices>
+<triangles material="m" count="1"><input semantic="VERTEX" source="#v" offset="0"/><p>)" + indices + R"(</p></triangles>
+</mesh></geometry></library_geometries>
+<library_visual_scenes><visual_scene id="s"><node id="n"><matrix>1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1</matrix>
+<instance_geometry url="#g"><bind_material><technique_common><instance_material symbol="m" target="#m"/></technique_common></bind_material></instance_geometry></node>
+</visual_scene></library_visual_scenes>
+<scene><instance_visual_scene url="#s"/></scene></COLLADA>
+)";
+}
+
+TEST(BadInput, MissingFile) { expectError("/nonexistent/scene.dae", "no such file"); }
+
+TEST(BadInput, Directory) { expectError(test::scratchDir().string(), "directory"); }
+
+TEST(BadInput, EmptyFile) {
+    auto dir = test::scratchDir();
+    expectError(test::writeFile(dir / "empty.dae", ""), "empty");
+}
+
+TEST(BadInput, UnreadableFormat) {
+    auto dir = test::scratchDir();
+    expectError(test::writeFile(dir / "junk.obj", "this is not a mesh\n\x01\x02\x03"), "");
+}
+
+TEST(BadInput, MalformedXml) {
+    auto dir = test::scratchDir();
+    expectError(test::writeFile(dir / "broken.dae", "<COLLADA><asset></COLLADA>"), "malformed XML");
+}
+
+TEST(BadInput, GarbledCglValue) {
+    auto dir = test::scratchDir();
+    std::string extra = R"(<extra><technique profile="CGL"><glass><reflectance>1 1 1</reflectance><transmittance>1 one 1</transmittance><roughness>0</roughness><ior>1.5</ior></glass></technique></extra>)";
+    expectError(test::writeFile(dir / "garbled.dae", collada(extra)), "garbled number");
+}
+
+TEST(BadInput, MissingCglValue) {
+    auto dir = test::scratchDir();
+    std::string extra = R"(<extra><technique profile="CGL"><glass><reflectance>1 1 1</reflectance><roughness>0</roughness><ior>1.5</ior></glass></technique></extra>)";
+    expectError(test::writeFile(dir / "missing.dae", collada(extra)), "missing <transmittance>");
+}
+
+TEST(BadInput, UnknownMaterial) {
+    auto dir = test::scratchDir();
+    std::string extra = R"(<extra><technique profile="CGL"><velvet><sheen>1</sheen></velvet></technique></extra>)";
+    expectError(test::writeFile(dir / "unknown.dae", collada(extra)), "unknown CGL material <velvet>");
+}
+
+TEST(BadInput, NanVertexInCollada) {
+    auto dir = test::scratchDir();
+    expectError(test::writeFile(dir / "nan.dae", collada("", "0 0 0 nan 0 0 0 1 0")), "non-finite");
+}
+
+TEST(BadInput, NanVertexInObj) {
+    auto dir = test::scratchDir();
+    expectError(test::writeFile(dir / "nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n"), "non-finite");
+}
+
+TEST(BadInput, InfVertexInPly) {
+    auto dir = test::scratchDir();
+    std::string ply = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                      "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\ninf 0 0\n0 1 0\n3 0 1 2\n";
+    expectError(test::writeFile(dir / "inf.ply", ply), "non-finite");
+}
+
+TEST(BadInput, IndexOutOfRangeInPly) {
+    auto dir = test::scratchDir();
+    std::string ply = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                      "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n";
+    expectError(test::writeFile(dir / "range.ply", ply), "out of range");
+}
+
+TEST(BadInput, TruncatedBinaryPly) {
+    auto dir = test::scratchDir();
+    std::string ply = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                      "property float z\nend_header\n\x01\x02";
+    expectError(test::writeFile(dir / "short.ply", ply), "file ends before");
+}
+
+TEST(BadInput, IndexOutOfRangeInObjIsRejected) {
+    auto dir = test::scratchDir();
+    expectError(test::writeFile(dir / "range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"), "");
+}
+
+TEST(BadInput, EmptyScene) {
+    auto dir = test::scratchDir();
+    std::string empty = R"(<?xml version="1.0"?><COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1"><asset><up_axis>Y_UP</up_axis></asset><library_visual_scenes><visual_scene id="s"/></library_visual_scenes><scene><instance_visual_scene url="#s"/></scene></COLLADA>)";
+    expectError(test::writeFile(dir / "empty_scene.dae", empty), "");
+}
+
+TEST(BadInput, SceneWithoutLightsWarnsAndGetsTheDefaultRig) {
+    auto dir = test::scratchDir();
+    Scene s = loadScene(test::writeFile(dir / "dark.dae", collada("")));
+    ASSERT_FALSE(s.warnings.empty());
+    EXPECT_NE(s.warnings[0].find("no lights"), std::string::npos);
+    EXPECT_EQ(s.lights.size(), 2u);
+}
+
+TEST(BadInput, NegativeLightRadiance) {
+    auto dir = test::scratchDir();
+    std::string light = R"(<light id="l"><technique_common><point><color>-1 1 1</color></point></technique_common></light>)";
+    std::string text = collada("", "0 0 0 1 0 0 0 1 0", "0 1 2", light);
+    text.replace(text.find("</visual_scene>"), 0, R"(<node id="ln"><instance_light url="#l"/></node>)");
+    expectError(test::writeFile(dir / "neg.dae", text), "negative radiance");
+}
+
+TEST(BadInput, MissingEnvironmentMap) {
+    LoadOptions o;
+    o.environmentMap = "/nonexistent/sky.exr";
+    try {
+        loadScene(test::shared("meshes/stanford-bunny.obj"), o);
+        FAIL();
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("/nonexistent/sky.exr: no such environment map"), std::string::npos);
+    }
+}
+
+}  // namespace
+}  // namespace kiln

@@ -1,0 +1,123 @@
+// The kiln executable end to end: help, bad flags, bad files, outputs and exit codes.
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <thread>
+
+#include "test_support.h"
+
+namespace kiln {
+namespace {
+
+struct CliRun {
+    int code;
+    std::string out, err;
+};
+
+CliRun runKiln(const std::string& args) {
+    auto dir = std::filesystem::temp_directory_path() / "kiln-tests";
+    std::filesystem::create_directories(dir);
+    std::string errFile = (dir / ("stderr-" + std::to_string(::getpid()))).string();
+    std::string cmd = std::string(KILN_BINARY) + " " + args + " 2>" + errFile;
+    CliRun r{};
+    FILE* p = ::popen(cmd.c_str(), "r");
+    std::array<char, 4096> buf;
+    size_t n;
+    while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
+    int status = ::pclose(p);
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::ifstream e(errFile);
+    r.err.assign(std::istreambuf_iterator<char>(e), {});
+    return r;
+}
+
+int lines(const std::string& s) { return int(std::count(s.begin(), s.end(), '\n')); }
+
+TEST(Cli, HelpDocumentsEveryCommandAndOption) {
+    CliRun top = runKiln("--help");
+    EXPECT_EQ(top.code, 0);
+    for (const char* cmd : {"render", "info", "crosscheck", "bench"}) EXPECT_NE(top.out.find(cmd), std::string::npos);
+    CliRun render = runKiln("render --help");
+    EXPECT_EQ(render.code, 0);
+    for (const char* opt : {"-s, --spp", "-t, --threads", "-r, --resolution", "-f, --file", "--accel", "--integrator",
+                            "--camera", "--env"})
+        EXPECT_NE(render.out.find(opt), std::string::npos) << opt;
+    EXPECT_EQ(runKiln("info --help").code, 0);
+    EXPECT_EQ(runKiln("crosscheck --help").code, 0);
+    EXPECT_EQ(runKiln("bench accel --help").code, 0);
+}
+
+TEST(Cli, BadFlagsAreOneLineErrorsWithExitCode2) {
+    for (const char* args : {"render --bogus scene.dae", "render -s abc x.dae", "render -s 0 x.dae", "render -r 10",
+                             "render --accel gpu x.dae", "frobnicate", "info", "render a.dae b.dae"}) {
+        CliRun r = runKiln(args);
+        EXPECT_EQ(r.code, 2) << args;
+        EXPECT_GE(lines(r.err), 1) << args;
+        EXPECT_NE(r.err.find("kiln"), std::string::npos) << args;
+    }
+    EXPECT_EQ(lines(runKiln("render --bogus x").err), 1);
+}
+
+TEST(Cli, BadSceneIsOneLineNamingTheFile) {
+    CliRun r = runKiln("render /nonexistent/scene.dae");
+    EXPECT_EQ(r.code, 2);
+    EXPECT_EQ(lines(r.err), 1);
+    EXPECT_NE(r.err.find("/nonexistent/scene.dae: no such file"), std::string::npos) << r.err;
+    CliRun unknown = runKiln("render " + test::repo("scenes/cornell.dae") + " --integrator magic -r 8 8 -o /tmp/kiln-tests/x");
+    EXPECT_EQ(unknown.code, 2);
+    EXPECT_NE(unknown.err.find("unknown integrator"), std::string::npos);
+}
+
+TEST(Cli, RenderWritesExrAndPngAndReportsStats) {
+    auto dir = test::scratchDir();
+    CliRun r = runKiln("render " + test::repo("scenes/cornell.dae") + " -r 64 48 -s 2 -q -o " + (dir / "box").string());
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(std::filesystem::exists(dir / "box.exr"));
+    EXPECT_TRUE(std::filesystem::exists(dir / "box.png"));
+    EXPECT_NE(r.err.find("Mrays/s"), std::string::npos);
+    EXPECT_NE(r.err.find("load"), std::string::npos);
+    // The CS184 form: -f names the PNG, the EXR goes beside it.
+    CliRun f = runKiln("render " + test::repo("scenes/cornell.dae") + " -r 32 24 -q -t 1 -f " + (dir / "cs.png").string());
+    ASSERT_EQ(f.code, 0) << f.err;
+    EXPECT_TRUE(std::filesystem::exists(dir / "cs.png"));
+    EXPECT_TRUE(std::filesystem::exists(dir / "cs.exr"));
+}
+
+TEST(Cli, InfoJsonAndCrosscheck) {
+    CliRun info = runKiln("info --json " + test::cs184("sky/CBspheres.dae"));
+    EXPECT_EQ(info.code, 0);
+    EXPECT_NE(info.out.find("\"spheres\": 2"), std::string::npos);
+    CliRun cc = runKiln("crosscheck " + test::cs184("sky/CBspheres.dae") + " --rays 8000");
+    EXPECT_EQ(cc.code, 0) << cc.out << cc.err;
+    EXPECT_NE(cc.out.find("shadow"), std::string::npos);
+    CliRun json = runKiln("crosscheck " + test::cs184("sky/CBspheres.dae") + " --rays 4000 --json");
+    EXPECT_NE(json.out.find("\"genuine\": 0"), std::string::npos) << json.out;
+}
+
+TEST(Cli, SigintWritesThePartialImageAndExitsNonZero) {
+    auto dir = test::scratchDir();
+    std::string out = (dir / "partial").string();
+    pid_t pid = ::fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+        ::freopen("/dev/null", "w", stderr);
+        ::execl(KILN_BINARY, KILN_BINARY, "render", test::cs184("sky/CBbunny.dae").c_str(), "--accel", "reference",
+                "-r", "400", "300", "-s", "100000", "-q", "-o", out.c_str(), (char*)nullptr);
+        ::_exit(127);
+    }
+    // Wait until it renders (the load takes a moment), then interrupt.
+    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+    ::kill(pid, SIGINT);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 130);
+    EXPECT_TRUE(std::filesystem::exists(out + ".exr"));
+    EXPECT_TRUE(std::filesystem::exists(out + ".png"));
+}
+
+}  // namespace
+}  // namespace kiln

@@ -44,32 +44,42 @@ void sphereBounds(const RTCBoundsFunctionArguments* args) {
     args->bounds_o->upper_z = s.center.z + s.radius + pad;
 }
 
-Ray toRay(const RTCRay& r) {
-    return Ray{Vec3(r.org_x, r.org_y, r.org_z), r.tnear, Vec3(r.dir_x, r.dir_y, r.dir_z), r.tfar};
+// Sphere callbacks for any packet width N (rtcIntersect1 calls with N = 1, rtcIntersect16 with 16).
+Ray lane(RTCRayN* r, unsigned N, unsigned i) {
+    return Ray{Vec3(RTCRayN_org_x(r, N, i), RTCRayN_org_y(r, N, i), RTCRayN_org_z(r, N, i)), RTCRayN_tnear(r, N, i),
+               Vec3(RTCRayN_dir_x(r, N, i), RTCRayN_dir_y(r, N, i), RTCRayN_dir_z(r, N, i)), RTCRayN_tfar(r, N, i)};
 }
 
 void sphereIntersect(const RTCIntersectFunctionNArguments* args) {
-    if (!args->valid[0]) return;
-    RTCRayHit* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);  // N == 1: we only call rtcIntersect1
     const Sphere& s = (*static_cast<const SphereData*>(args->geometryUserPtr)->spheres)[args->primID];
-    float t;
-    if (!intersectSphere(toRay(rh->ray), s.center, s.radius, t)) return;
-    rh->ray.tfar = t;
-    Vec3 p = Vec3(rh->ray.org_x, rh->ray.org_y, rh->ray.org_z) + Vec3(rh->ray.dir_x, rh->ray.dir_y, rh->ray.dir_z) * t;
-    Vec3 n = p - s.center;
-    rh->hit.Ng_x = n.x, rh->hit.Ng_y = n.y, rh->hit.Ng_z = n.z;
-    rh->hit.u = rh->hit.v = 0;
-    rh->hit.primID = args->primID;
-    rh->hit.geomID = args->geomID;
-    rh->hit.instID[0] = args->context->instID[0];
+    RTCRayN* rays = RTCRayHitN_RayN(args->rayhit, args->N);
+    RTCHitN* hits = RTCRayHitN_HitN(args->rayhit, args->N);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (!args->valid[i]) continue;
+        Ray ray = lane(rays, args->N, i);
+        float t;
+        if (!intersectSphere(ray, s.center, s.radius, t)) continue;
+        RTCRayN_tfar(rays, args->N, i) = t;
+        Vec3 n = ray.origin + ray.dir * t - s.center;
+        RTCHitN_Ng_x(hits, args->N, i) = n.x;
+        RTCHitN_Ng_y(hits, args->N, i) = n.y;
+        RTCHitN_Ng_z(hits, args->N, i) = n.z;
+        RTCHitN_u(hits, args->N, i) = 0;
+        RTCHitN_v(hits, args->N, i) = 0;
+        RTCHitN_primID(hits, args->N, i) = args->primID;
+        RTCHitN_geomID(hits, args->N, i) = args->geomID;
+        RTCHitN_instID(hits, args->N, i, 0) = args->context->instID[0];
+    }
 }
 
 void sphereOccluded(const RTCOccludedFunctionNArguments* args) {
-    if (!args->valid[0]) return;
-    RTCRay* r = reinterpret_cast<RTCRay*>(args->ray);
     const Sphere& s = (*static_cast<const SphereData*>(args->geometryUserPtr)->spheres)[args->primID];
-    float t;
-    if (intersectSphere(toRay(*r), s.center, s.radius, t)) r->tfar = -kInfinity;
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (!args->valid[i]) continue;
+        float t;
+        if (intersectSphere(lane(args->ray, args->N, i), s.center, s.radius, t))
+            RTCRayN_tfar(args->ray, args->N, i) = -kInfinity;
+    }
 }
 
 RTCBuildQuality toEmbree(EmbreeOptions::Quality q) {
@@ -162,17 +172,7 @@ public:
         rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
         rtcIntersect1(top_, &ctx, &rh);
         if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-        hit.t = rh.ray.tfar;
-        hit.u = rh.hit.u;
-        hit.v = rh.hit.v;
-        hit.prim = rh.hit.primID;
-        if (rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID) {
-            hit.instance = rh.hit.instID[0] - numMeshes_ - 1;
-            hit.shape = scene_.instances[hit.instance].mesh;
-        } else {
-            hit.instance = kInvalidId;
-            hit.shape = rh.hit.geomID == numMeshes_ ? kSphereShape : rh.hit.geomID;
-        }
+        fillHit(hit, rh.ray.tfar, rh.hit.u, rh.hit.v, rh.hit.primID, rh.hit.geomID, rh.hit.instID[0]);
         return true;
     }
 
@@ -185,9 +185,72 @@ public:
         return r.tfar == -kInfinity;
     }
 
+    // Batches go through 16-wide packets: coherent rays (camera tiles) share traversal work.
+    void intersect(std::span<const Ray> rays, std::span<Hit> hits) const override {
+        for (size_t base = 0; base < rays.size(); base += 16) {
+            size_t n = std::min<size_t>(16, rays.size() - base);
+            alignas(64) int valid[16];
+            alignas(64) RTCRayHit16 rh;
+            for (size_t i = 0; i < 16; ++i) {
+                valid[i] = i < n ? -1 : 0;
+                const Ray& r = rays[base + std::min(i, n - 1)];
+                setLane(rh.ray, i, r);
+                rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+                rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+            }
+            RTCIntersectContext ctx;
+            rtcInitIntersectContext(&ctx);
+            ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+            rtcIntersect16(valid, top_, &ctx, &rh);
+            for (size_t i = 0; i < n; ++i) {
+                Hit& hit = hits[base + i];
+                hit = Hit{};
+                if (rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) continue;
+                fillHit(hit, rh.ray.tfar[i], rh.hit.u[i], rh.hit.v[i], rh.hit.primID[i], rh.hit.geomID[i],
+                        rh.hit.instID[0][i]);
+            }
+        }
+    }
+
+    void occluded(std::span<const Ray> rays, std::span<uint8_t> result) const override {
+        for (size_t base = 0; base < rays.size(); base += 16) {
+            size_t n = std::min<size_t>(16, rays.size() - base);
+            alignas(64) int valid[16];
+            alignas(64) RTCRay16 r16;
+            for (size_t i = 0; i < 16; ++i) {
+                valid[i] = i < n ? -1 : 0;
+                setLane(r16, i, rays[base + std::min(i, n - 1)]);
+            }
+            RTCIntersectContext ctx;
+            rtcInitIntersectContext(&ctx);
+            rtcOccluded16(valid, top_, &ctx, &r16);
+            for (size_t i = 0; i < n; ++i) result[base + i] = r16.tfar[i] == -kInfinity ? 1 : 0;
+        }
+    }
+
     const AcceleratorStats& stats() const override { return stats_; }
 
 private:
+    // Embree's ids -> ours: meshes keep their index, spheres are one user geometry after them, and
+    // instances follow (instance j has id numMeshes + 1 + j).
+    void fillHit(Hit& hit, float t, float u, float v, unsigned prim, unsigned geom, unsigned inst) const {
+        hit.t = t, hit.u = u, hit.v = v, hit.prim = prim;
+        if (inst != RTC_INVALID_GEOMETRY_ID) {
+            hit.instance = inst - numMeshes_ - 1;
+            hit.shape = scene_.instances[hit.instance].mesh;
+        } else {
+            hit.instance = kInvalidId;
+            hit.shape = geom == numMeshes_ ? kSphereShape : geom;
+        }
+    }
+
+    static void setLane(RTCRay16& r, size_t i, const Ray& ray) {
+        r.org_x[i] = ray.origin.x, r.org_y[i] = ray.origin.y, r.org_z[i] = ray.origin.z;
+        r.dir_x[i] = ray.dir.x, r.dir_y[i] = ray.dir.y, r.dir_z[i] = ray.dir.z;
+        r.tnear[i] = ray.tMin, r.tfar[i] = ray.tMax;
+        r.time[i] = 0, r.mask[i] = 0xffffffffu, r.id[i] = unsigned(i), r.flags[i] = 0;
+    }
+
     static void setRay(RTCRay& r, const Ray& ray) {
         r.org_x = ray.origin.x, r.org_y = ray.origin.y, r.org_z = ray.origin.z;
         r.dir_x = ray.dir.x, r.dir_y = ray.dir.y, r.dir_z = ray.dir.z;

@@ -46,6 +46,20 @@ const char* toString(RaySetKind kind) {
     return "?";
 }
 
+std::vector<Ray> makeCoherentCameraRays(const Scene& scene, int width, int height, size_t count) {
+    CameraModel camera(scene.camera, width, height);
+    std::vector<Ray> rays;
+    rays.reserve(count);
+    while (rays.size() < count)
+        for (int by = 0; by < height && rays.size() < count; by += 4)
+            for (int bx = 0; bx < width && rays.size() < count; bx += 4)
+                for (int y = by; y < std::min(by + 4, height); ++y)
+                    for (int x = bx; x < std::min(bx + 4, width); ++x)
+                        rays.push_back(camera.generateRay(float(x) + 0.5f, float(y) + 0.5f));
+    rays.resize(count);
+    return rays;
+}
+
 std::vector<Ray> makeRaySet(RaySetKind kind, const Scene& scene, const Accelerator& finder, size_t count,
                             uint64_t seed) {
     std::vector<Ray> rays;

@@ -13,6 +13,10 @@ namespace kiln {
 enum class RaySetKind { Camera, Random, Secondary, Shadow };
 const char* toString(RaySetKind kind);
 
+// Camera rays in the order a renderer traces them: 4x4 pixel blocks (coherent packets), row by row over
+// a width x height image, repeated until `count` rays.
+std::vector<Ray> makeCoherentCameraRays(const Scene& scene, int width, int height, size_t count);
+
 // Deterministic for a given seed. Secondary and shadow rays start at points found with `finder`.
 std::vector<Ray> makeRaySet(RaySetKind kind, const Scene& scene, const Accelerator& finder, size_t count,
                             uint64_t seed);

@@ -57,6 +57,17 @@ int runRender(const std::vector<std::string>& args) {
                   });
     parser.option("env", "", 1, "MAP.exr", "add a lat-long environment light",
                   [&](const std::vector<std::string>& v) { o.load.environmentMap = v[0]; });
+    float aperture = -1, focus = -1;
+    parser.option("aperture", "", 1, "R", "thin-lens aperture radius in scene units (default 0: pinhole)",
+                  [&](const std::vector<std::string>& v) {
+                      aperture = float(ArgParser::toDouble("--aperture", v[0]));
+                      if (aperture < 0) throw UsageError("--aperture must be >= 0");
+                  });
+    parser.option("focus", "", 1, "D", "thin-lens focal distance (default: distance to the scene centre)",
+                  [&](const std::vector<std::string>& v) {
+                      focus = float(ArgParser::toDouble("--focus", v[0]));
+                      if (!(focus > 0)) throw UsageError("--focus must be > 0");
+                  });
     parser.option("display", "", 1, "NAME", "OCIO display for the preview (default sRGB)",
                   [&](const std::vector<std::string>& v) { o.display = v[0]; });
     parser.option("view", "", 1, "NAME", "OCIO view for the preview (default Standard)",
@@ -88,6 +99,11 @@ int runRender(const std::vector<std::string>& args) {
     auto t0 = std::chrono::steady_clock::now();
     Scene scene = loadScene(pos[0], o.load);
     double loadTime = seconds(t0);
+    if (aperture > 0) {
+        scene.camera.apertureRadius = aperture;
+        scene.camera.focalDistance =
+            focus > 0 ? focus : std::max(1e-6f, dot(scene.worldBounds().centroid() - scene.camera.position, scene.camera.forward));
+    }
     for (const std::string& w : scene.warnings) std::fprintf(stderr, "kiln: warning: %s: %s\n", pos[0].c_str(), w.c_str());
 
     auto t1 = std::chrono::steady_clock::now();

@@ -76,6 +76,7 @@ Scene loadScene(const std::string& path, const LoadOptions& options) {
     if (!options.environmentMap.empty()) {
         if (!std::filesystem::exists(options.environmentMap))
             throw SceneError(options.environmentMap, "no such environment map");
+        checkEnvironmentMap(options.environmentMap, scene.warnings);
         Light env;
         env.name = "environment";
         env.kind = LightKind::Environment;

@@ -25,6 +25,9 @@ void validateScene(const Scene& scene);
 // Lights for files that bring none: a key directional light and a dim sky (ambient) fill.
 void addDefaultLightRig(Scene& scene);
 
+// Opens a lat-long environment map to check it (SceneError if unreadable); warns if it is not 2:1.
+void checkEnvironmentMap(const std::string& path, std::vector<std::string>& warnings);
+
 // Adds a light for every mesh whose material emits (sampled by area at render time).
 void addEmissiveMeshLights(Scene& scene);
 

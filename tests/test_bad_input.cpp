@@ -148,5 +148,17 @@ TEST(BadInput, MissingEnvironmentMap) {
     }
 }
 
+TEST(BadInput, UnreadableEnvironmentMap) {
+    auto dir = test::scratchDir();
+    LoadOptions o;
+    o.environmentMap = test::writeFile(dir / "sky.exr", "not an image at all");
+    try {
+        loadScene(test::shared("meshes/stanford-bunny.obj"), o);
+        FAIL();
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("cannot read environment map"), std::string::npos) << e.what();
+    }
+}
+
 }  // namespace
 }  // namespace kiln

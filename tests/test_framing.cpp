@@ -61,5 +61,28 @@ TEST(Framing, CentreRayHitsTheTargetAndCornersSpanTheFov) {
     EXPECT_NEAR(topLeft.dir.x / -topLeft.dir.z, -2.0f, 1e-5f);  // widened to aspect 2
 }
 
+TEST(ThinLens, RaysThroughOnePixelMeetOnThePlaneOfFocus) {
+    Camera cam;
+    cam.position = Vec3(0, 0, 0);
+    cam.forward = Vec3(0, 0, -1);
+    cam.apertureRadius = 0.2f;
+    cam.focalDistance = 7.0f;
+    CameraModel model(cam, 64, 48);
+    Vec3 meet;
+    float spread = 0, spreadNear = 0;
+    for (int i = 0; i < 16; ++i) {
+        float u = (i % 4 + 0.5f) / 4, v = (i / 4 + 0.5f) / 4;
+        Ray r = model.generateRay(40.3f, 11.7f, u, v);
+        Vec3 atFocus = r.origin + r.dir * ((-7.0f - r.origin.z) / r.dir.z);  // the plane z = -7
+        Vec3 atNear = r.origin + r.dir * ((-2.0f - r.origin.z) / r.dir.z);
+        if (i == 0) meet = atFocus;
+        spread = std::max(spread, length(atFocus - meet));
+        spreadNear = std::max(spreadNear, length(atNear - meet * (2.0f / 7.0f)));
+        EXPECT_LE(length(r.origin - cam.position), 0.2f + 1e-6f);  // starts on the lens
+    }
+    EXPECT_LT(spread, 1e-5f);     // sharp on the plane of focus
+    EXPECT_GT(spreadNear, 0.05f); // blurred in front of it
+}
+
 }  // namespace
 }  // namespace kiln

@@ -10,6 +10,7 @@
 #include "renderer/accel_options.h"
 #include "renderer/commands.h"
 #include "renderer/ray_sets.h"
+#include "renderer/reference_bvh.h"
 #include "scene/scene_loader.h"
 
 namespace kiln {
@@ -72,12 +73,15 @@ int runBench(const std::vector<std::string>& args) {
     }
     if (pos.empty()) throw UsageError("needs at least one scene file");
 
+    std::string statsTable;
     std::printf("%-26s %9s %-9s %8s %8s %8s %8s %8s %8s %8s %8s\n", "scene", "tris", "accel", "build s", "prim 1t",
                 "prim Nt", "pkt Nt", "incoh Nt", "shdw Nt", "emb/ref", "vs CS184");
     for (const std::string& path : pos) {
         Scene scene = loadScene(path);
         auto embree = makeEmbreeAccelerator(scene, choice.embree);
-        auto reference = makeReferenceAccelerator(scene, choice.reference);
+        auto referenceBvh = std::make_unique<ReferenceAccelerator>(scene, choice.reference);
+        const ReferenceAccelerator& ref = *referenceBvh;
+        std::unique_ptr<Accelerator> reference = std::move(referenceBvh);
         std::vector<Ray> primary = makeCoherentCameraRays(scene, 800, 600, size_t(rays));
         std::vector<Ray> incoherent = makeRaySet(RaySetKind::Random, scene, *embree, size_t(rays), 7);
         std::vector<Ray> shadow = makeRaySet(RaySetKind::Shadow, scene, *embree, size_t(rays), 7);
@@ -91,6 +95,24 @@ int runBench(const std::vector<std::string>& args) {
             rate[a][4] = measure(*accels[a], shadow, Mode::Shadow, threads, repeats);
         }
         std::string name = path.substr(path.find_last_of('/') + 1);
+        // Reference BVH work per ray, counted on the same ray sets.
+        BvhStatistics bs = ref.topLevelStatistics();
+        double perRay[2][2];
+        const std::vector<Ray>* sets[2] = {&primary, &incoherent};
+        for (int k = 0; k < 2; ++k) {
+            TraversalCounters counters;
+            for (const Ray& r : *sets[k]) {
+                Hit h;
+                ref.intersect(r, h, counters);
+            }
+            perRay[k][0] = double(counters.boxTests) / double(sets[k]->size());
+            perRay[k][1] = double(counters.primTests) / double(sets[k]->size());
+        }
+        char line[256];
+        std::snprintf(line, sizeof line, "%-26s %9llu %6llu %6llu %8.2f %8.1f %8.1f %8.1f %8.1f\n", name.c_str(),
+                      (unsigned long long)bs.nodes, (unsigned long long)bs.leaves, (unsigned long long)bs.maxDepth,
+                      bs.sahCost, perRay[0][0], perRay[0][1], perRay[1][0], perRay[1][1]);
+        statsTable += line;
         double base = cs184Baseline(path);
         for (int a = 0; a < 2; ++a) {
             char ratio[32] = "", vs[32] = "";
@@ -103,6 +125,9 @@ int runBench(const std::vector<std::string>& args) {
         }
         std::fflush(stdout);
     }
+    std::printf("\nreference BVH (%s): structure and work per ray\n%-26s %9s %6s %6s %8s %8s %8s %8s %8s\n%s",
+                ReferenceAccelerator(Scene{}, choice.reference).stats().description.c_str(), "scene", "nodes",
+                "leaves", "depth", "SAH", "box/prim", "tri/prim", "box/inc", "tri/inc", statsTable.c_str());
     std::printf("\nrates in Mrays/s (median of %d); Nt = %d threads; prim = camera rays in 4x4 blocks at 800x600, one\n"
                 "at a time; pkt = the same rays as 16-wide packets (reference: a loop); incoh = random rays through\n"
                 "the bounds; shdw = shadow rays from surface points to lights; emb/ref = Embree over reference,\n"

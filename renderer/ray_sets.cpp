@@ -48,14 +48,20 @@ const char* toString(RaySetKind kind) {
 
 std::vector<Ray> makeCoherentCameraRays(const Scene& scene, int width, int height, size_t count) {
     CameraModel camera(scene.camera, width, height);
+    int blocksX = (width + 3) / 4, blocksY = (height + 3) / 4;
+    size_t blocks = size_t(blocksX) * size_t(blocksY);
+    // Spread the blocks evenly over the whole image whatever the count, so empty rows do not skew rates.
+    size_t wanted = std::max<size_t>(1, (count + 15) / 16);
+    double stride = double(blocks) / double(wanted);
     std::vector<Ray> rays;
     rays.reserve(count);
-    while (rays.size() < count)
-        for (int by = 0; by < height && rays.size() < count; by += 4)
-            for (int bx = 0; bx < width && rays.size() < count; bx += 4)
-                for (int y = by; y < std::min(by + 4, height); ++y)
-                    for (int x = bx; x < std::min(bx + 4, width); ++x)
-                        rays.push_back(camera.generateRay(float(x) + 0.5f, float(y) + 0.5f));
+    for (size_t k = 0; rays.size() < count; ++k) {
+        size_t block = size_t(double(k % wanted) * stride) % blocks;
+        int bx = int(block % size_t(blocksX)) * 4, by = int(block / size_t(blocksX)) * 4;
+        for (int y = by; y < std::min(by + 4, height); ++y)
+            for (int x = bx; x < std::min(bx + 4, width); ++x)
+                rays.push_back(camera.generateRay(float(x) + 0.5f, float(y) + 0.5f));
+    }
     rays.resize(count);
     return rays;
 }

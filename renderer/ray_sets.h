@@ -13,8 +13,8 @@ namespace kiln {
 enum class RaySetKind { Camera, Random, Secondary, Shadow };
 const char* toString(RaySetKind kind);
 
-// Camera rays in the order a renderer traces them: 4x4 pixel blocks (coherent packets), row by row over
-// a width x height image, repeated until `count` rays.
+// Camera rays in the order a renderer traces them: 4x4 pixel blocks (coherent packets) spread evenly
+// over a width x height image, until `count` rays.
 std::vector<Ray> makeCoherentCameraRays(const Scene& scene, int width, int height, size_t count);
 
 // Deterministic for a given seed. Secondary and shadow rays start at points found with `finder`.

@@ -26,8 +26,11 @@ protected:
     const Accelerator& accel_;
 };
 
-// Names: "normals". Throws std::invalid_argument for an unknown name.
-std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Scene& scene, const Accelerator& accel);
+struct PathOptions;
+
+// Names: "path" (the default), "normals". Throws std::invalid_argument for an unknown name.
+std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Scene& scene, const Accelerator& accel,
+                                           const PathOptions& options);
 const char* integratorNames();
 
 }  // namespace kiln

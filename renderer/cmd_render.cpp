@@ -4,6 +4,7 @@
 
 #include "color/image_output.h"
 #include "integrators/integrator.h"
+#include "integrators/path.h"
 #include "renderer/accel_options.h"
 #include "renderer/camera.h"
 #include "renderer/commands.h"
@@ -19,7 +20,8 @@ struct RenderOptions {
     RenderSettings settings;
     AcceleratorChoice accel;
     LoadOptions load;
-    std::string integrator = "normals";
+    std::string integrator = "path";
+    PathOptions path;
     std::string output;  // base path, or the -f file
     std::string display = "sRGB", view = "Standard";
 };
@@ -49,6 +51,50 @@ int runRender(const std::vector<std::string>& args) {
     });
     parser.option("integrator", "i", 1, "NAME", std::string("light transport: ") + integratorNames(),
                   [&](const std::vector<std::string>& v) { o.integrator = v[0]; });
+    parser.intOption("max-depth", "m", "CS184 depth: 0 emission only, 1 direct lighting, >= 2 global illumination "
+                     "(default 5)", o.path.maxDepth, 0, 100000);
+    parser.intOption("light-samples", "l", "light samples per shading point (default 1)", o.path.lightSamples, 1, 65536);
+    parser.option("adaptive", "a", 2, "BATCH TOL", "adaptive sampling: test every BATCH samples, stop at "
+                  "1.96 sigma/sqrt(n) <= TOL mu (CS184; -s is the maximum)", [&](const std::vector<std::string>& v) {
+                      o.settings.adaptiveBatch = ArgParser::toInt("-a", v[0], 1, 1 << 20);
+                      o.settings.adaptiveTolerance = float(ArgParser::toDouble("-a", v[1]));
+                      if (!(o.settings.adaptiveTolerance > 0)) throw UsageError("-a tolerance must be > 0");
+                  });
+    parser.option("hemisphere", "H", 0, "", "direct light by uniform hemisphere sampling (same as --sampling hemisphere)",
+                  [&](const std::vector<std::string>&) { o.path.sampling = DirectSampling::Hemisphere; });
+    parser.option("sampling", "", 1, "mis|light|hemisphere", "direct lighting strategy (default mis)",
+                  [&](const std::vector<std::string>& v) {
+                      if (v[0] == "mis") o.path.sampling = DirectSampling::Mis;
+                      else if (v[0] == "light") o.path.sampling = DirectSampling::Light;
+                      else if (v[0] == "hemisphere") o.path.sampling = DirectSampling::Hemisphere;
+                      else throw UsageError("--sampling takes mis, light or hemisphere, got '" + v[0] + "'");
+                  });
+    parser.option("heuristic", "", 1, "power|balance", "MIS heuristic (default power)",
+                  [&](const std::vector<std::string>& v) {
+                      if (v[0] != "power" && v[0] != "balance") throw UsageError("--heuristic takes power or balance, got '" + v[0] + "'");
+                      o.path.powerHeuristic = v[0] == "power";
+                  });
+    parser.option("rr", "", 1, "throughput|fixed|off", "Russian roulette (default throughput; fixed = CS184's "
+                  "constant continuation)", [&](const std::vector<std::string>& v) {
+                      if (v[0] == "throughput") o.path.roulette = Roulette::Throughput;
+                      else if (v[0] == "fixed") o.path.roulette = Roulette::Fixed;
+                      else if (v[0] == "off") o.path.roulette = Roulette::Off;
+                      else throw UsageError("--rr takes throughput, fixed or off, got '" + v[0] + "'");
+                  });
+    parser.option("rr-continue", "", 1, "P", "continuation probability of --rr fixed (default 0.65)",
+                  [&](const std::vector<std::string>& v) {
+                      o.path.fixedContinuation = float(ArgParser::toDouble("--rr-continue", v[0]));
+                      if (!(o.path.fixedContinuation > 0 && o.path.fixedContinuation <= 1))
+                          throw UsageError("--rr-continue must be in (0, 1]");
+                  });
+    parser.option("bounce-only", "", 0, "", "keep only light that bounced exactly -m times (accumulate bounces off)",
+                  [&](const std::vector<std::string>&) { o.path.accumulateBounces = false; });
+    parser.option("microfacet", "", 1, "beckmann|ggx", "microfacet distribution (default beckmann, as CS184)",
+                  [&](const std::vector<std::string>& v) {
+                      if (v[0] == "beckmann") o.path.microfacet = MicrofacetModel::Beckmann;
+                      else if (v[0] == "ggx") o.path.microfacet = MicrofacetModel::GGX;
+                      else throw UsageError("--microfacet takes beckmann or ggx, got '" + v[0] + "'");
+                  });
     o.accel.addOptions(parser, true);
     parser.option("camera", "", 1, "file|framed", "the file's camera as written, or the CS184 course "
                   "framing (default: course framing for Z-up COLLADA)", [&](const std::vector<std::string>& v) {
@@ -111,7 +157,7 @@ int runRender(const std::vector<std::string>& args) {
     double buildTime = seconds(t1);
     std::unique_ptr<Integrator> integrator;
     try {
-        integrator = makeIntegrator(o.integrator, scene, *accel);
+        integrator = makeIntegrator(o.integrator, scene, *accel, o.path);
     } catch (const std::invalid_argument& e) {
         throw UsageError(e.what());
     }
@@ -135,6 +181,12 @@ int runRender(const std::vector<std::string>& args) {
                   {"hfov", std::to_string(camera.hFovDeg())},
                   {"vfov", std::to_string(camera.vFovDeg())},
                   {"interrupted", stats.interrupted ? "yes" : "no"},
+                  {"max_depth", std::to_string(o.path.maxDepth)},
+                  {"light_samples", std::to_string(o.path.lightSamples)},
+                  {"sampling", o.path.sampling == DirectSampling::Mis ? "mis" : o.path.sampling == DirectSampling::Light ? "light" : "hemisphere"},
+                  {"roulette", o.path.roulette == Roulette::Throughput ? "throughput" : o.path.roulette == Roulette::Fixed ? "fixed" : "off"},
+                  {"accumulate_bounces", o.path.accumulateBounces ? "yes" : "no"},
+                  {"adaptive", o.settings.adaptiveBatch > 0 ? std::to_string(o.settings.adaptiveBatch) + " " + std::to_string(o.settings.adaptiveTolerance) : "off"},
                   {"nonfinite_samples", std::to_string(stats.nonFiniteSamples)}};
     writeExr(exrPath, film, meta);
     writePreview(previewPath, film, o.display, o.view);

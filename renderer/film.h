@@ -10,7 +10,9 @@ namespace kiln {
 
 class Film {
 public:
-    Film(int width, int height) : width_(width), height_(height), sum_(size_t(width) * height), count_(sum_.size()) {}
+    Film(int width, int height)
+        : width_(width), height_(height), sum_(size_t(width) * height), lum_(sum_.size()), lumSq_(sum_.size()),
+          count_(sum_.size()) {}
     int width() const { return width_; }
     int height() const { return height_; }
     // Non-finite samples are counted (the caller reports them) and never enter the image.
@@ -19,8 +21,14 @@ public:
         ++count_[i];
         if (!isFinite(c)) return false;
         sum_[i] += Vec3d(c);
+        double illum = luminance(c);
+        lum_[i] += illum;
+        lumSq_[i] += illum * illum;
         return true;
     }
+    // Sums of the samples' illuminance and its square (adaptive sampling, variance).
+    double luminanceSum(int x, int y) const { return lum_[size_t(y) * width_ + x]; }
+    double luminanceSquareSum(int x, int y) const { return lumSq_[size_t(y) * width_ + x]; }
     uint32_t samples(int x, int y) const { return count_[size_t(y) * width_ + x]; }
     Color pixel(int x, int y) const {
         size_t i = size_t(y) * width_ + x;
@@ -35,6 +43,7 @@ public:
 private:
     int width_, height_;
     std::vector<Vec3d> sum_;
+    std::vector<double> lum_, lumSq_;
     std::vector<uint32_t> count_;
 };
 

@@ -5,6 +5,7 @@
 #include <tbb/task_arena.h>
 
 #include <chrono>
+#include <cmath>
 
 #include "renderer/camera.h"
 #include "renderer/progress.h"
@@ -26,6 +27,16 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator, const 
     std::atomic<uint64_t> nonFinite{0};
     std::atomic<bool>& cancel = renderCancelFlag();
 
+    // Adaptive sampling: a pixel that met the confidence test takes no more samples.
+    std::vector<uint8_t> converged(settings.adaptiveBatch > 0 ? size_t(pixels) : 0, 0);
+    auto converges = [&](int x, int y) {
+        double n = film.samples(x, y);
+        if (n < 2) return false;
+        double s1 = film.luminanceSum(x, y), s2 = film.luminanceSquareSum(x, y);
+        double mu = s1 / n, var = std::max(0.0, (s2 - s1 * s1 / n) / (n - 1));
+        return 1.96 * std::sqrt(var / n) <= settings.adaptiveTolerance * mu;
+    };
+
     auto renderTile = [&](int tileIndex, int firstSample, int sampleCount) {
         int x0 = (tileIndex % tilesX) * tile, y0 = (tileIndex / tilesX) * tile;
         int x1 = std::min(x0 + tile, settings.width), y1 = std::min(y0 + tile, settings.height);
@@ -34,6 +45,10 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator, const 
         for (int y = y0; y < y1 && !cancel.load(std::memory_order_relaxed); ++y)
             for (int x = x0; x < x1; ++x) {
                 uint64_t pixelIndex = uint64_t(y) * settings.width + x;
+                if (!converged.empty() && converged[pixelIndex]) {
+                    work += uint64_t(sampleCount);
+                    continue;
+                }
                 for (int s = firstSample; s < firstSample + sampleCount; ++s) {
                     Sampler sampler(settings.seed, pixelIndex, uint64_t(s));
                     float jx = sampler.next1D(), jy = sampler.next1D();
@@ -42,6 +57,7 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator, const 
                     if (!film.add(x, y, integrator.Li(ray, sampler, counter))) ++bad;
                 }
                 work += uint64_t(sampleCount);
+                if (!converged.empty() && converges(x, y)) converged[pixelIndex] = 1;
             }
         progress.add(work, counter.rays);
         if (bad) nonFinite += bad;
@@ -50,14 +66,15 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator, const 
     tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
     arena.execute([&] {
         // Waves of 1, 1, 2, 4, ... samples: an interrupted render has nearly even counts everywhere.
-        int done = 0, wave = 1;
+        // Adaptive renders go in waves of one batch, the granularity of the convergence test.
+        int done = 0, wave = settings.adaptiveBatch > 0 ? settings.adaptiveBatch : 1;
         while (done < settings.spp && !cancel.load()) {
             int n = std::min(wave, settings.spp - done);
             tbb::parallel_for(tbb::blocked_range<int>(0, tilesX * tilesY, 1), [&](const tbb::blocked_range<int>& r) {
                 for (int t = r.begin(); t != r.end(); ++t) renderTile(t, done, n);
             });
             done += n;
-            if (done > 1) wave *= 2;
+            if (done > 1 && settings.adaptiveBatch <= 0) wave *= 2;
         }
     });
     progress.finish();

@@ -16,6 +16,10 @@ struct RenderSettings {
     int tileSize = 32;
     uint64_t seed = 0;
     bool progress = true;
+    // Adaptive sampling as CS184 defines it: every adaptiveBatch samples a pixel stops once
+    // 1.96 sigma / sqrt(n) <= adaptiveTolerance * mu on sample illuminance. 0 = off.
+    int adaptiveBatch = 0;
+    float adaptiveTolerance = 0.05f;
 };
 
 struct RenderStats {

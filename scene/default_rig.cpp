@@ -25,7 +25,7 @@ void addEmissiveMeshLights(Scene& scene) {
         bool emits = false;
         for (uint32_t id : mesh.materialIds) {
             const Material& mat = scene.materials[id];
-            emits |= mat.kind == MaterialKind::Emission && maxComponent(mat.emission) > 0;
+            emits |= maxComponent(mat.emission) > 0;
         }
         if (!emits || proto[m]) continue;  // instanced emitters are not sampled as lights (yet)
         Light l;
@@ -34,6 +34,48 @@ void addEmissiveMeshLights(Scene& scene) {
         l.mesh = uint32_t(m);
         l.radiance = scene.materials[mesh.materialOf(0)].emission;
         scene.lights.push_back(l);
+    }
+}
+
+void mergeAreaLightsWithEmitters(Scene& scene) {
+    // The CS184 Cornell boxes hold the ceiling light twice: a CGL <area> rectangle (what light sampling
+    // uses) and an emissive quad (what rays see). They are one light: the quad's geometry with the area
+    // light's radiance, so it is neither counted twice nor seen with another brightness than it lights.
+    for (size_t a = 0; a < scene.lights.size(); ++a) {
+        Light& area = scene.lights[a];
+        if (area.kind != LightKind::Area || area.hasMesh) continue;
+        float size = std::max(length(area.dimX), length(area.dimY));
+        float rectArea = length(cross(area.dimX, area.dimY));
+        for (size_t e = 0; e < scene.lights.size(); ++e) {
+            const Light& emitter = scene.lights[e];
+            if (emitter.kind != LightKind::MeshEmitter) continue;
+            const TriangleMesh& m = scene.meshes[emitter.mesh];
+            Vec3 n = normalize(area.direction), centroid(0.0f);
+            bool coplanar = true;
+            for (size_t v = 0; v < m.vertexCount(); ++v) {
+                Vec3 p = m.vertex(uint32_t(v));
+                centroid += p / float(m.vertexCount());
+                coplanar &= std::abs(dot(p - area.position, n)) <= 0.01f * size;
+            }
+            float meshArea = 0;
+            for (size_t t = 0; t < m.triangleCount(); ++t)
+                meshArea += 0.5f * length(cross(m.vertex(m.indices[3 * t + 1]) - m.vertex(m.indices[3 * t]),
+                                                m.vertex(m.indices[3 * t + 2]) - m.vertex(m.indices[3 * t])));
+            bool sameSpot = length(centroid - area.position) <= 0.05f * size;
+            bool sameArea = std::abs(meshArea - rectArea) <= 0.05f * rectArea;
+            if (!(coplanar && sameSpot && sameArea)) continue;
+            Color meshRadiance = emitter.radiance;
+            area.hasMesh = true;
+            area.mesh = emitter.mesh;
+            if (!(meshRadiance == area.radiance))
+                scene.warnings.push_back("area light '" + area.name + "' and emissive mesh '" + emitter.name +
+                                         "' are one light; it emits the area light's radiance (" +
+                                         std::to_string(area.radiance.x) + "), not the mesh's (" +
+                                         std::to_string(meshRadiance.x) + ")");
+            scene.lights.erase(scene.lights.begin() + long(e));
+            if (e < a) --a;
+            break;
+        }
     }
 }
 

@@ -39,7 +39,8 @@ struct Light {
     Vec3 direction{0, -1, 0};  // area: emitting side; spot: axis; directional: direction light travels
     Vec3 dimX, dimY;           // area: full edge vectors of the rectangle
     float spotInnerDeg = 30.0f, spotOuterDeg = 45.0f;
-    uint32_t mesh = 0;              // mesh emitter: the emissive mesh
+    uint32_t mesh = 0;              // mesh emitter, or an area light's geometry when hasMesh
+    bool hasMesh = false;           // area light whose rectangle is an emissive mesh of the scene
     std::string environmentPath;  // lat-long EXR/HDR
     float environmentScale = 1.0f;
 };

@@ -72,6 +72,7 @@ Scene loadScene(const std::string& path, const LoadOptions& options) {
     validateScene(scene);
 
     addEmissiveMeshLights(scene);
+    mergeAreaLightsWithEmitters(scene);
     bool hasLight = !scene.lights.empty();
     if (!options.environmentMap.empty()) {
         if (!std::filesystem::exists(options.environmentMap))

@@ -31,4 +31,7 @@ void checkEnvironmentMap(const std::string& path, std::vector<std::string>& warn
 // Adds a light for every mesh whose material emits (sampled by area at render time).
 void addEmissiveMeshLights(Scene& scene);
 
+// Binds each area light to the emissive mesh that occupies its rectangle (CS184 boxes have both).
+void mergeAreaLightsWithEmitters(Scene& scene);
+
 }  // namespace kiln

@@ -4,4 +4,4 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 tools/setup.sh
 mkdir -p out
-build/kiln render scenes/cornell.dae -o out/cornell "$@"
+build/kiln render scenes/cornell.dae -o out/cornell -s 64 -m 5 "$@"

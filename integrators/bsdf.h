@@ -1,0 +1,37 @@
+// BSDFs of every material kind, evaluated in the local shading frame (z = the shading normal as the file
+// orients it, so z < 0 is "inside" for dielectrics). Sampling, pdf and evaluation agree (chi-square tests).
+#pragma once
+
+#include "integrators/microfacet.h"
+#include "renderer/warp.h"
+#include "scene/scene.h"
+
+namespace kiln {
+
+struct BsdfSample {
+    Color f;          // BSDF value (for delta lobes: the value whose ratio to pdf is the weight)
+    Vec3 wi;          // local
+    float pdf = 0;    // solid angle; for delta lobes the discrete probability of the lobe
+    bool delta = false;
+    bool transmission = false;
+};
+
+class Bsdf {
+public:
+    explicit Bsdf(const Material& material, MicrofacetModel model = MicrofacetModel::Beckmann);
+    bool isDelta() const { return delta_; }
+    bool isBlack() const { return m_.kind == MaterialKind::Emission; }
+    bool hasTransmission() const;
+
+    Color eval(const Vec3& wo, const Vec3& wi) const;  // local directions; 0 for delta lobes
+    float pdf(const Vec3& wo, const Vec3& wi) const;   // 0 for delta lobes
+    // uc picks a lobe (glass), (u1, u2) the direction. False when no direction is produced.
+    bool sample(const Vec3& wo, float uc, float u1, float u2, BsdfSample& out) const;
+
+private:
+    const Material& m_;
+    Microfacet micro_;
+    bool delta_;
+};
+
+}  // namespace kiln

@@ -1,0 +1,265 @@
+#include "integrators/lights.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <stdexcept>
+
+#include "renderer/warp.h"
+
+namespace kiln {
+namespace {
+
+float spotFalloff(const Light& l, const Vec3& wFromLight) {
+    float c = dot(normalize(l.direction), wFromLight);
+    float cosOuter = std::cos(radians(l.spotOuterDeg)), cosInner = std::cos(radians(l.spotInnerDeg));
+    if (c <= cosOuter) return 0;
+    if (c >= cosInner) return 1;
+    float t = (c - cosOuter) / (cosInner - cosOuter);
+    return t * t * (3 - 2 * t);  // smoothstep
+}
+
+EnvironmentMap loadEnvironment(const Light& l) {
+    EnvironmentMap env;
+    env.scale = l.environmentScale;
+    if (l.environmentPath.empty()) {
+        env.constant = l.radiance;
+        return env;
+    }
+    auto in = OIIO::ImageInput::open(l.environmentPath);
+    if (!in) throw std::runtime_error(l.environmentPath + ": cannot read environment map: " + OIIO::geterror());
+    const OIIO::ImageSpec& spec = in->spec();
+    env.width = spec.width, env.height = spec.height;
+    std::vector<float> data(size_t(spec.width) * spec.height * spec.nchannels);
+    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, data.data()))
+        throw std::runtime_error(l.environmentPath + ": cannot read environment map: " + in->geterror());
+    env.pixels.resize(size_t(env.width) * env.height);
+    std::vector<float> weight(env.pixels.size());
+    for (int y = 0; y < env.height; ++y) {
+        float sinTheta = std::sin(kPi * (float(y) + 0.5f) / float(env.height));
+        for (int x = 0; x < env.width; ++x) {
+            const float* p = &data[(size_t(y) * env.width + x) * spec.nchannels];
+            Color c = Color(p[0], p[1], p[2]) * env.scale;
+            if (!isFinite(c)) c = Color(0.0f);
+            c = max(c, Color(0.0f));
+            env.pixels[size_t(y) * env.width + x] = c;
+            weight[size_t(y) * env.width + x] = maxComponent(c) * sinTheta;
+        }
+    }
+    env.distribution = Distribution2D(weight, size_t(env.width), size_t(env.height));
+    return env;
+}
+
+}  // namespace
+
+Vec3 EnvironmentMap::direction(float u, float v) {
+    float phi = (u - 0.5f) * 2 * kPi, theta = v * kPi;
+    float s = std::sin(theta);
+    return {s * std::sin(phi), std::cos(theta), -s * std::cos(phi)};
+}
+
+void EnvironmentMap::coordinates(const Vec3& d, float& u, float& v) {
+    u = 0.5f + std::atan2(d.x, -d.z) / (2 * kPi);
+    v = std::acos(std::clamp(d.y, -1.0f, 1.0f)) / kPi;
+    u = std::clamp(u, 0.0f, 1.0f - 1e-7f);
+    v = std::clamp(v, 0.0f, 1.0f - 1e-7f);
+}
+
+Color EnvironmentMap::lookup(const Vec3& dir) const {
+    if (pixels.empty()) return constant;
+    float u, v;
+    coordinates(dir, u, v);
+    int x = std::min(width - 1, int(u * float(width))), y = std::min(height - 1, int(v * float(height)));
+    return pixels[size_t(y) * width + x];
+}
+
+LightSet::LightSet(const Scene& scene) {
+    std::vector<bool> proto = scene.prototypeMask();
+    meshLight_.assign(scene.meshes.size(), -1);
+    Bounds3 b = scene.worldBounds();
+    float radius = b.empty() ? 1.0f : 0.5f * length(b.diagonal());
+    for (const Light& l : scene.lights) {
+        Entry e;
+        e.light = &l;
+        if (l.kind == LightKind::Area || l.kind == LightKind::MeshEmitter) {
+            if (l.kind == LightKind::MeshEmitter || l.hasMesh) {
+                const TriangleMesh& m = scene.meshes[l.mesh];
+                std::vector<float> areas;
+                for (size_t t = 0; t < m.triangleCount(); ++t) {
+                    Vec3 a = m.vertex(m.indices[3 * t]), bb = m.vertex(m.indices[3 * t + 1]), c = m.vertex(m.indices[3 * t + 2]);
+                    e.triangles.insert(e.triangles.end(), {a, bb, c});
+                    areas.push_back(0.5f * length(cross(bb - a, c - a)));
+                    e.area += areas.back();
+                }
+                e.triangleArea = Distribution1D(areas);
+                if (!proto[l.mesh]) meshLight_[l.mesh] = int(lights_.size());
+            } else {
+                // The CGL rectangle: two triangles spanning position +- dimX/2 +- dimY/2.
+                Vec3 p00 = l.position - l.dimX * 0.5f - l.dimY * 0.5f;
+                Vec3 p10 = p00 + l.dimX, p01 = p00 + l.dimY, p11 = p00 + l.dimX + l.dimY;
+                e.triangles = {p00, p10, p11, p00, p11, p01};
+                e.area = length(cross(l.dimX, l.dimY));
+                e.triangleArea = Distribution1D({0.5f, 0.5f});
+            }
+            e.oneSided = l.kind == LightKind::Area;
+            e.side = normalize(l.direction);
+        } else if (l.kind == LightKind::Environment) {
+            e.env = loadEnvironment(l);
+            infinite_.push_back(lights_.size());
+        } else if (l.kind == LightKind::Ambient) {
+            infinite_.push_back(lights_.size());
+        }
+        lights_.push_back(std::move(e));
+    }
+    std::vector<float> powers;
+    for (const Entry& e : lights_) powers.push_back(power(e, radius));
+    power_ = Distribution1D(powers);
+}
+
+float LightSet::power(const Entry& e, float r) const {
+    const Light& l = *e.light;
+    float lum = luminance(l.radiance);
+    switch (l.kind) {
+        case LightKind::Area:
+        case LightKind::MeshEmitter: return lum * e.area * kPi * (e.oneSided ? 1.0f : 2.0f);
+        case LightKind::Point: return 4 * kPi * lum;
+        case LightKind::Spot:
+            return 2 * kPi * lum * (1 - 0.5f * (std::cos(radians(l.spotInnerDeg)) + std::cos(radians(l.spotOuterDeg))));
+        case LightKind::Directional: return lum * kPi * r * r;
+        case LightKind::Ambient: return lum * kPi * kPi * r * r;
+        case LightKind::Environment: {
+            float avg = e.env.pixels.empty() ? luminance(e.env.constant) : 0.0f;
+            for (const Color& c : e.env.pixels) avg += luminance(c) / float(e.env.pixels.size());
+            return avg * 2 * kPi * kPi * r * r;
+        }
+    }
+    return 0;
+}
+
+bool LightSet::hittable(size_t i) const {
+    const Light& l = *lights_[i].light;
+    return l.kind == LightKind::MeshEmitter || l.kind == LightKind::Environment || l.kind == LightKind::Ambient ||
+           (l.kind == LightKind::Area && l.hasMesh);
+}
+
+bool LightSet::allDelta() const {
+    for (const Entry& e : lights_) {
+        LightKind k = e.light->kind;
+        if (k != LightKind::Point && k != LightKind::Spot && k != LightKind::Directional) return false;
+    }
+    return true;
+}
+
+Color LightSet::emitted(size_t i, const Vec3& x, const Vec3& n, const Vec3& towards) const {
+    const Entry& e = lights_[i];
+    if (e.oneSided && dot(towards - x, e.side) <= 0) return Color(0.0f);
+    return e.light->radiance;
+}
+
+bool LightSet::sample(size_t i, const Vec3& ref, float u1, float u2, LightSample& out) const {
+    const Entry& e = lights_[i];
+    const Light& l = *e.light;
+    out = LightSample{};
+    switch (l.kind) {
+        case LightKind::Area:
+        case LightKind::MeshEmitter: {
+            float triPmf;
+            size_t t = e.triangleArea.sampleDiscrete(u1, triPmf);
+            // Reuse u1 within the chosen triangle's slice of the CDF.
+            float lo = 0;
+            for (size_t k = 0; k < t; ++k) lo += e.triangleArea.pmf(k);
+            float v1 = triPmf > 0 ? std::clamp((u1 - lo) / triPmf, 0.0f, 1.0f - 1e-7f) : 0.5f;
+            float b1, b2;
+            uniformTriangle(v1, u2, b1, b2);
+            const Vec3* tri = &e.triangles[3 * t];
+            Vec3 p = tri[0] * (1 - b1 - b2) + tri[1] * b1 + tri[2] * b2;
+            Vec3 n = normalize(cross(tri[1] - tri[0], tri[2] - tri[0]));
+            Vec3 d = p - ref;
+            float dist2 = dot(d, d);
+            if (dist2 == 0) return false;
+            out.wi = d / std::sqrt(dist2);
+            float cosL = std::abs(dot(n, out.wi));
+            if (cosL == 0 || e.area == 0) return false;
+            out.pdf = dist2 / (cosL * e.area);
+            out.p = p;
+            out.Li = emitted(i, p, n, ref);
+            return maxComponent(out.Li) > 0;
+        }
+        case LightKind::Point:
+        case LightKind::Spot: {
+            Vec3 d = l.position - ref;
+            float dist2 = dot(d, d);
+            if (dist2 == 0) return false;
+            out.wi = d / std::sqrt(dist2);
+            out.p = l.position;
+            out.pdf = 1;
+            out.delta = true;
+            out.Li = l.radiance / dist2;
+            if (l.kind == LightKind::Spot) out.Li = out.Li * spotFalloff(l, -out.wi);
+            return maxComponent(out.Li) > 0;
+        }
+        case LightKind::Directional:
+            out.wi = -normalize(l.direction);
+            out.pdf = 1;
+            out.delta = out.infinite = true;
+            out.Li = l.radiance;
+            return maxComponent(out.Li) > 0;
+        case LightKind::Ambient: {
+            // Uniform over the upper (+Y) hemisphere, the only part that emits.
+            Vec3 w = uniformHemisphere(u1, u2);
+            out.wi = Vec3(w.x, w.z, w.y);
+            out.pdf = uniformHemispherePdf();
+            out.infinite = true;
+            out.Li = l.radiance;
+            return maxComponent(out.Li) > 0;
+        }
+        case LightKind::Environment: {
+            out.infinite = true;
+            if (e.env.pixels.empty()) {
+                out.wi = uniformSphere(u1, u2);
+                out.pdf = uniformSpherePdf();
+                out.Li = e.env.constant;
+                return maxComponent(out.Li) > 0;
+            }
+            float u, v, pdfUV;
+            e.env.distribution.sample(u1, u2, u, v, pdfUV);
+            float sinTheta = std::sin(v * kPi);
+            if (pdfUV == 0 || sinTheta == 0) return false;
+            out.wi = EnvironmentMap::direction(u, v);
+            out.pdf = pdfUV / (2 * kPi * kPi * sinTheta);
+            out.Li = e.env.lookup(out.wi);
+            return maxComponent(out.Li) > 0;
+        }
+    }
+    return false;
+}
+
+float LightSet::pdf(size_t i, const Vec3& ref, const Vec3& wi, const Vec3& x, const Vec3& n) const {
+    const Entry& e = lights_[i];
+    switch (e.light->kind) {
+        case LightKind::Area:
+        case LightKind::MeshEmitter: {
+            Vec3 d = x - ref;
+            float cosL = std::abs(dot(n, wi));
+            return cosL > 0 && e.area > 0 ? dot(d, d) / (cosL * e.area) : 0.0f;
+        }
+        case LightKind::Ambient: return wi.y > 0 ? uniformHemispherePdf() : 0.0f;
+        case LightKind::Environment: {
+            if (e.env.pixels.empty()) return uniformSpherePdf();
+            float u, v;
+            EnvironmentMap::coordinates(wi, u, v);
+            float sinTheta = std::sin(v * kPi);
+            return sinTheta > 0 ? e.env.distribution.pdf(u, v) / (2 * kPi * kPi * sinTheta) : 0.0f;
+        }
+        default: return 0.0f;  // delta lights are never hit
+    }
+}
+
+Color LightSet::escaped(size_t i, const Vec3& dir, bool cameraRay) const {
+    const Entry& e = lights_[i];
+    if (e.light->kind == LightKind::Environment) return e.env.lookup(dir);
+    // The ambient (hemisphere) light lights the scene but is not a visible background, as in CS184.
+    if (e.light->kind == LightKind::Ambient && !cameraRay && dir.y > 0) return e.light->radiance;
+    return Color(0.0f);
+}
+
+}  // namespace kiln

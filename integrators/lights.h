@@ -1,0 +1,76 @@
+// Light sampling for every light kind, selection by power, and the densities MIS needs.
+#pragma once
+
+#include <vector>
+
+#include "integrators/distribution.h"
+#include "renderer/interaction.h"
+#include "scene/scene.h"
+
+namespace kiln {
+
+struct LightSample {
+    Color Li;        // radiance arriving at the reference point (before visibility)
+    Vec3 wi;         // unit direction towards the light
+    Vec3 p;          // point on the light (finite lights)
+    float pdf = 0;   // solid angle density; 1 for delta lights
+    bool delta = false;
+    bool infinite = false;  // shadow ray has no end point
+};
+
+// A lat-long environment map in memory, with its importance-sampling distribution.
+struct EnvironmentMap {
+    int width = 0, height = 0;
+    std::vector<Color> pixels;
+    Color constant{0.0f};  // used when there is no image (uniform environment)
+    Distribution2D distribution;
+    float scale = 1;
+    Color lookup(const Vec3& dir) const;
+    static Vec3 direction(float u, float v);  // (u, v) in [0,1)^2 -> unit direction
+    static void coordinates(const Vec3& dir, float& u, float& v);
+};
+
+class LightSet {
+public:
+    explicit LightSet(const Scene& scene);
+    size_t size() const { return lights_.size(); }
+    const Light& light(size_t i) const { return *lights_[i].light; }
+
+    // Picks a light with probability proportional to its power.
+    size_t select(float u, float& pmf) const { return power_.sampleDiscrete(u, pmf); }
+    float selectPmf(size_t i) const { return power_.pmf(i); }
+
+    bool sample(size_t i, const Vec3& ref, float u1, float u2, LightSample& out) const;
+    // Solid-angle density of sampling direction wi from ref towards light i, given the point hit on it.
+    float pdf(size_t i, const Vec3& ref, const Vec3& wi, const Vec3& pointOnLight, const Vec3& lightNormal) const;
+    // Radiance leaving an emitting surface point towards `towards` (meshes bound to lights and materials).
+    Color emitted(size_t i, const Vec3& pointOnLight, const Vec3& lightNormal, const Vec3& towards) const;
+
+    // Whether rays can hit the light (emissive geometry, lights at infinity); NEE alone sees the others.
+    bool hittable(size_t i) const;
+    // Light bound to a mesh (-1 if none): hits on it are emission MIS can weigh.
+    int lightOfMesh(uint32_t mesh) const { return mesh < meshLight_.size() ? meshLight_[mesh] : -1; }
+    // Lights at infinity (environment, ambient) and the radiance each sends along a ray leaving the scene.
+    const std::vector<size_t>& infiniteLights() const { return infinite_; }
+    Color escaped(size_t i, const Vec3& dir, bool cameraRay) const;
+    bool allDelta() const;
+
+private:
+    struct Entry {
+        const Light* light;
+        // Area lights (rectangle) and mesh emitters: triangles with an area distribution.
+        std::vector<Vec3> triangles;  // 3 vertices each
+        Distribution1D triangleArea;
+        float area = 0;
+        bool oneSided = false;
+        Vec3 side;  // emitting side for one-sided lights
+        EnvironmentMap env;
+    };
+    float power(const Entry& e, float sceneRadius) const;
+    std::vector<Entry> lights_;
+    std::vector<int> meshLight_;
+    std::vector<size_t> infinite_;
+    Distribution1D power_;
+};
+
+}  // namespace kiln

@@ -1,0 +1,119 @@
+#include "integrators/path.h"
+
+#include "renderer/interaction.h"
+
+namespace kiln {
+
+PathIntegrator::PathIntegrator(const Scene& scene, const Accelerator& accel, const PathOptions& options)
+    : Integrator(scene, accel), opt_(options), lights_(scene) {
+    opt_.lightSamples = std::max(1, opt_.lightSamples);
+}
+
+float PathIntegrator::misWeight(float nf, float fPdf, float ng, float gPdf) const {
+    return opt_.powerHeuristic ? powerHeuristic(nf, fPdf, ng, gPdf) : balanceHeuristic(nf, fPdf, ng, gPdf);
+}
+
+Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayCounter& counter) const {
+    Color L(0.0f), beta(1.0f);
+    // Light that bounced `bounce` times; with accumulation off only the maxDepth-th bounce is kept.
+    auto add = [&](int bounce, const Color& c) {
+        if (opt_.accumulateBounces || bounce == opt_.maxDepth) L += c;
+    };
+    const float nLight = float(opt_.lightSamples);
+    const bool useNee = opt_.sampling != DirectSampling::Hemisphere && lights_.size() > 0;
+    Ray ray = cameraRay;
+    bool specular = true;  // the previous vertex was the camera or a delta lobe: nothing else could see the light
+    float prevPdf = 0;
+    Vec3 prevP = ray.origin;
+
+    // Weight of emission found by following the BSDF-sampled ray, against NEE having sampled light li.
+    auto emissionWeight = [&](int li, const Vec3& dir, const Vec3& x, const Vec3& n) {
+        if (specular || li < 0 || !useNee) return 1.0f;
+        if (opt_.sampling == DirectSampling::Light) return 0.0f;
+        float pl = lights_.selectPmf(size_t(li)) * lights_.pdf(size_t(li), prevP, dir, x, n);
+        return misWeight(1, prevPdf, nLight, pl);
+    };
+
+    for (int bounce = 0;; ++bounce) {
+        Hit hit;
+        ++counter.rays;
+        if (!accel_.intersect(ray, hit)) {
+            Vec3 dir = normalize(ray.dir);
+            for (size_t i : lights_.infiniteLights()) {
+                Color Le = lights_.escaped(i, dir, bounce == 0);
+                if (maxComponent(Le) > 0) add(bounce, beta * Le * emissionWeight(int(i), dir, Vec3(0.0f), Vec3(0.0f)));
+            }
+            break;
+        }
+        SurfaceInteraction si = makeInteraction(scene_, ray, hit);
+        const Material& mat = scene_.materials[si.material];
+        if (maxComponent(mat.emission) > 0) {
+            int li = (hit.shape != kSphereShape && hit.instance == kInvalidId) ? lights_.lightOfMesh(hit.shape) : -1;
+            Color Le = li >= 0 ? lights_.emitted(size_t(li), si.p, si.ng, ray.origin) : mat.emission;
+            add(bounce, beta * Le * emissionWeight(li, normalize(ray.dir), si.p, si.ng));
+        }
+        if (bounce >= opt_.maxDepth) break;
+        Bsdf bsdf(mat, opt_.microfacet);
+        if (bsdf.isBlack()) break;
+        Frame frame(si.nsStored);
+        Vec3 wo = frame.toLocal(-normalize(ray.dir));
+
+        // Next-event estimation: lightSamples lights chosen by power.
+        if (useNee && !bsdf.isDelta() && (opt_.accumulateBounces || bounce + 1 == opt_.maxDepth)) {
+            for (int k = 0; k < opt_.lightSamples; ++k) {
+                float pmf;
+                size_t li = lights_.select(sampler.next1D(), pmf);
+                float u1 = sampler.next1D(), u2 = sampler.next1D();
+                LightSample ls;
+                if (!lights_.sample(li, si.p, u1, u2, ls) || pmf == 0) continue;
+                Vec3 wi = frame.toLocal(ls.wi);
+                Color f = bsdf.eval(wo, wi) * std::abs(wi.z);
+                // Geometric side check: no light from behind the actual surface through a bent normal.
+                if (maxComponent(f) <= 0 || (dot(ls.wi, si.ng) <= 0 && !bsdf.hasTransmission())) continue;
+                Ray shadow = ls.infinite ? spawnRay(si, ls.wi) : spawnRayTo(si, ls.p);
+                ++counter.rays;
+                if (accel_.occluded(shadow)) continue;
+                float pl = pmf * ls.pdf;
+                float w = (ls.delta || opt_.sampling == DirectSampling::Light || !lights_.hittable(li))
+                              ? 1.0f
+                              : misWeight(nLight, pl, 1, bsdf.pdf(wo, wi));
+                add(bounce + 1, beta * f * ls.Li * (w / (pl * nLight)));
+            }
+        }
+
+        // Continue the path.
+        BsdfSample bs;
+        if (opt_.sampling == DirectSampling::Hemisphere && !bsdf.isDelta()) {
+            Vec3 wi = uniformHemisphere(sampler.next1D(), sampler.next1D());
+            sampler.next1D();
+            if (wo.z < 0) wi.z = -wi.z;
+            bs.wi = wi;
+            bs.pdf = uniformHemispherePdf();
+            bs.f = bsdf.eval(wo, wi);
+        } else {
+            float uc = sampler.next1D(), u1 = sampler.next1D(), u2 = sampler.next1D();
+            if (!bsdf.sample(wo, uc, u1, u2, bs)) break;
+        }
+        if (bs.pdf <= 0 || maxComponent(bs.f) <= 0) break;
+        beta *= bs.f * (std::abs(bs.wi.z) / bs.pdf);
+        specular = bs.delta;
+        prevPdf = bs.pdf;
+        prevP = si.p;
+
+        // Russian roulette: unbiased, the survivors carry 1 / continuation.
+        float rr = sampler.next1D();
+        if (opt_.roulette == Roulette::Throughput && bounce + 1 >= opt_.rouletteMinBounces) {
+            float q = std::min(1.0f, maxComponent(beta));
+            if (rr >= q) break;
+            beta = beta / q;
+        } else if (opt_.roulette == Roulette::Fixed && bounce >= 1) {
+            if (rr >= opt_.fixedContinuation) break;
+            beta = beta / opt_.fixedContinuation;
+        }
+        if (!isFinite(beta) || maxComponent(beta) <= 0) break;
+        ray = spawnRay(si, frame.toWorld(bs.wi));
+    }
+    return L;
+}
+
+}  // namespace kiln

@@ -1,0 +1,40 @@
+// Path tracing with next-event estimation at every vertex, MIS against BSDF sampling, Russian roulette and
+// CS184 depth semantics (-m 0: emission only, 1: direct lighting, >= 2: global illumination).
+#pragma once
+
+#include "integrators/bsdf.h"
+#include "integrators/integrator.h"
+#include "integrators/lights.h"
+
+namespace kiln {
+
+enum class DirectSampling { Hemisphere, Light, Mis };
+enum class Roulette { Off, Throughput, Fixed };
+
+struct PathOptions {
+    int maxDepth = 5;
+    int lightSamples = 1;  // -l: light samples per shading point
+    DirectSampling sampling = DirectSampling::Mis;
+    bool powerHeuristic = true;  // else balance
+    Roulette roulette = Roulette::Throughput;
+    float fixedContinuation = 0.65f;  // CS184's constant continuation probability (Roulette::Fixed)
+    int rouletteMinBounces = 3;       // throughput roulette starts after this many bounces
+    bool accumulateBounces = true;    // false: only light that bounced exactly maxDepth times
+    MicrofacetModel microfacet = MicrofacetModel::Beckmann;
+};
+
+class PathIntegrator final : public Integrator {
+public:
+    PathIntegrator(const Scene& scene, const Accelerator& accel, const PathOptions& options);
+    Color Li(const Ray& ray, Sampler& sampler, RayCounter& counter) const override;
+    const char* name() const override { return "path"; }
+    const PathOptions& options() const { return opt_; }
+    const LightSet& lights() const { return lights_; }
+
+private:
+    float misWeight(float nf, float fPdf, float ng, float gPdf) const;
+    PathOptions opt_;
+    LightSet lights_;
+};
+
+}  // namespace kiln

@@ -81,6 +81,8 @@ bool Bsdf::sample(const Vec3& wo, float uc, float u1, float u2, BsdfSample& out)
         case MaterialKind::Microfacet: {
             Vec3 h = micro_.sampleH(u1, u2);
             if (wo.z < 0) h = -h;
+            // A microfacet facing away from wo cannot reflect it (its mirror image is counted by -h).
+            if (dot(wo, h) <= 0) return false;
             Vec3 wi = reflectAbout(wo, h);
             if (!sameHemisphere(wo, wi)) return false;
             out.wi = wi;

@@ -1,0 +1,185 @@
+// Light sampling: chi-square of sampled directions against the claimed pdf for every light with extent,
+// exact values for delta lights, selection by power.
+#include <OpenImageIO/imageio.h>
+
+#include "chi2.h"
+#include "integrators/lights.h"
+#include "scene/scene_loader.h"
+#include "test_support.h"
+
+namespace kiln {
+namespace {
+
+// Ray from ref along w against a triangle list: the first hit point and its normal.
+bool hitTriangles(const std::vector<Vec3>& tris, const Vec3& ref, const Vec3& w, Vec3& x, Vec3& n) {
+    float best = kInfinity;
+    for (size_t t = 0; t + 2 < tris.size(); t += 3) {
+        Vec3 e1 = tris[t + 1] - tris[t], e2 = tris[t + 2] - tris[t];
+        Vec3 p = cross(w, e2);
+        float det = dot(e1, p);
+        if (det == 0) continue;
+        Vec3 tv = ref - tris[t];
+        float u = dot(tv, p) / det;
+        Vec3 q = cross(tv, e1);
+        float v = dot(w, q) / det, d = dot(e2, q) / det;
+        if (u < 0 || v < 0 || u + v > 1 || d <= 0 || d >= best) continue;
+        best = d;
+        x = ref + w * d;
+        n = normalize(cross(e1, e2));
+    }
+    return best < kInfinity;
+}
+
+void expectLightMatchesPdf(const LightSet& lights, size_t i, const Vec3& ref, const std::vector<Vec3>& shape,
+                           const std::string& what) {
+    auto sample = [&](Sampler& s) -> std::optional<Vec3> {
+        LightSample ls;
+        float u1 = s.next1D(), u2 = s.next1D();
+        if (!lights.sample(i, ref, u1, u2, ls)) return std::nullopt;
+        return ls.wi;
+    };
+    auto pdf = [&](const Vec3& w) -> double {
+        Vec3 x, n;
+        if (!hitTriangles(shape, ref, w, x, n)) return 0.0;
+        return lights.pdf(i, ref, w, x, n);
+    };
+    // The pdf has sharp edges (the light's outline): integrate each bin with 32 x 32 midpoints.
+    test::Chi2Result r = test::chi2Directions(sample, pdf, 300000, 23, 80, 160, 32);
+    EXPECT_GT(r.pValue, 1e-4) << what << ": " << r.table;
+}
+
+TEST(LightSampling, RectangleAreaLight) {
+    Scene s;
+    Light l;
+    l.kind = LightKind::Area;
+    l.position = Vec3(0.2f, 1, -0.1f);
+    l.direction = Vec3(0, -1, 0);
+    l.dimX = Vec3(0.6f, 0, 0), l.dimY = Vec3(0, 0, 0.8f);
+    l.radiance = Color(10.0f);
+    s.lights.push_back(l);
+    LightSet lights(s);
+    Vec3 c = l.position - l.dimX * 0.5f - l.dimY * 0.5f;
+    std::vector<Vec3> rect = {c, c + l.dimX, c + l.dimX + l.dimY, c, c + l.dimX + l.dimY, c + l.dimY};
+    expectLightMatchesPdf(lights, 0, Vec3(0, 0, 0), rect, "rectangle");
+    expectLightMatchesPdf(lights, 0, Vec3(1.2f, 0.6f, 0.3f), rect, "rectangle, oblique");
+    // One-sided: nothing reaches a point above the light.
+    LightSample ls;
+    EXPECT_FALSE(lights.sample(0, Vec3(0, 2, 0), 0.3f, 0.6f, ls));
+}
+
+TEST(LightSampling, EmissiveMeshByArea) {
+    // A planar fan around an off-centre point: triangles of very different areas, picked by area.
+    TriangleMesh m;
+    m.positions = {0, 0, 0, 2, 0, 0, 2, 0, 1, 0, 0, 1, 0.1f, 0, 0.05f};
+    m.indices = {4, 0, 1, 4, 1, 2, 4, 2, 3, 4, 3, 0};
+    m.materialIds = {0};
+    m.finalizePadding();
+    Scene s = test::sceneWith(m);
+    s.materials[0].kind = MaterialKind::Emission;
+    s.materials[0].emission = Color(3.0f);
+    addEmissiveMeshLights(s);
+    ASSERT_EQ(s.lights.size(), 1u);
+    LightSet lights(s);
+    std::vector<Vec3> tris;
+    for (uint32_t idx : s.meshes[0].indices) tris.push_back(s.meshes[0].vertex(idx));
+    expectLightMatchesPdf(lights, 0, Vec3(0.7f, 1.2f, 0.4f), tris, "mesh, from above");
+    expectLightMatchesPdf(lights, 0, Vec3(0.7f, -0.5f, 2.0f), tris, "mesh, from below (two-sided)");
+}
+
+TEST(LightSampling, AmbientHemisphere) {
+    Scene s;
+    Light l;
+    l.kind = LightKind::Ambient;
+    l.radiance = Color(1.0f);
+    s.lights.push_back(l);
+    LightSet lights(s);
+    auto sample = [&](Sampler& smp) -> std::optional<Vec3> {
+        LightSample ls;
+        float u1 = smp.next1D(), u2 = smp.next1D();
+        if (!lights.sample(0, Vec3(0.0f), u1, u2, ls)) return std::nullopt;
+        EXPECT_GT(ls.wi.y, 0.0f);
+        return ls.wi;
+    };
+    auto pdf = [&](const Vec3& w) -> double { return lights.pdf(0, Vec3(0.0f), w, Vec3(0.0f), Vec3(0.0f)); };
+    test::Chi2Result r = test::chi2Directions(sample, pdf, 300000, 5);
+    EXPECT_GT(r.pValue, 1e-4) << r.table;
+}
+
+TEST(LightSampling, EnvironmentMapImportance) {
+    // A synthetic 64 x 32 map: a sky gradient, a bright sun and a black band, written as EXR.
+    constexpr int W = 64, H = 32;
+    std::vector<float> px(W * H * 3);
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            float v = 0.1f + float(y) / H;
+            if (std::abs(x - 40) <= 1 && std::abs(y - 8) <= 1) v = 500.0f;
+            if (y >= 20 && y < 23) v = 0.0f;
+            for (int c = 0; c < 3; ++c) px[(y * W + x) * 3 + c] = v * (c == 0 ? 1.0f : 0.7f);
+        }
+    std::string path = (test::scratchDir() / "env.exr").string();
+    auto out = OIIO::ImageOutput::create(path);
+    ASSERT_TRUE(out);
+    ASSERT_TRUE(out->open(path, OIIO::ImageSpec(W, H, 3, OIIO::TypeDesc::FLOAT)));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, px.data()));
+    out->close();
+    Scene s;
+    Light l;
+    l.kind = LightKind::Environment;
+    l.environmentPath = path;
+    s.lights.push_back(l);
+    LightSet lights(s);
+    // Histogram in the map's own spherical coordinates (pole = +Y, phi = 0 at -Z) so bins align with pixels.
+    auto toMapFrame = [](const Vec3& d) { return Vec3(-d.z, d.x, d.y); };
+    auto fromMapFrame = [](const Vec3& w) { return Vec3(w.y, w.z, -w.x); };
+    auto sample = [&](Sampler& smp) -> std::optional<Vec3> {
+        LightSample ls;
+        float u1 = smp.next1D(), u2 = smp.next1D();
+        if (!lights.sample(0, Vec3(0.0f), u1, u2, ls)) return std::nullopt;
+        // The radiance returned is the map's value in that direction.
+        EXPECT_EQ(ls.Li, lights.escaped(0, ls.wi, false));
+        return toMapFrame(ls.wi);
+    };
+    auto pdf = [&](const Vec3& w) -> double { return lights.pdf(0, Vec3(0.0f), fromMapFrame(w), Vec3(0.0f), Vec3(0.0f)); };
+    test::Chi2Result r = test::chi2Directions(sample, pdf, 400000, 31, 64, 128, 8);
+    EXPECT_GT(r.pValue, 1e-4) << r.table;
+}
+
+TEST(LightSampling, DeltaLightsAndSelectionByPower) {
+    Scene s;
+    Light point;
+    point.kind = LightKind::Point;
+    point.position = Vec3(0, 2, 0);
+    point.radiance = Color(3.0f);
+    Light spot = point;
+    spot.kind = LightKind::Spot;
+    spot.direction = Vec3(0, -1, 0);
+    spot.spotInnerDeg = 20, spot.spotOuterDeg = 30;
+    Light sun;
+    sun.kind = LightKind::Directional;
+    sun.direction = normalize(Vec3(1, -1, 0));
+    sun.radiance = Color(2.0f);
+    s.lights = {point, spot, sun};
+    LightSet lights(s);
+    LightSample ls;
+    ASSERT_TRUE(lights.sample(0, Vec3(0, 0, 0), 0.5f, 0.5f, ls));
+    EXPECT_TRUE(ls.delta);
+    EXPECT_NEAR(ls.Li.x, 3.0f / 4.0f, 1e-6f);  // inverse square
+    ASSERT_TRUE(lights.sample(1, Vec3(0, 0, 0), 0.5f, 0.5f, ls));
+    EXPECT_NEAR(ls.Li.x, 3.0f / 4.0f, 1e-6f);  // on the axis: full intensity
+    EXPECT_FALSE(lights.sample(1, Vec3(3, 0, 0), 0.5f, 0.5f, ls));  // 56 degrees off axis: dark
+    ASSERT_TRUE(lights.sample(2, Vec3(5, 5, 5), 0.5f, 0.5f, ls));
+    EXPECT_TRUE(ls.infinite);
+    EXPECT_NEAR(ls.wi.x, -std::sqrt(0.5f), 1e-6f);
+    EXPECT_TRUE(lights.allDelta());
+
+    Scene two;
+    Light a = point, b = point;
+    b.radiance = Color(9.0f);
+    two.lights = {a, b};
+    LightSet pair(two);
+    EXPECT_NEAR(pair.selectPmf(0), 0.25f, 1e-6f);
+    EXPECT_NEAR(pair.selectPmf(1), 0.75f, 1e-6f);
+}
+
+}  // namespace
+}  // namespace kiln

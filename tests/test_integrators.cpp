@@ -1,0 +1,200 @@
+// Light transport end to end: furnaces with known answers, agreement between estimators that must agree,
+// roulette without bias, CS184 depth semantics, adaptive sampling and determinism. Tolerances come from
+// the estimator's own sample variance (5 standard errors).
+#include "integrators/path.h"
+#include "renderer/render_loop.h"
+#include "scene/scene_loader.h"
+#include "test_support.h"
+
+namespace kiln {
+namespace {
+
+struct ImageEstimate {
+    double mean = 0, stderror = 0;  // image-mean luminance and its standard error
+};
+
+ImageEstimate estimate(const Film& film) {
+    ImageEstimate e;
+    double var = 0;
+    int pixels = film.width() * film.height();
+    for (int y = 0; y < film.height(); ++y)
+        for (int x = 0; x < film.width(); ++x) {
+            double n = film.samples(x, y), s1 = film.luminanceSum(x, y), s2 = film.luminanceSquareSum(x, y);
+            e.mean += s1 / n;
+            if (n > 1) var += std::max(0.0, (s2 - s1 * s1 / n) / (n - 1)) / n;
+        }
+    e.mean /= pixels;
+    e.stderror = std::sqrt(var) / pixels;
+    return e;
+}
+
+Film renderPath(const Scene& s, const PathOptions& opt, RenderSettings settings) {
+    auto accel = makeEmbreeAccelerator(s);
+    PathIntegrator integrator(s, *accel, opt);
+    Film film(settings.width, settings.height);
+    settings.progress = false;
+    renderImage(s, integrator, settings, film);
+    return film;
+}
+
+RenderSettings small(int w, int h, int spp, uint64_t seed = 0) {
+    RenderSettings r;
+    r.width = w, r.height = h, r.spp = spp, r.seed = seed;
+    return r;
+}
+
+void expectAgree(const ImageEstimate& a, const ImageEstimate& b, const std::string& what) {
+    double bound = 5 * std::sqrt(a.stderror * a.stderror + b.stderror * b.stderror);
+    EXPECT_NEAR(a.mean, b.mean, bound) << what << ": " << a.mean << " +- " << a.stderror << " vs " << b.mean << " +- "
+                                       << b.stderror;
+    EXPECT_GT(bound, 0.0) << what;  // a zero-variance comparison would prove nothing
+}
+
+TEST(Furnace, WhiteSphereInAUniformEnvironmentIsInvisible) {
+    Scene s;
+    s.sourcePath = "furnace";
+    Material white;
+    white.albedo = Color(1.0f);
+    s.materials.push_back(white);
+    s.spheres.push_back(Sphere{"ball", Vec3(0.0f), 1.0f, 0});
+    Light env;
+    env.kind = LightKind::Environment;  // no image: uniform radiance 1
+    env.radiance = Color(1.0f);
+    s.lights.push_back(env);
+    s.camera.position = Vec3(0, 0, 4);
+    s.camera.hFovDeg = s.camera.vFovDeg = 35;
+    for (DirectSampling sampling : {DirectSampling::Mis, DirectSampling::Light, DirectSampling::Hemisphere}) {
+        PathOptions opt;
+        opt.sampling = sampling;
+        opt.maxDepth = 50;
+        Film film = renderPath(s, opt, small(24, 24, 64));
+        ImageEstimate e = estimate(film);
+        EXPECT_NEAR(e.mean, 1.0, 5 * e.stderror + 1e-6) << int(sampling);
+        // Every pixel, on the sphere or not, converges to 1: check each against its own error.
+        int outliers = 0;
+        for (int y = 0; y < 24; ++y)
+            for (int x = 0; x < 24; ++x) {
+                double n = film.samples(x, y), s1 = film.luminanceSum(x, y), s2 = film.luminanceSquareSum(x, y);
+                double sd = std::sqrt(std::max(0.0, (s2 - s1 * s1 / n) / (n - 1)) / n);
+                outliers += std::abs(s1 / n - 1.0) > 5 * sd + 1e-5;
+            }
+        EXPECT_EQ(outliers, 0) << int(sampling);
+    }
+}
+
+TEST(Furnace, ClosedEmittingBoxGivesOneOverOneMinusAlbedo) {
+    for (float albedo : {0.5f, 0.8f}) {
+        TriangleMesh shell = test::sphereMesh(24, 48);
+        for (float& p : shell.positions) p *= 2;
+        Scene s = test::sceneWith(shell);
+        s.materials[0].albedo = Color(albedo);
+        s.materials[0].emission = Color(1.0f);
+        addEmissiveMeshLights(s);
+        s.camera.position = Vec3(0.3f, -0.2f, 0.1f);
+        s.camera.hFovDeg = s.camera.vFovDeg = 90;
+        PathOptions opt;
+        opt.maxDepth = 100000;  // unlimited: roulette ends the paths
+        Film film = renderPath(s, opt, small(16, 16, 128));
+        ImageEstimate e = estimate(film);
+        EXPECT_NEAR(e.mean, 1.0 / (1.0 - albedo), 5 * e.stderror) << "albedo " << albedo << " +- " << e.stderror;
+        EXPECT_GT(e.stderror, 0.0);
+    }
+}
+
+TEST(DirectLighting, HemisphereLightAndMisAgreeOnCBspheresLambertian) {
+    Scene s = loadScene(test::cs184("sky/CBspheres_lambertian.dae"));
+    ImageEstimate results[3];
+    int i = 0;
+    for (DirectSampling sampling : {DirectSampling::Hemisphere, DirectSampling::Light, DirectSampling::Mis}) {
+        PathOptions opt;
+        opt.maxDepth = 1;
+        opt.sampling = sampling;
+        opt.lightSamples = sampling == DirectSampling::Hemisphere ? 1 : 4;
+        results[i++] = estimate(renderPath(s, opt, small(64, 48, sampling == DirectSampling::Hemisphere ? 512 : 64)));
+    }
+    expectAgree(results[0], results[1], "hemisphere vs light");
+    expectAgree(results[1], results[2], "light vs MIS");
+    expectAgree(results[0], results[2], "hemisphere vs MIS");
+    // Per camera sample, MIS has a lower variance than hemisphere sampling (512 vs 64 samples were taken).
+    EXPECT_LT(results[2].stderror * results[2].stderror * 64, results[0].stderror * results[0].stderror * 512);
+}
+
+TEST(RussianRoulette, UnbiasedAgainstNoRoulette) {
+    Scene s = loadScene(test::cs184("sky/CBspheres_lambertian.dae"));
+    ImageEstimate est[3];
+    int i = 0;
+    for (Roulette rr : {Roulette::Off, Roulette::Throughput, Roulette::Fixed}) {
+        PathOptions opt;
+        opt.maxDepth = 8;
+        opt.roulette = rr;
+        est[i++] = estimate(renderPath(s, opt, small(48, 36, 128, 3)));
+    }
+    expectAgree(est[0], est[1], "off vs throughput");
+    expectAgree(est[0], est[2], "off vs fixed 0.65");
+}
+
+TEST(Depth, AccumulatedEqualsTheSumOfBouncesAndZeroIsEmissionOnly) {
+    Scene s = loadScene(test::cs184("sky/CBspheres_lambertian.dae"));
+    PathOptions opt;
+    opt.maxDepth = 2;
+    ImageEstimate total = estimate(renderPath(s, opt, small(48, 36, 64, 1)));
+    double sum = 0, var = 0;
+    for (int m = 0; m <= 2; ++m) {
+        PathOptions only;
+        only.maxDepth = m;
+        only.accumulateBounces = false;
+        ImageEstimate e = estimate(renderPath(s, only, small(48, 36, 64, 10 + m)));
+        sum += e.mean;
+        var += e.stderror * e.stderror;
+    }
+    EXPECT_NEAR(total.mean, sum, 5 * std::sqrt(var + total.stderror * total.stderror));
+    // -m 0: only emitters are visible, at their radiance (the ceiling light: 10).
+    PathOptions zero;
+    zero.maxDepth = 0;
+    Film film = renderPath(s, zero, small(80, 60, 4));
+    int lit = 0;
+    for (int y = 0; y < 60; ++y)
+        for (int x = 0; x < 80; ++x) {
+            Color c = film.pixel(x, y);
+            ASSERT_TRUE(c == Color(0.0f) || c.x > 0) << x << "," << y;
+            if (film.samples(x, y) && c == Color(10.0f)) ++lit;
+        }
+    EXPECT_GT(lit, 10);
+}
+
+TEST(PathRender, BitIdenticalWhateverTheThreads) {
+    Scene s = loadScene(test::cs184("sky/CBspheres.dae"));
+    PathOptions opt;
+    RenderSettings a = small(40, 30, 8, 5), b = a;
+    a.threads = 1, a.tileSize = 5;
+    b.threads = 3, b.tileSize = 16;
+    Film fa = renderPath(s, opt, a), fb = renderPath(s, opt, b);
+    for (int y = 0; y < 30; ++y)
+        for (int x = 0; x < 40; ++x) ASSERT_EQ(fa.pixel(x, y), fb.pixel(x, y)) << x << "," << y;
+}
+
+TEST(Adaptive, PixelsStopWhenTheCs184ConfidenceTestPasses) {
+    Scene s = loadScene(test::cs184("sky/CBspheres_lambertian.dae"));
+    RenderSettings settings = small(40, 30, 256);
+    settings.adaptiveBatch = 16;
+    settings.adaptiveTolerance = 0.05f;
+    PathOptions opt;
+    Film film = renderPath(s, opt, settings);
+    uint32_t lo = 1000, hi = 0;
+    for (int y = 0; y < 30; ++y)
+        for (int x = 0; x < 40; ++x) {
+            uint32_t n = film.samples(x, y);
+            lo = std::min(lo, n), hi = std::max(hi, n);
+            ASSERT_TRUE(n % 16 == 0 || n == 256) << n;
+            if (n == 256) continue;
+            // Stopped early: the test held at n.
+            double s1 = film.luminanceSum(x, y), s2 = film.luminanceSquareSum(x, y);
+            double mu = s1 / n, var = std::max(0.0, (s2 - s1 * s1 / n) / (n - 1));
+            EXPECT_LE(1.96 * std::sqrt(var / n), 0.05 * mu + 1e-9) << x << "," << y;
+        }
+    EXPECT_EQ(lo, 16u);   // black background pixels stop after one batch
+    EXPECT_GT(hi, 16u);   // noisy pixels keep sampling
+}
+
+}  // namespace
+}  // namespace kiln

@@ -86,7 +86,7 @@ LightSet::LightSet(const Scene& scene) {
                 std::vector<float> areas;
                 for (size_t t = 0; t < m.triangleCount(); ++t) {
                     Vec3 a = m.vertex(m.indices[3 * t]), bb = m.vertex(m.indices[3 * t + 1]), c = m.vertex(m.indices[3 * t + 2]);
-                    e.triangles.insert(e.triangles.end(), {a, bb, c});
+                    e.triangles.insert(e.triangles.end(), {a, bb - a, c - a});
                     areas.push_back(0.5f * length(cross(bb - a, c - a)));
                     e.area += areas.back();
                 }
@@ -96,9 +96,13 @@ LightSet::LightSet(const Scene& scene) {
                 // The CGL rectangle: two triangles spanning position +- dimX/2 +- dimY/2.
                 Vec3 p00 = l.position - l.dimX * 0.5f - l.dimY * 0.5f;
                 Vec3 p10 = p00 + l.dimX, p01 = p00 + l.dimY, p11 = p00 + l.dimX + l.dimY;
-                e.triangles = {p00, p10, p11, p00, p11, p01};
+                e.triangles = {p00, p10 - p00, p11 - p00, p00, p11 - p00, p01 - p00};
                 e.area = length(cross(l.dimX, l.dimY));
                 e.triangleArea = Distribution1D({0.5f, 0.5f});
+            }
+            for (size_t t = 0; t < e.triangles.size(); t += 3) {
+                Vec3 n = cross(e.triangles[t + 1], e.triangles[t + 2]);
+                e.normals.push_back(dot(n, n) > 0 ? normalize(n) : Vec3(0, 1, 0));
             }
             e.oneSided = l.kind == LightKind::Area;
             e.side = normalize(l.direction);
@@ -162,17 +166,16 @@ bool LightSet::sample(size_t i, const Vec3& ref, float u1, float u2, LightSample
     switch (l.kind) {
         case LightKind::Area:
         case LightKind::MeshEmitter: {
-            float triPmf;
-            size_t t = e.triangleArea.sampleDiscrete(u1, triPmf);
-            // Reuse u1 within the chosen triangle's slice of the CDF.
-            float lo = 0;
-            for (size_t k = 0; k < t; ++k) lo += e.triangleArea.pmf(k);
-            float v1 = triPmf > 0 ? std::clamp((u1 - lo) / triPmf, 0.0f, 1.0f - 1e-7f) : 0.5f;
+            // One uniform number picks the triangle by area and, rescaled within its slice, the point.
+            float pdfUnused;
+            size_t t;
+            float x = e.triangleArea.sampleContinuous(u1, pdfUnused, t);
+            float v1 = std::clamp(x * float(e.triangleArea.size()) - float(t), 0.0f, 1.0f - 1e-7f);
             float b1, b2;
             uniformTriangle(v1, u2, b1, b2);
             const Vec3* tri = &e.triangles[3 * t];
-            Vec3 p = tri[0] * (1 - b1 - b2) + tri[1] * b1 + tri[2] * b2;
-            Vec3 n = normalize(cross(tri[1] - tri[0], tri[2] - tri[0]));
+            Vec3 p = tri[0] + tri[1] * b1 + tri[2] * b2;
+            const Vec3& n = e.normals[t];
             Vec3 d = p - ref;
             float dist2 = dot(d, d);
             if (dist2 == 0) return false;

@@ -59,7 +59,8 @@ private:
     struct Entry {
         const Light* light;
         // Area lights (rectangle) and mesh emitters: triangles with an area distribution.
-        std::vector<Vec3> triangles;  // 3 vertices each
+        std::vector<Vec3> triangles;  // p0, edge1, edge2 per triangle
+        std::vector<Vec3> normals;    // unit geometric normal per triangle
         Distribution1D triangleArea;
         float area = 0;
         bool oneSided = false;

@@ -99,8 +99,8 @@ Vec3 offsetRayOrigin(const SurfaceInteraction& si, const Vec3& dir) {
     Vec3 po = si.p + offset;
     // Round away from p so the offset survives the addition.
     for (int i = 0; i < 3; ++i) {
-        if (offset[i] > 0) po[i] = std::nextafter(po[i], kInfinity);
-        else if (offset[i] < 0) po[i] = std::nextafter(po[i], -kInfinity);
+        if (offset[i] > 0) po[i] = nextFloatUp(po[i]);
+        else if (offset[i] < 0) po[i] = nextFloatDown(po[i]);
     }
     return po;
 }

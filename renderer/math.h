@@ -2,6 +2,7 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -181,6 +182,22 @@ inline Vec3 transformNormal(const Mat4& inv, const Vec3& n) {
                       inv.m[0][2] * n.x + inv.m[1][2] * n.y + inv.m[2][2] * n.z));
 }
 inline Vec3 Mat4::normal(const Vec3& n) const { return transformNormal(inverse(), n); }
+
+// The next representable float towards +infinity / -infinity (pbrt's NextFloatUp/Down), without libm.
+inline float nextFloatUp(float v) {
+    if (std::isinf(v) && v > 0) return v;
+    if (v == -0.0f) v = 0.0f;
+    uint32_t bits = std::bit_cast<uint32_t>(v);
+    bits = v >= 0 ? bits + 1 : bits - 1;
+    return std::bit_cast<float>(bits);
+}
+inline float nextFloatDown(float v) {
+    if (std::isinf(v) && v < 0) return v;
+    if (v == 0.0f) v = -0.0f;
+    uint32_t bits = std::bit_cast<uint32_t>(v);
+    bits = v > 0 ? bits - 1 : bits + 1;
+    return std::bit_cast<float>(bits);
+}
 
 inline float radians(float deg) { return deg * (kPi / 180.0f); }
 inline float degrees(float rad) { return rad * (180.0f / kPi); }

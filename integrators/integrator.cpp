@@ -3,9 +3,31 @@
 #include <stdexcept>
 
 #include "integrators/normals.h"
+#include "integrators/fresnel.h"
 #include "integrators/path.h"
+#include "renderer/interaction.h"
 
 namespace kiln {
+
+void Integrator::recordSurface(const Ray& ray, const Hit& hit, const SurfaceInteraction& si, SampleRecord& r) const {
+    const Material& m = scene_.materials[si.material];
+    if (aovs_.has(AovKind::Albedo)) {
+        switch (m.kind) {
+            case MaterialKind::Lambertian: r.albedo = m.albedo; break;
+            case MaterialKind::Mirror:
+            case MaterialKind::Glossy: r.albedo = m.reflectance; break;
+            case MaterialKind::Microfacet: r.albedo = fresnelConductor(1.0f, m.eta, m.k); break;
+            case MaterialKind::Glass:
+            case MaterialKind::Refraction: r.albedo = m.transmittance; break;
+            case MaterialKind::Emission: r.albedo = Color(0.0f); break;
+        }
+    }
+    r.normal = si.ns;
+    r.position = si.p;
+    r.depth = hit.t * length(ray.dir);
+    r.primId = float(hit.prim);
+    r.objectId = float(hit.shape == kSphereShape ? scene_.meshes.size() + hit.prim : hit.shape);
+}
 
 const char* integratorNames() { return "path, normals"; }
 

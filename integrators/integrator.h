@@ -5,6 +5,7 @@
 #include <string>
 
 #include "renderer/accelerator.h"
+#include "renderer/aov.h"
 #include "renderer/sampler.h"
 #include "scene/scene.h"
 
@@ -18,12 +19,23 @@ class Integrator {
 public:
     Integrator(const Scene& scene, const Accelerator& accel) : scene_(scene), accel_(accel) {}
     virtual ~Integrator() = default;
-    virtual Color Li(const Ray& ray, Sampler& sampler, RayCounter& counter) const = 0;
+    // Radiance along a camera ray into record.L, and the AOVs requested by setAovs().
+    virtual void Li(const Ray& ray, Sampler& sampler, RayCounter& counter, SampleRecord& record) const = 0;
+    Color Li(const Ray& ray, Sampler& sampler, RayCounter& counter) const {
+        SampleRecord r;
+        Li(ray, sampler, counter, r);
+        return r.L;
+    }
     virtual const char* name() const = 0;
+    void setAovs(const AovRequest& aovs) { aovs_ = aovs; }
 
 protected:
+    // First-visible-surface AOVs (albedo, N, P, Z, ids), shared by every integrator.
+    void recordSurface(const Ray& ray, const Hit& hit, const struct SurfaceInteraction& si, SampleRecord& r) const;
+
     const Scene& scene_;
     const Accelerator& accel_;
+    AovRequest aovs_;
 };
 
 struct PathOptions;

@@ -8,7 +8,8 @@ namespace kiln {
 class NormalsIntegrator final : public Integrator {
 public:
     using Integrator::Integrator;
-    Color Li(const Ray& ray, Sampler& sampler, RayCounter& counter) const override;
+    using Integrator::Li;
+    void Li(const Ray& ray, Sampler& sampler, RayCounter& counter, SampleRecord& record) const override;
     const char* name() const override { return "normals"; }
 };
 

@@ -13,11 +13,31 @@ float PathIntegrator::misWeight(float nf, float fPdf, float ng, float gPdf) cons
     return opt_.powerHeuristic ? powerHeuristic(nf, fPdf, ng, gPdf) : balanceHeuristic(nf, fPdf, ng, gPdf);
 }
 
-Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayCounter& counter) const {
-    Color L(0.0f), beta(1.0f);
+namespace {
+
+Lobe lobeOf(MaterialKind kind, bool transmission) {
+    if (transmission) return Lobe::Transmission;
+    return kind == MaterialKind::Lambertian ? Lobe::Diffuse : Lobe::Specular;
+}
+
+}  // namespace
+
+void PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayCounter& counter, SampleRecord& rec) const {
+    Color& L = rec.L;
+    Color beta(1.0f);
+    const bool splitLight = aovs_.splitsLight();
+    Lobe firstLobe = Lobe::Diffuse;  // how the path left its first vertex (for the lobe AOVs)
     // Light that bounced `bounce` times; with accumulation off only the maxDepth-th bounce is kept.
-    auto add = [&](int bounce, const Color& c) {
-        if (opt_.accumulateBounces || bounce == opt_.maxDepth) L += c;
+    // Every contribution lands in exactly one of emission / direct / indirect, so they sum to the beauty.
+    auto add = [&](int bounce, const Color& c, Lobe lobe) {
+        if (!opt_.accumulateBounces && bounce != opt_.maxDepth) return;
+        L += c;
+        if (!splitLight) return;
+        if (bounce == 0) rec.emission += c;
+        else if (bounce == 1) rec.direct += c;
+        else rec.indirect += c;
+        if (bounce >= 1) rec.lobes[bounce == 1 ? 0 : 1][int(lobe)] += c;
+        if (bounce >= 1 && bounce <= aovs_.bounceLayers) rec.bounces[bounce - 1] += c;
     };
     const float nLight = float(opt_.lightSamples);
     const bool useNee = opt_.sampling != DirectSampling::Hemisphere && lights_.size() > 0;
@@ -41,16 +61,18 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayCounter& cou
             Vec3 dir = normalize(ray.dir);
             for (size_t i : lights_.infiniteLights()) {
                 Color Le = lights_.escaped(i, dir, bounce == 0);
-                if (maxComponent(Le) > 0) add(bounce, beta * Le * emissionWeight(int(i), dir, Vec3(0.0f), Vec3(0.0f)));
+                if (maxComponent(Le) > 0)
+                    add(bounce, beta * Le * emissionWeight(int(i), dir, Vec3(0.0f), Vec3(0.0f)), firstLobe);
             }
             break;
         }
         SurfaceInteraction si = makeInteraction(scene_, ray, hit);
         const Material& mat = scene_.materials[si.material];
+        if (bounce == 0) recordSurface(ray, hit, si, rec);
         if (maxComponent(mat.emission) > 0) {
             int li = (hit.shape != kSphereShape && hit.instance == kInvalidId) ? lights_.lightOfMesh(hit.shape) : -1;
             Color Le = li >= 0 ? lights_.emitted(size_t(li), si.p, si.ng, ray.origin) : mat.emission;
-            add(bounce, beta * Le * emissionWeight(li, normalize(ray.dir), si.p, si.ng));
+            add(bounce, beta * Le * emissionWeight(li, normalize(ray.dir), si.p, si.ng), firstLobe);
         }
         if (bounce >= opt_.maxDepth) break;
         Bsdf bsdf(mat, opt_.microfacet);
@@ -77,7 +99,7 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayCounter& cou
                 float w = (ls.delta || opt_.sampling == DirectSampling::Light || !lights_.hittable(li))
                               ? 1.0f
                               : misWeight(nLight, pl, 1, bsdf.pdf(wo, wi));
-                add(bounce + 1, beta * f * ls.Li * (w / (pl * nLight)));
+                add(bounce + 1, beta * f * ls.Li * (w / (pl * nLight)), bounce == 0 ? lobeOf(mat.kind, false) : firstLobe);
             }
         }
 
@@ -95,6 +117,7 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayCounter& cou
             if (!bsdf.sample(wo, uc, u1, u2, bs)) break;
         }
         if (bs.pdf <= 0 || maxComponent(bs.f) <= 0) break;
+        if (bounce == 0) firstLobe = lobeOf(mat.kind, bs.transmission);
         beta *= bs.f * (std::abs(bs.wi.z) / bs.pdf);
         specular = bs.delta;
         prevPdf = bs.pdf;
@@ -113,7 +136,6 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayCounter& cou
         if (!isFinite(beta) || maxComponent(beta) <= 0) break;
         ray = spawnRay(si, frame.toWorld(bs.wi));
     }
-    return L;
 }
 
 }  // namespace kiln

@@ -26,7 +26,8 @@ struct PathOptions {
 class PathIntegrator final : public Integrator {
 public:
     PathIntegrator(const Scene& scene, const Accelerator& accel, const PathOptions& options);
-    Color Li(const Ray& ray, Sampler& sampler, RayCounter& counter) const override;
+    using Integrator::Li;
+    void Li(const Ray& ray, Sampler& sampler, RayCounter& counter, SampleRecord& record) const override;
     const char* name() const override { return "path"; }
     const PathOptions& options() const { return opt_; }
     const LightSet& lights() const { return lights_; }

@@ -24,6 +24,9 @@ struct RenderOptions {
     PathOptions path;
     std::string output;  // base path, or the -f file
     std::string display = "sRGB", view = "Standard";
+    std::string aovList = "default";
+    ExrOptions exr;
+    bool heatMap = false;
 };
 
 double seconds(std::chrono::steady_clock::time_point since) {
@@ -118,6 +121,16 @@ int runRender(const std::vector<std::string>& args) {
                   [&](const std::vector<std::string>& v) { o.display = v[0]; });
     parser.option("view", "", 1, "NAME", "OCIO view for the preview (default Standard)",
                   [&](const std::vector<std::string>& v) { o.view = v[0]; });
+    parser.option("aov", "", 1, "LIST", std::string("EXR layers beside the beauty, comma-separated: ") +
+                  AovRequest::names() + " (default: emission,direct,indirect,albedo,N,Z,samples,variance)",
+                  [&](const std::vector<std::string>& v) { o.aovList = v[0]; });
+    parser.flag("half", "", "write colour layers as half floats (data layers stay float)", o.exr.half);
+    parser.option("compression", "", 1, "zip|piz", "EXR compression (default zip)", [&](const std::vector<std::string>& v) {
+        if (v[0] != "zip" && v[0] != "piz") throw UsageError("--compression takes zip or piz, got '" + v[0] + "'");
+        o.exr.compression = v[0];
+    });
+    parser.flag("heatmap", "", "also write OUT.samples.png, the per-pixel sample counts as a heat map "
+                "(always with -a)", o.heatMap);
     bool quiet = false;
     parser.flag("quiet", "q", "no progress bar", quiet);
     std::vector<std::string> pos = parser.parse(args);
@@ -128,6 +141,11 @@ int runRender(const std::vector<std::string>& args) {
     if (pos.size() != 1) throw UsageError("needs exactly one scene file (see 'kiln render --help')");
     o.settings.progress = !quiet;
 
+    try {
+        checkDisplayView(o.display, o.view);
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+    }
     namespace fs = std::filesystem;
     std::string base = o.output.empty() ? fs::path(pos[0]).stem().string() : o.output;
     std::string ext = fs::path(base).extension().string();
@@ -162,9 +180,17 @@ int runRender(const std::vector<std::string>& args) {
         throw UsageError(e.what());
     }
 
+    AovRequest aovs;
+    try {
+        aovs = AovRequest::parse(o.aovList, o.path.maxDepth);
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(std::string("--aov: ") + e.what());
+    }
+    integrator->setAovs(aovs);
+
     renderCancelFlag().store(false);
     auto previous = std::signal(SIGINT, onInterrupt);
-    Film film(o.settings.width, o.settings.height);
+    Film film(o.settings.width, o.settings.height, aovs);
     RenderStats stats = renderImage(scene, *integrator, o.settings, film);
     std::signal(SIGINT, previous);
 
@@ -187,16 +213,31 @@ int runRender(const std::vector<std::string>& args) {
                   {"roulette", o.path.roulette == Roulette::Throughput ? "throughput" : o.path.roulette == Roulette::Fixed ? "fixed" : "off"},
                   {"accumulate_bounces", o.path.accumulateBounces ? "yes" : "no"},
                   {"adaptive", o.settings.adaptiveBatch > 0 ? std::to_string(o.settings.adaptiveBatch) + " " + std::to_string(o.settings.adaptiveTolerance) : "off"},
+                  {"mis_heuristic", o.path.powerHeuristic ? "power" : "balance"},
+                  {"microfacet", o.path.microfacet == MicrofacetModel::GGX ? "ggx" : "beckmann"},
+                  {"camera", scene.framedByCourseRule ? "cs184-framing" : scene.hasFileCamera ? "file" : "default-framing"},
+                  {"aovs", o.aovList},
+                  {"threads", std::to_string(o.settings.threads)},
+                  {"rays", std::to_string(stats.rays)},
+                  {"display", o.display},
+                  {"view", o.view},
+                  {"working_space", "lin_rec709 (linear Rec.709 primaries, D65)"},
                   {"nonfinite_samples", std::to_string(stats.nonFiniteSamples)}};
-    writeExr(exrPath, film, meta);
+    writeExr(exrPath, film, meta, o.exr);
     writePreview(previewPath, film, o.display, o.view);
+    std::string heatPath;
+    if (o.heatMap || o.settings.adaptiveBatch > 0) {
+        heatPath = fs::path(exrPath).replace_extension(".samples.png").string();
+        writeSampleHeatMap(heatPath, film);
+    }
     double writeTime = seconds(t2);
 
     double mrays = stats.seconds > 0 ? double(stats.rays) / stats.seconds * 1e-6 : 0.0;
     std::fprintf(stderr,
-                 "kiln: %s -> %s, %s\n"
+                 "kiln: %s -> %s, %s%s%s\n"
                  "kiln: %llu samples, %llu rays, %.2f Mrays/s; time load %.3fs, build %.3fs, render %.3fs, write %.3fs\n",
-                 pos[0].c_str(), exrPath.c_str(), previewPath.c_str(), (unsigned long long)stats.samples,
+                 pos[0].c_str(), exrPath.c_str(), previewPath.c_str(), heatPath.empty() ? "" : ", ", heatPath.c_str(),
+                 (unsigned long long)stats.samples,
                  (unsigned long long)stats.rays, mrays, loadTime, buildTime, stats.seconds, writeTime);
     if (stats.nonFiniteSamples)
         std::fprintf(stderr, "kiln: warning: %llu non-finite samples were dropped\n",

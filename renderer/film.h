@@ -1,50 +1,52 @@
-// Per-pixel accumulation with true sample counts; tiles own disjoint pixels, so no locks.
+// Per-pixel accumulation with true sample counts, beauty plus the requested AOV channels; tiles own
+// disjoint pixels, so no locks.
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
+#include "renderer/aov.h"
 #include "renderer/math.h"
 
 namespace kiln {
 
 class Film {
 public:
-    Film(int width, int height)
-        : width_(width), height_(height), sum_(size_t(width) * height), lum_(sum_.size()), lumSq_(sum_.size()),
-          count_(sum_.size()) {}
+    Film(int width, int height, const AovRequest& aovs = {});
     int width() const { return width_; }
     int height() const { return height_; }
+    const AovLayout& layout() const { return layout_; }
+
     // Non-finite samples are counted (the caller reports them) and never enter the image.
+    bool add(int x, int y, const SampleRecord& r);
     bool add(int x, int y, const Color& c) {
-        size_t i = size_t(y) * width_ + x;
-        ++count_[i];
-        if (!isFinite(c)) return false;
-        sum_[i] += Vec3d(c);
-        double illum = luminance(c);
-        lum_[i] += illum;
-        lumSq_[i] += illum * illum;
-        return true;
-    }
-    // Sums of the samples' illuminance and its square (adaptive sampling, variance).
-    double luminanceSum(int x, int y) const { return lum_[size_t(y) * width_ + x]; }
-    double luminanceSquareSum(int x, int y) const { return lumSq_[size_t(y) * width_ + x]; }
-    uint32_t samples(int x, int y) const { return count_[size_t(y) * width_ + x]; }
-    Color pixel(int x, int y) const {
-        size_t i = size_t(y) * width_ + x;
-        return count_[i] ? Color(sum_[i] / double(count_[i])) : Color(0.0f);
-    }
-    uint64_t totalSamples() const {
-        uint64_t n = 0;
-        for (uint32_t c : count_) n += c;
-        return n;
+        SampleRecord r;
+        r.L = c;
+        return add(x, y, r);
     }
 
+    uint32_t samples(int x, int y) const { return count_[index(x, y)]; }
+    Color pixel(int x, int y) const {
+        size_t i = index(x, y);
+        return count_[i] ? Color(sum_[i] / double(count_[i])) : Color(0.0f);
+    }
+    // AOV channel c of the layout: the mean over samples (ids: the first sample's value).
+    float aov(int x, int y, size_t c) const;
+    // Sums of the samples' illuminance and its square (adaptive sampling, variance).
+    double luminanceSum(int x, int y) const { return lum_[index(x, y)]; }
+    double luminanceSquareSum(int x, int y) const { return lumSq_[index(x, y)]; }
+    // Estimator variance of the pixel's luminance mean: sample variance / n.
+    double luminanceVariance(int x, int y) const;
+    uint64_t totalSamples() const;
+
 private:
+    size_t index(int x, int y) const { return size_t(y) * size_t(width_) + size_t(x); }
     int width_, height_;
+    AovLayout layout_;
     std::vector<Vec3d> sum_;
     std::vector<double> lum_, lumSq_;
     std::vector<uint32_t> count_;
+    std::vector<double> aov_;  // channels per pixel, in layout order
 };
 
 }  // namespace kiln

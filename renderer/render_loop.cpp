@@ -54,7 +54,9 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator, const 
                     float jx = sampler.next1D(), jy = sampler.next1D();
                     float lu = sampler.next1D(), lv = sampler.next1D();
                     Ray ray = camera.generateRay(float(x) + jx, float(y) + jy, lu, lv);
-                    if (!film.add(x, y, integrator.Li(ray, sampler, counter))) ++bad;
+                    SampleRecord record;
+                    integrator.Li(ray, sampler, counter, record);
+                    if (!film.add(x, y, record)) ++bad;
                 }
                 work += uint64_t(sampleCount);
                 if (!converged.empty() && converges(x, y)) converged[pixelIndex] = 1;

@@ -69,9 +69,10 @@ TEST(RenderLoop, BitIdenticalWhateverTheThreadsAndTiles) {
 class InterruptingIntegrator final : public Integrator {
 public:
     InterruptingIntegrator(const Scene& s, const Accelerator& a, int after) : Integrator(s, a), inner_(s, a), after_(after) {}
-    Color Li(const Ray& ray, Sampler& sampler, RayCounter& counter) const override {
+    using Integrator::Li;
+    void Li(const Ray& ray, Sampler& sampler, RayCounter& counter, SampleRecord& record) const override {
         if (++calls_ == after_) renderCancelFlag().store(true);
-        return inner_.Li(ray, sampler, counter);
+        inner_.Li(ray, sampler, counter, record);
     }
     const char* name() const override { return "interrupting"; }
 
@@ -87,7 +88,7 @@ TEST(RenderLoop, InterruptKeepsTrueSampleCountsAndWritesThem) {
     InterruptingIntegrator integrator(s, *accel, 20000);
     RenderSettings settings;
     settings.width = 64, settings.height = 48, settings.spp = 64, settings.progress = false;
-    Film film(settings.width, settings.height);
+    Film film(settings.width, settings.height, AovRequest::defaults());
     renderCancelFlag().store(false);
     RenderStats stats = renderImage(s, integrator, settings, film);
     renderCancelFlag().store(false);
@@ -114,7 +115,7 @@ TEST(RenderLoop, InterruptKeepsTrueSampleCountsAndWritesThem) {
 }
 
 TEST(ImageOutput, ExrRoundTripKeepsChannelsValuesAndMetadata) {
-    Film film(8, 4);
+    Film film(8, 4, AovRequest::defaults());
     for (int y = 0; y < 4; ++y)
         for (int x = 0; x < 8; ++x)
             for (int k = 0; k <= x; ++k) film.add(x, y, Color(0.1f * x, 0.5f * y, 100.0f));

@@ -1,0 +1,172 @@
+// EXR layers and metadata, the beauty = emission + direct + indirect identity, OCIO views, heat map.
+#include <OpenImageIO/imageio.h>
+
+#include "color/image_output.h"
+#include "integrators/path.h"
+#include "renderer/render_loop.h"
+#include "scene/scene_loader.h"
+#include "test_support.h"
+
+namespace kiln {
+namespace {
+
+Film render(const std::string& scenePath, const AovRequest& aovs, int maxDepth = 5, int spp = 8) {
+    Scene s = loadScene(scenePath);
+    auto accel = makeEmbreeAccelerator(s);
+    PathOptions opt;
+    opt.maxDepth = maxDepth;
+    PathIntegrator integrator(s, *accel, opt);
+    integrator.setAovs(aovs);
+    RenderSettings settings;
+    settings.width = 48, settings.height = 36, settings.spp = spp, settings.progress = false;
+    Film film(settings.width, settings.height, aovs);
+    renderImage(s, integrator, settings, film);
+    return film;
+}
+
+size_t channel(const Film& f, const std::string& name) {
+    const auto& ch = f.layout().channels();
+    for (size_t i = 0; i < ch.size(); ++i)
+        if (ch[i].name == name) return i;
+    ADD_FAILURE() << "no channel " << name;
+    return 0;
+}
+
+Color layer(const Film& f, int x, int y, const std::string& name) {
+    return Color(f.aov(x, y, channel(f, name + ".R")), f.aov(x, y, channel(f, name + ".G")),
+                 f.aov(x, y, channel(f, name + ".B")));
+}
+
+void expectClose(const Color& a, const Color& b, const std::string& what) {
+    float tol = 1e-5f * std::max(1.0f, maxComponent(abs(a)));
+    EXPECT_LE(maxComponent(abs(a - b)), tol) << what << ": " << a.x << " " << a.y << " " << a.z << " vs " << b.x << " "
+                                             << b.y << " " << b.z;
+}
+
+TEST(Aovs, BeautyIsEmissionPlusDirectPlusIndirectAndTheSplitsAddUp) {
+    for (const std::string& scene : {test::cs184("sky/CBspheres.dae"), test::cs184("sky/CBbunny_microfacet_cu.dae"),
+                                     test::cs184("sky/bunny.dae"), test::repo("scenes/cornell.dae")}) {
+        Film f = render(scene, AovRequest::parse("all", 5));
+        double total = 0;
+        for (int y = 0; y < f.height(); ++y)
+            for (int x = 0; x < f.width(); ++x) {
+                Color e = layer(f, x, y, "emission"), d = layer(f, x, y, "direct"), i = layer(f, x, y, "indirect");
+                expectClose(f.pixel(x, y), e + d + i, scene + " beauty");
+                expectClose(d, layer(f, x, y, "direct_diffuse") + layer(f, x, y, "direct_specular") +
+                                   layer(f, x, y, "direct_transmission"), scene + " direct lobes");
+                expectClose(i, layer(f, x, y, "indirect_diffuse") + layer(f, x, y, "indirect_specular") +
+                                   layer(f, x, y, "indirect_transmission"), scene + " indirect lobes");
+                Color bounces(0.0f);
+                for (int b = 1; b <= 5; ++b) bounces += layer(f, x, y, "bounce" + std::to_string(b));
+                expectClose(d + i, bounces, scene + " bounces");
+                total += luminance(d) + luminance(i);
+            }
+        EXPECT_GT(total, 0.0) << scene;  // the identity is not vacuous
+    }
+}
+
+TEST(Aovs, GlassSceneHasTransmissionAndSpecularLight) {
+    Film f = render(test::cs184("sky/CBspheres.dae"), AovRequest::parse("direct_specular,indirect_transmission", 5), 5, 16);
+    double spec = 0, trans = 0;
+    for (int y = 0; y < f.height(); ++y)
+        for (int x = 0; x < f.width(); ++x) {
+            spec += f.aov(x, y, 0) + f.aov(x, y, 1) + f.aov(x, y, 2);
+            trans += f.aov(x, y, 3) + f.aov(x, y, 4) + f.aov(x, y, 5);
+        }
+    EXPECT_GT(trans, 0.0);  // light seen through the glass sphere: two refractions, so indirect
+    EXPECT_GT(spec, 0.0);   // the ceiling light seen in the mirror sphere: one specular bounce, direct
+}
+
+TEST(Aovs, RequestParsing) {
+    EXPECT_TRUE(AovRequest::parse("none", 5).mask == 0);
+    AovRequest all = AovRequest::parse("all", 3);
+    for (uint32_t k = 0; k < uint32_t(AovKind::Count); ++k) EXPECT_TRUE(all.has(AovKind(k))) << k;
+    EXPECT_EQ(all.bounceLayers, 3);
+    EXPECT_THROW(AovRequest::parse("direct,sparkle", 5), std::invalid_argument);
+    AovLayout none(AovRequest::parse("none", 5));
+    EXPECT_TRUE(none.channels().empty());  // nothing requested: nothing accumulated
+}
+
+TEST(ExrOutput, ChannelsTypesAndMetadataRoundTrip) {
+    Film f = render(test::cs184("sky/CBspheres.dae"), AovRequest::parse("default,P,primid,objectid", 5));
+    auto dir = test::scratchDir();
+    for (bool half : {false, true}) {
+        std::string path = (dir / (half ? "half.exr" : "float.exr")).string();
+        ExrOptions opt;
+        opt.half = half;
+        opt.compression = half ? "piz" : "zip";
+        writeExr(path, f, {{"spp", "8"}, {"seed", "0"}, {"integrator", "path"}}, opt);
+        auto in = OIIO::ImageInput::open(path);
+        ASSERT_TRUE(in);
+        const OIIO::ImageSpec& spec = in->spec();
+        auto type = [&](const std::string& name) {
+            int i = spec.channelindex(name);
+            EXPECT_GE(i, 0) << name;
+            return i < 0 ? OIIO::TypeDesc() : spec.channelformat(i);
+        };
+        OIIO::TypeDesc colour = half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT;
+        for (const char* c : {"R", "G", "B", "A", "emission.R", "direct.G", "indirect.B", "albedo.R", "N.X"})
+            EXPECT_EQ(type(c), colour) << c;
+        for (const char* c : {"P.X", "P.Y", "P.Z", "Z", "samples", "variance", "primid", "objectid"})
+            EXPECT_EQ(type(c), OIIO::TypeDesc(OIIO::TypeDesc::FLOAT)) << c;
+        EXPECT_EQ(spec.get_string_attribute("compression"), half ? "piz" : "zip");
+        EXPECT_EQ(spec.get_string_attribute("kiln:spp"), "8");
+        EXPECT_EQ(spec.get_string_attribute("kiln:colorspace"), "lin_rec709");
+        EXPECT_NE(spec.get_string_attribute("Software").find("kiln"), std::string::npos);
+        EXPECT_NE(spec.find_attribute("chromaticities"), nullptr);
+        // Values come back: the sample counts exactly, the beauty to half precision.
+        std::vector<float> px(size_t(spec.width) * spec.height * spec.nchannels);
+        ASSERT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data()));
+        int n = spec.channelindex("samples"), r = spec.channelindex("R");
+        for (int y = 0; y < f.height(); ++y)
+            for (int x = 0; x < f.width(); ++x) {
+                size_t base = (size_t(y) * spec.width + x) * spec.nchannels;
+                ASSERT_EQ(px[base + n], float(f.samples(x, y)));
+                ASSERT_NEAR(px[base + r], f.pixel(x, y).x, half ? 1e-3f * std::max(1.0f, f.pixel(x, y).x) : 0.0f);
+            }
+        // The command-line tools read it too.
+        EXPECT_EQ(std::system(("oiiotool --info -v " + path + " > /dev/null").c_str()), 0);
+        EXPECT_EQ(std::system(("exrheader " + path + " > /dev/null").c_str()), 0);
+    }
+}
+
+TEST(ColourManagement, ViewsOfTheShippedConfig) {
+    EXPECT_NEAR(displayTransform(0.18f, "sRGB", "Standard"), 0.4614f, 1e-4f);
+    float prev = -1;
+    for (float v : {0.0f, 0.01f, 0.05f, 0.18f, 0.5f, 1.0f, 4.0f, 16.0f}) {
+        float aces = displayTransform(v, "sRGB", "ACES 1.0 SDR-video");
+        EXPECT_GT(aces, prev) << v;  // monotonic
+        EXPECT_LE(aces, 1.0f + 1e-4f) << v;
+        prev = aces;
+    }
+    float grey = displayTransform(0.18f, "sRGB", "ACES 1.0 SDR-video");
+    EXPECT_GT(grey, 0.3f);
+    EXPECT_LT(grey, 0.5f);
+    EXPECT_LT(displayTransform(1.0f, "sRGB", "ACES 1.0 SDR-video"), 0.95f);  // the tone curve rolls off
+    EXPECT_NO_THROW(checkDisplayView("sRGB", "Raw"));
+    EXPECT_THROW(checkDisplayView("sRGB", "Filmic"), std::invalid_argument);
+    EXPECT_THROW(checkDisplayView("P3", "Standard"), std::invalid_argument);
+}
+
+TEST(HeatMap, BlueFewRedManyWithALegend) {
+    Film f(20, 10);
+    for (int y = 0; y < 10; ++y)
+        for (int x = 0; x < 20; ++x)
+            for (int k = 0; k <= x; ++k) f.add(x, y, Color(1.0f));
+    std::string path = (test::scratchDir() / "heat.png").string();
+    writeSampleHeatMap(path, f);
+    auto in = OIIO::ImageInput::open(path);
+    ASSERT_TRUE(in);
+    EXPECT_EQ(in->spec().width, 20);
+    EXPECT_GT(in->spec().height, 10);  // the legend below the image
+    std::vector<uint8_t> px(size_t(in->spec().width) * in->spec().height * 3);
+    ASSERT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, px.data()));
+    auto at = [&](int x, int y, int c) { return px[(size_t(y) * 20 + x) * 3 + c]; };
+    EXPECT_GT(at(0, 0, 2), 100);   // fewest samples: blue
+    EXPECT_LT(at(0, 0, 0), 50);
+    EXPECT_GT(at(19, 0, 0), 100);  // most samples: red
+    EXPECT_LT(at(19, 0, 2), 50);
+}
+
+}  // namespace
+}  // namespace kiln

@@ -86,6 +86,24 @@ TEST(Cli, RenderWritesExrAndPngAndReportsStats) {
     EXPECT_TRUE(std::filesystem::exists(dir / "cs.exr"));
 }
 
+TEST(Cli, OutputOptions) {
+    auto dir = test::scratchDir();
+    std::string scene = test::repo("scenes/cornell.dae");
+    for (const char* bad : {"--aov sparkle", "--view Filmic", "--display P3", "--compression lzma"}) {
+        CliRun r = runKiln("render " + scene + " -r 8 8 -q -o " + (dir / "bad").string() + " " + bad);
+        EXPECT_EQ(r.code, 2) << bad;
+        EXPECT_EQ(lines(r.err), 1) << bad << ": " << r.err;
+        EXPECT_FALSE(std::filesystem::exists(dir / "bad.exr")) << bad;  // refused before rendering
+    }
+    CliRun ok = runKiln("render " + scene + " -r 16 12 -s 32 -a 8 0.1 -q --half --compression piz --aov all "
+                        "--view 'ACES 1.0 SDR-video' -o " + (dir / "full").string());
+    ASSERT_EQ(ok.code, 0) << ok.err;
+    for (const char* f : {"full.exr", "full.png", "full.samples.png"}) EXPECT_TRUE(std::filesystem::exists(dir / f)) << f;
+    CliRun info = runKiln("render " + test::shared("meshes/stanford-bunny.obj") + " --env " +
+                          test::shared("envmaps/studio.exr") + " -r 16 12 -s 2 -q -o " + (dir / "env").string());
+    EXPECT_EQ(info.code, 0) << info.err;
+}
+
 TEST(Cli, InfoJsonAndCrosscheck) {
     CliRun info = runKiln("info --json " + test::cs184("sky/CBspheres.dae"));
     EXPECT_EQ(info.code, 0);

@@ -1,6 +1,7 @@
 // EXR layers and metadata, the beauty = emission + direct + indirect identity, OCIO views, heat map.
 #include <OpenImageIO/imageio.h>
 
+#include "color/chromaticities.h"
 #include "color/image_output.h"
 #include "integrators/path.h"
 #include "renderer/render_loop.h"
@@ -166,6 +167,60 @@ TEST(HeatMap, BlueFewRedManyWithALegend) {
     EXPECT_LT(at(0, 0, 0), 50);
     EXPECT_GT(at(19, 0, 0), 100);  // most samples: red
     EXPECT_LT(at(19, 0, 2), 50);
+}
+
+}  // namespace
+}  // namespace kiln
+
+namespace kiln {
+namespace {
+
+TEST(ColourManagement, ChromaticitiesConvertToTheWorkingSpace) {
+    Mat3 id = toWorkingSpace(kRec709D65);
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) EXPECT_NEAR(id[i][j], i == j ? 1.0 : 0.0, 1e-9);
+    // ACES2065-1 (AP0, ACES white) to linear Rec.709 with Bradford adaptation: the published matrix.
+    Chromaticities ap0 = {0.7347f, 0.2653f, 0.0f, 1.0f, 0.0001f, -0.077f, 0.32168f, 0.33767f};
+    Mat3 m = toWorkingSpace(ap0);
+    const double expected[3][3] = {{2.52169, -1.13413, -0.38756}, {-0.27648, 1.37272, -0.09624},
+                                   {-0.01538, -0.15298, 1.16835}};
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) EXPECT_NEAR(m[i][j], expected[i][j], 2e-3) << i << "," << j;
+    // Whatever the primaries, the file's white stays white.
+    Chromaticities d50 = {0.648447f, 0.330877f, 0.321187f, 0.597894f, 0.155901f, 0.0660563f, 0.345708f, 0.358541f};
+    Mat3 c = toWorkingSpace(d50);
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(c[i][0] + c[i][1] + c[i][2], 1.0, 1e-6);
+}
+
+TEST(ColourManagement, EnvironmentMapsAreConvertedOnLoad) {
+    // shared/envmaps/city.exr states D50-white chromaticities: its pixels must change on load.
+    Scene s;
+    Light env;
+    env.kind = LightKind::Environment;
+    env.environmentPath = test::shared("envmaps/city.exr");
+    s.lights.push_back(env);
+    LightSet lights(s);
+    auto in = OIIO::ImageInput::open(env.environmentPath);
+    ASSERT_TRUE(in);
+    std::vector<float> raw(size_t(in->spec().width) * in->spec().height * 3);
+    ASSERT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, raw.data()));
+    int w = in->spec().width, h = in->spec().height;
+    // The most saturated pixel: grey ones keep their value (white stays white).
+    int x = 0, y = 0;
+    float best = -1;
+    for (int py = 0; py < h; ++py)
+        for (int px = 0; px < w; ++px) {
+            const float* p = &raw[(size_t(py) * w + px) * 3];
+            float sat = std::max({p[0], p[1], p[2]}) - std::min({p[0], p[1], p[2]});
+            if (sat > best) best = sat, x = px, y = py;
+        }
+    Vec3 dir = EnvironmentMap::direction((x + 0.5f) / w, (y + 0.5f) / h);
+    Color loaded = lights.escaped(0, dir, true);
+    Color file(raw[(size_t(y) * w + x) * 3], raw[(size_t(y) * w + x) * 3 + 1], raw[(size_t(y) * w + x) * 3 + 2]);
+    Mat3 m = toWorkingSpace({0.648447f, 0.330877f, 0.321187f, 0.597894f, 0.155901f, 0.0660563f, 0.345708f, 0.358541f});
+    for (int i = 0; i < 3; ++i)
+        EXPECT_NEAR(loaded[i], m[i][0] * file.x + m[i][1] * file.y + m[i][2] * file.z, 1e-4f * (1 + file[i]));
+    EXPECT_GT(maxComponent(abs(loaded - file)), 1e-4f);
 }
 
 }  // namespace

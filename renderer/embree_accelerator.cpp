@@ -188,13 +188,10 @@ public:
     // Batches go through 16-wide packets: coherent rays (camera tiles) share traversal work.
     void intersect(std::span<const Ray> rays, std::span<Hit> hits) const override {
         for (size_t base = 0; base < rays.size(); base += 16) {
-            size_t n = std::min<size_t>(16, rays.size() - base);
             alignas(64) int valid[16];
             alignas(64) RTCRayHit16 rh;
+            size_t n = fillPacket(rays, base, valid, rh.ray);
             for (size_t i = 0; i < 16; ++i) {
-                valid[i] = i < n ? -1 : 0;
-                const Ray& r = rays[base + std::min(i, n - 1)];
-                setLane(rh.ray, i, r);
                 rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
                 rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
             }
@@ -214,13 +211,9 @@ public:
 
     void occluded(std::span<const Ray> rays, std::span<uint8_t> result) const override {
         for (size_t base = 0; base < rays.size(); base += 16) {
-            size_t n = std::min<size_t>(16, rays.size() - base);
             alignas(64) int valid[16];
             alignas(64) RTCRay16 r16;
-            for (size_t i = 0; i < 16; ++i) {
-                valid[i] = i < n ? -1 : 0;
-                setLane(r16, i, rays[base + std::min(i, n - 1)]);
-            }
+            size_t n = fillPacket(rays, base, valid, r16);
             RTCIntersectContext ctx;
             rtcInitIntersectContext(&ctx);
             rtcOccluded16(valid, top_, &ctx, &r16);
@@ -242,6 +235,16 @@ private:
             hit.instance = kInvalidId;
             hit.shape = geom == numMeshes_ ? kSphereShape : geom;
         }
+    }
+
+    // Rays [base, base + 16) into a packet; lanes past the end repeat the last ray and are masked off.
+    static size_t fillPacket(std::span<const Ray> rays, size_t base, int* valid, RTCRay16& r) {
+        size_t n = std::min<size_t>(16, rays.size() - base);
+        for (size_t i = 0; i < 16; ++i) {
+            valid[i] = i < n ? -1 : 0;
+            setLane(r, i, rays[base + std::min(i, n - 1)]);
+        }
+        return n;
     }
 
     static void setLane(RTCRay16& r, size_t i, const Ray& ray) {

@@ -23,7 +23,7 @@ void Integrator::recordSurface(const Ray& ray, const Hit& hit, const SurfaceInte
         }
     }
     r.normal = si.ns;
-    r.position = si.p;
+    r.position = Vec3(Vec3d(si.p) + scene_.origin);  // world coordinates
     r.depth = hit.t * length(ray.dir);
     r.primId = float(hit.prim);
     r.objectId = float(hit.shape == kSphereShape ? scene_.meshes.size() + hit.prim : hit.shape);

@@ -77,8 +77,13 @@ void PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayCounter& coun
         if (bounce >= opt_.maxDepth) break;
         Bsdf bsdf(mat, opt_.microfacet);
         if (bsdf.isBlack()) break;
-        Frame frame(si.nsStored);
-        Vec3 wo = frame.toLocal(-normalize(ray.dir));
+        // A shading normal bent so far that the viewer is below its tangent plane would make the surface
+        // black: shade such a vertex with the geometric normal instead (on the stored normal's side).
+        Vec3 woWorld = -normalize(ray.dir);
+        Vec3 shadingN = si.nsStored;
+        if (dot(woWorld, si.ns) <= 0) shadingN = dot(si.ns, si.nsStored) >= 0 ? si.ng : -si.ng;
+        Frame frame(shadingN);
+        Vec3 wo = frame.toLocal(woWorld);
 
         // Next-event estimation: lightSamples lights chosen by power.
         if (useNee && !bsdf.isDelta() && (opt_.accumulateBounces || bounce + 1 == opt_.maxDepth)) {
@@ -117,6 +122,10 @@ void PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayCounter& coun
             if (!bsdf.sample(wo, uc, u1, u2, bs)) break;
         }
         if (bs.pdf <= 0 || maxComponent(bs.f) <= 0) break;
+        // The shading frame may send a reflection below the real surface, or a refraction back out of it:
+        // following either would leak light through thin walls.
+        Vec3 wiWorld = frame.toWorld(bs.wi);
+        if ((dot(wiWorld, si.ng) > 0) == bs.transmission) break;
         if (bounce == 0) firstLobe = lobeOf(mat.kind, bs.transmission);
         beta *= bs.f * (std::abs(bs.wi.z) / bs.pdf);
         specular = bs.delta;
@@ -134,7 +143,7 @@ void PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayCounter& coun
             beta = beta / opt_.fixedContinuation;
         }
         if (!isFinite(beta) || maxComponent(beta) <= 0) break;
-        ray = spawnRay(si, frame.toWorld(bs.wi));
+        ray = spawnRay(si, wiWorld);
     }
 }
 

@@ -131,6 +131,13 @@ int runRender(const std::vector<std::string>& args) {
     });
     parser.flag("heatmap", "", "also write OUT.samples.png, the per-pixel sample counts as a heat map "
                 "(always with -a)", o.heatMap);
+    int debugX = -1, debugY = -1, debugSample = -1;
+    parser.option("pixel", "", 2, "X Y", "debug: trace only this pixel (with --sample) and print what it returns",
+                  [&](const std::vector<std::string>& v) {
+                      debugX = ArgParser::toInt("--pixel", v[0], 0, 1 << 20);
+                      debugY = ArgParser::toInt("--pixel", v[1], 0, 1 << 20);
+                  });
+    parser.intOption("sample", "", "debug: the sample index to replay with --pixel", debugSample, 0, 1 << 30);
     bool quiet = false;
     parser.flag("quiet", "q", "no progress bar", quiet);
     std::vector<std::string> pos = parser.parse(args);
@@ -188,6 +195,20 @@ int runRender(const std::vector<std::string>& args) {
     }
     integrator->setAovs(aovs);
 
+    if (debugX >= 0 || debugSample >= 0) {
+        if (debugX < 0 || debugSample < 0) throw UsageError("--pixel and --sample go together");
+        if (debugX >= o.settings.width || debugY >= o.settings.height)
+            throw UsageError("--pixel is outside the " + std::to_string(o.settings.width) + "x" +
+                             std::to_string(o.settings.height) + " image");
+        RayCounter counter;
+        SampleRecord r = traceSample(scene, *integrator, o.settings, debugX, debugY, debugSample, counter);
+        std::printf("pixel %d %d sample %d: L = %.9g %.9g %.9g (%s), %llu rays\n", debugX, debugY, debugSample, r.L.x,
+                    r.L.y, r.L.z, isFinite(r.L) ? "finite" : "NOT FINITE", (unsigned long long)counter.rays);
+        std::printf("  emission %.9g direct %.9g indirect %.9g (luminance); depth %.9g\n", luminance(r.emission),
+                    luminance(r.direct), luminance(r.indirect), r.depth);
+        return isFinite(r.L) ? 0 : 1;
+    }
+
     renderCancelFlag().store(false);
     auto previous = std::signal(SIGINT, onInterrupt);
     Film film(o.settings.width, o.settings.height, aovs);
@@ -239,9 +260,13 @@ int runRender(const std::vector<std::string>& args) {
                  pos[0].c_str(), exrPath.c_str(), previewPath.c_str(), heatPath.empty() ? "" : ", ", heatPath.c_str(),
                  (unsigned long long)stats.samples,
                  (unsigned long long)stats.rays, mrays, loadTime, buildTime, stats.seconds, writeTime);
-    if (stats.nonFiniteSamples)
-        std::fprintf(stderr, "kiln: warning: %llu non-finite samples were dropped\n",
+    if (stats.nonFiniteSamples) {
+        std::fprintf(stderr, "kiln: warning: %llu non-finite samples were dropped (not written into the image)\n",
                      (unsigned long long)stats.nonFiniteSamples);
+        for (const BadSample& b : stats.firstBadSamples)
+            std::fprintf(stderr, "kiln:   replay with: kiln render %s ... --pixel %d %d --sample %d\n", pos[0].c_str(),
+                         b.x, b.y, b.sample);
+    }
     if (stats.interrupted) {
         std::fprintf(stderr, "kiln: interrupted: wrote the image so far (per-pixel sample counts in the EXR)\n");
         return 130;

@@ -5,7 +5,10 @@
 #include <tbb/task_arena.h>
 
 #include <chrono>
+#include <algorithm>
 #include <cmath>
+#include <mutex>
+#include <tuple>
 
 #include "renderer/camera.h"
 #include "renderer/progress.h"
@@ -17,6 +20,27 @@ std::atomic<bool>& renderCancelFlag() {
     return flag;
 }
 
+namespace {
+
+SampleRecord trace(const CameraModel& camera, const Integrator& integrator, uint64_t seed, int width, int x, int y,
+                   int s, RayCounter& counter) {
+    Sampler sampler(seed, uint64_t(y) * uint64_t(width) + uint64_t(x), uint64_t(s));
+    float jx = sampler.next1D(), jy = sampler.next1D();
+    float lu = sampler.next1D(), lv = sampler.next1D();
+    Ray ray = camera.generateRay(float(x) + jx, float(y) + jy, lu, lv);
+    SampleRecord record;
+    integrator.Li(ray, sampler, counter, record);
+    return record;
+}
+
+}  // namespace
+
+SampleRecord traceSample(const Scene& scene, const Integrator& integrator, const RenderSettings& settings, int x, int y,
+                         int sample, RayCounter& counter) {
+    CameraModel camera(scene.camera, settings.width, settings.height);
+    return trace(camera, integrator, settings.seed, settings.width, x, y, sample, counter);
+}
+
 RenderStats renderImage(const Scene& scene, const Integrator& integrator, const RenderSettings& settings, Film& film) {
     RenderStats stats;
     CameraModel camera(scene.camera, settings.width, settings.height);
@@ -25,6 +49,8 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator, const 
     uint64_t pixels = uint64_t(settings.width) * settings.height;
     Progress progress("render", pixels * uint64_t(settings.spp), settings.progress);
     std::atomic<uint64_t> nonFinite{0};
+    std::mutex badMutex;
+    std::vector<BadSample> bad;
     std::atomic<bool>& cancel = renderCancelFlag();
 
     // Adaptive sampling: a pixel that met the confidence test takes no more samples.
@@ -41,7 +67,7 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator, const 
         int x0 = (tileIndex % tilesX) * tile, y0 = (tileIndex / tilesX) * tile;
         int x1 = std::min(x0 + tile, settings.width), y1 = std::min(y0 + tile, settings.height);
         RayCounter counter;
-        uint64_t work = 0, bad = 0;
+        uint64_t work = 0, badCount = 0;
         for (int y = y0; y < y1 && !cancel.load(std::memory_order_relaxed); ++y)
             for (int x = x0; x < x1; ++x) {
                 uint64_t pixelIndex = uint64_t(y) * settings.width + x;
@@ -50,19 +76,18 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator, const 
                     continue;
                 }
                 for (int s = firstSample; s < firstSample + sampleCount; ++s) {
-                    Sampler sampler(settings.seed, pixelIndex, uint64_t(s));
-                    float jx = sampler.next1D(), jy = sampler.next1D();
-                    float lu = sampler.next1D(), lv = sampler.next1D();
-                    Ray ray = camera.generateRay(float(x) + jx, float(y) + jy, lu, lv);
-                    SampleRecord record;
-                    integrator.Li(ray, sampler, counter, record);
-                    if (!film.add(x, y, record)) ++bad;
+                    SampleRecord record = trace(camera, integrator, settings.seed, settings.width, x, y, s, counter);
+                    if (film.add(x, y, record)) continue;
+                    // Non-finite: dropped from the image, counted, and kept for replay.
+                    ++badCount;
+                    std::lock_guard lock(badMutex);
+                    bad.push_back({x, y, s});
                 }
                 work += uint64_t(sampleCount);
                 if (!converged.empty() && converges(x, y)) converged[pixelIndex] = 1;
             }
         progress.add(work, counter.rays);
-        if (bad) nonFinite += bad;
+        if (badCount) nonFinite += badCount;
     };
 
     tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
@@ -84,6 +109,11 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator, const 
     stats.rays = progress.rays();
     stats.samples = film.totalSamples();
     stats.nonFiniteSamples = nonFinite.load();
+    std::sort(bad.begin(), bad.end(), [](const BadSample& a, const BadSample& b) {
+        return std::tie(a.y, a.x, a.sample) < std::tie(b.y, b.x, b.sample);
+    });
+    if (bad.size() > 10) bad.resize(10);
+    stats.firstBadSamples = bad;
     stats.interrupted = cancel.load();
     return stats;
 }

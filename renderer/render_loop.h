@@ -3,6 +3,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <vector>
 
 #include "integrators/integrator.h"
 #include "renderer/film.h"
@@ -22,13 +23,24 @@ struct RenderSettings {
     float adaptiveTolerance = 0.05f;
 };
 
+// A sample that produced NaN or Inf: enough to replay it with --pixel X Y --sample N.
+struct BadSample {
+    int x = 0, y = 0;
+    int sample = 0;
+};
+
 struct RenderStats {
     double seconds = 0;
     uint64_t rays = 0;
     uint64_t samples = 0;
     uint64_t nonFiniteSamples = 0;
+    std::vector<BadSample> firstBadSamples;  // the first few, in (pixel, sample) order
     bool interrupted = false;
 };
+
+// Replays one camera sample exactly as the render loop traces it (same sampler state): for debugging.
+SampleRecord traceSample(const Scene& scene, const Integrator& integrator, const RenderSettings& settings, int x, int y,
+                         int sample, RayCounter& counter);
 
 // Set by the SIGINT handler; the loop stops at the next pixel and keeps what it has.
 std::atomic<bool>& renderCancelFlag();

@@ -109,6 +109,10 @@ struct Scene {
     double loadSeconds = 0;
     std::vector<std::string> warnings;
 
+    // Everything above is stored relative to this point (world = stored + origin): rendering near the
+    // origin keeps float error bounds small for scenes placed far away (see recenterScene).
+    Vec3d origin{0.0};
+
     std::vector<bool> prototypeMask() const;  // meshes drawn only through instances
     Bounds3 worldBounds() const;
     uint64_t uniqueTriangles() const;     // stored triangles

@@ -12,6 +12,7 @@ std::string num(double v) {
     std::snprintf(buf, sizeof buf, "%.9g", v);
     return buf;
 }
+std::string vec(const Vec3d& v) { return "[" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + "]"; }
 std::string vec(const Vec3& v) { return "[" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + "]"; }
 std::string quote(const std::string& s) {
     std::string out = "\"";
@@ -25,6 +26,13 @@ std::string quote(const std::string& s) {
 }
 
 }  // namespace
+
+// Bounds in world coordinates (the scene is stored relative to Scene::origin).
+Bounds3 worldBoundsOf(const Scene& scene) {
+    Bounds3 b = scene.worldBounds();
+    if (b.empty()) return b;
+    return {Vec3(Vec3d(b.lo) + scene.origin), Vec3(Vec3d(b.hi) + scene.origin)};
+}
 
 SceneSummary summarize(const Scene& scene) {
     SceneSummary s;
@@ -49,7 +57,7 @@ SceneSummary summarize(const Scene& scene) {
 std::string sceneInfoText(const Scene& scene) {
     SceneSummary s = summarize(scene);
     std::ostringstream os;
-    Bounds3 b = scene.worldBounds();
+    Bounds3 b = worldBoundsOf(scene);
     os << "scene       " << scene.sourcePath << "\n";
     os << "load        " << num(scene.loadSeconds) << " s\n";
     os << "geometry    " << s.triangles << " triangles (" << s.uniqueTriangles << " stored), " << s.vertices
@@ -81,9 +89,9 @@ std::string sceneInfoText(const Scene& scene) {
     for (const Light& l : scene.lights) {
         os << "  " << toString(l.kind) << " '" << l.name << "' radiance " << vec(l.radiance);
         if (l.kind == LightKind::Area)
-            os << " at " << vec(l.position) << " facing " << vec(l.direction) << " size " << num(length(l.dimX)) << " x "
+            os << " at " << vec(Vec3d(l.position) + scene.origin) << " facing " << vec(l.direction) << " size " << num(length(l.dimX)) << " x "
                << num(length(l.dimY));
-        else if (l.kind == LightKind::Point || l.kind == LightKind::Spot) os << " at " << vec(l.position);
+        else if (l.kind == LightKind::Point || l.kind == LightKind::Spot) os << " at " << vec(Vec3d(l.position) + scene.origin);
         else if (l.kind == LightKind::Directional) os << " direction " << vec(l.direction);
         else if (l.kind == LightKind::Environment) os << " map " << l.environmentPath;
         else if (l.kind == LightKind::MeshEmitter) os << " mesh " << l.mesh;
@@ -91,7 +99,7 @@ std::string sceneInfoText(const Scene& scene) {
     }
     const Camera& c = scene.camera;
     os << "camera      " << (scene.framedByCourseRule ? "file direction, CS184 framing" : scene.hasFileCamera ? "file" : "default framing")
-       << " at " << vec(c.position) << " looking " << vec(c.forward) << " hfov " << num(c.hFovDeg) << " vfov "
+       << " at " << vec(Vec3d(c.position) + scene.origin) << " looking " << vec(c.forward) << " hfov " << num(c.hFovDeg) << " vfov "
        << num(c.vFovDeg) << "\n";
     for (const std::string& w : scene.warnings) os << "warning     " << w << "\n";
     return os.str();
@@ -99,7 +107,7 @@ std::string sceneInfoText(const Scene& scene) {
 
 std::string sceneInfoJson(const Scene& scene) {
     SceneSummary s = summarize(scene);
-    Bounds3 b = scene.worldBounds();
+    Bounds3 b = worldBoundsOf(scene);
     const Camera& c = scene.camera;
     std::ostringstream os;
     auto map = [&](const std::map<std::string, int>& m) {
@@ -118,7 +126,7 @@ std::string sceneInfoJson(const Scene& scene) {
     os << "  \"instances\": " << s.instances << ",\n";
     os << "  \"materials\": " << map(s.materials) << ",\n";
     os << "  \"lights\": " << map(s.lights) << ",\n";
-    os << "  \"camera\": {\"position\": " << vec(c.position) << ", \"direction\": " << vec(c.forward)
+    os << "  \"camera\": {\"position\": " << vec(Vec3d(c.position) + scene.origin) << ", \"direction\": " << vec(c.forward)
        << ", \"up\": " << vec(c.up) << ", \"hfov\": " << num(c.hFovDeg) << ", \"vfov\": " << num(c.vFovDeg)
        << ", \"from_file\": " << (scene.hasFileCamera ? "true" : "false") << "},\n";
     os << "  \"bbox\": {\"min\": " << vec(b.lo) << ", \"max\": " << vec(b.hi) << "},\n";

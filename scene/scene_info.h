@@ -18,6 +18,7 @@ struct SceneSummary {
 };
 
 SceneSummary summarize(const Scene& scene);
+Bounds3 worldBoundsOf(const Scene& scene);  // world coordinates (adds Scene::origin back)
 std::string sceneInfoText(const Scene& scene);
 std::string sceneInfoJson(const Scene& scene);
 

@@ -48,6 +48,28 @@ void applyColladaExtras(const ColladaExtras& extras, Scene& scene) {
 
 }  // namespace
 
+void recenterScene(Scene& scene) {
+    Bounds3 b = scene.worldBounds();
+    if (b.empty()) return;
+    Vec3 c = b.centroid();
+    // Only worth it (and only exact) when the scene sits far from the origin relative to its size.
+    if (maxComponent(abs(c)) <= 4 * maxComponent(b.diagonal())) return;
+    std::vector<bool> proto = scene.prototypeMask();
+    for (size_t m = 0; m < scene.meshes.size(); ++m) {
+        if (proto[m]) continue;  // prototypes live in object space
+        std::vector<float>& p = scene.meshes[m].positions;
+        for (size_t v = 0; v + 2 < p.size(); v += 3) p[v] -= c.x, p[v + 1] -= c.y, p[v + 2] -= c.z;
+    }
+    for (Instance& inst : scene.instances) {
+        for (int r = 0; r < 3; ++r) inst.objectToWorld.m[r][3] -= double(c[r]);
+        inst.worldToObject = inst.objectToWorld.inverse();
+    }
+    for (Sphere& s : scene.spheres) s.center -= c;
+    for (Light& l : scene.lights) l.position -= c;
+    scene.camera.position -= c;
+    scene.origin = Vec3d(c);
+}
+
 Scene loadScene(const std::string& path, const LoadOptions& options) {
     auto start = std::chrono::steady_clock::now();
     Scene scene;
@@ -70,6 +92,7 @@ Scene loadScene(const std::string& path, const LoadOptions& options) {
         importWithAssimp(path, nullptr, scene);
     }
     validateScene(scene);
+    recenterScene(scene);
 
     addEmissiveMeshLights(scene);
     mergeAreaLightsWithEmitters(scene);

@@ -31,6 +31,11 @@ void checkEnvironmentMap(const std::string& path, std::vector<std::string>& warn
 // Adds a light for every mesh whose material emits (sampled by area at render time).
 void addEmissiveMeshLights(Scene& scene);
 
+// Moves the scene so its bounds are centred on the origin (recording the shift in Scene::origin).
+// Float error bounds grow with coordinate magnitude: a 2-unit box placed at 1e6 would otherwise render
+// with ray offsets of about 0.1 unit. Subtracting a centre of the same magnitude is exact (Sterbenz).
+void recenterScene(Scene& scene);
+
 // Binds each area light to the emissive mesh that occupies its rectangle (CS184 boxes have both).
 void mergeAreaLightsWithEmitters(Scene& scene);
 

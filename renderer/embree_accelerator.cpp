@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdio>
 #include <stdexcept>
+#include <utility>
 
 #include "renderer/accelerator.h"
 #include "renderer/shapes.h"
@@ -82,6 +83,40 @@ void sphereOccluded(const RTCOccludedFunctionNArguments* args) {
     }
 }
 
+// Exact duplicate triangles (the same surface twice) are hit at the same t; the lowest (mesh, triangle)
+// wins, as in the reference BVH, so the image does not depend on which one a BVH visits first. Embree
+// gives the filter the candidate and, in the RayHitN layout, the hit it would replace. Only installed on
+// scenes that have duplicates (Scene::duplicateTriangles): it costs a callback per candidate hit.
+struct DuplicateFilterData {
+    const Scene* scene;
+};
+
+bool sameTriangle(const Scene& scene, unsigned geomA, unsigned primA, unsigned geomB, unsigned primB) {
+    if (geomA >= scene.meshes.size() || geomB >= scene.meshes.size()) return false;
+    const TriangleMesh& ma = scene.meshes[geomA];
+    const TriangleMesh& mb = scene.meshes[geomB];
+    Vec3 a[3], b[3];
+    for (int k = 0; k < 3; ++k) a[k] = ma.vertex(ma.indices[3 * primA + k]), b[k] = mb.vertex(mb.indices[3 * primB + k]);
+    for (int k = 0; k < 3; ++k)
+        if (!(a[k] == b[0] || a[k] == b[1] || a[k] == b[2])) return false;
+    return true;
+}
+
+void lowestIdWinsFilter(const RTCFilterFunctionNArguments* args) {
+    const Scene& scene = *static_cast<const DuplicateFilterData*>(args->geometryUserPtr)->scene;
+    RTCHitN* current = RTCRayHitN_HitN(reinterpret_cast<RTCRayHitN*>(args->ray), args->N);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (!args->valid[i]) continue;
+        unsigned curGeom = RTCHitN_geomID(current, args->N, i), curPrim = RTCHitN_primID(current, args->N, i);
+        unsigned newGeom = RTCHitN_geomID(args->hit, args->N, i), newPrim = RTCHitN_primID(args->hit, args->N, i);
+        if (curGeom == RTC_INVALID_GEOMETRY_ID || RTCHitN_instID(current, args->N, i, 0) != RTC_INVALID_GEOMETRY_ID)
+            continue;
+        if (std::make_pair(newGeom, newPrim) > std::make_pair(curGeom, curPrim) &&
+            sameTriangle(scene, curGeom, curPrim, newGeom, newPrim))
+            args->valid[i] = 0;
+    }
+}
+
 RTCBuildQuality toEmbree(EmbreeOptions::Quality q) {
     switch (q) {
         case EmbreeOptions::Quality::Low: return RTC_BUILD_QUALITY_LOW;
@@ -112,6 +147,11 @@ public:
         for (uint32_t m = 0; m < numMeshes_; ++m) {
             if (scene.meshes[m].triangleCount() == 0) continue;
             RTCGeometry g = meshGeometry(scene.meshes[m], options.quality);
+            if (scene.duplicateTriangles > 0 && !proto[m]) {
+                rtcSetGeometryUserData(g, &filterData_);
+                rtcSetGeometryIntersectFilterFunction(g, lowestIdWinsFilter);
+                rtcCommitGeometry(g);
+            }
             if (proto[m]) {
                 protoScenes[m] = newScene(flags, options.quality);
                 rtcAttachGeometryByID(protoScenes[m], g, 0);
@@ -289,6 +329,7 @@ private:
     RTCScene top_ = nullptr;
     std::vector<RTCScene> prototypes_;
     SphereData sphereData_{};
+    DuplicateFilterData filterData_{&scene_};
     uint32_t numMeshes_ = 0;
     AcceleratorStats stats_;
 };

@@ -1,6 +1,7 @@
 #include "renderer/reference_bvh.h"
 
 #include <chrono>
+#include <utility>
 
 #include "renderer/shapes.h"
 
@@ -69,6 +70,11 @@ bool ReferenceAccelerator::testTriangle(const TriangleMesh& mesh, uint32_t tri, 
     const uint32_t* idx = &mesh.indices[3 * tri];
     float t, u, v;
     if (!intersectTriangle(ray, mesh.vertex(idx[0]), mesh.vertex(idx[1]), mesh.vertex(idx[2]), t, u, v)) return false;
+    // A tie with the current hit (duplicate surfaces): the lowest (mesh, triangle) wins, as in Embree.
+    uint32_t shape = uint32_t(&mesh - scene_.meshes.data());
+    if (hit && t == ray.tMax && hit->shape != kInvalidId && hit->instance == kInvalidId &&
+        std::make_pair(shape, tri) > std::make_pair(hit->shape, hit->prim))
+        return false;
     ray.tMax = t;
     if (hit) hit->t = t, hit->u = u, hit->v = v, hit->prim = tri;
     return true;

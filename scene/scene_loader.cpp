@@ -4,7 +4,10 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <array>
 #include <map>
+#include <tuple>
+#include <unordered_set>
 
 #include "scene/framing.h"
 #include "scene/importers.h"
@@ -47,6 +50,37 @@ void applyColladaExtras(const ColladaExtras& extras, Scene& scene) {
 }
 
 }  // namespace
+
+uint64_t countDuplicateTriangles(const Scene& scene) {
+    struct Key {
+        std::array<float, 9> v;
+        bool operator==(const Key& o) const { return v == o.v; }
+    };
+    struct KeyHash {
+        size_t operator()(const Key& k) const {
+            size_t h = 0;
+            for (float f : k.v) h = h * 1000003u ^ std::hash<float>()(f);
+            return h;
+        }
+    };
+    std::unordered_set<Key, KeyHash> seen;
+    std::vector<bool> proto = scene.prototypeMask();
+    uint64_t duplicates = 0;
+    for (size_t m = 0; m < scene.meshes.size(); ++m) {
+        if (proto[m]) continue;
+        const TriangleMesh& mesh = scene.meshes[m];
+        for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+            std::array<Vec3, 3> p = {mesh.vertex(mesh.indices[3 * t]), mesh.vertex(mesh.indices[3 * t + 1]),
+                                     mesh.vertex(mesh.indices[3 * t + 2])};
+            std::sort(p.begin(), p.end(), [](const Vec3& a, const Vec3& b) {
+                return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z);
+            });
+            Key k{{p[0].x, p[0].y, p[0].z, p[1].x, p[1].y, p[1].z, p[2].x, p[2].y, p[2].z}};
+            duplicates += !seen.insert(k).second;
+        }
+    }
+    return duplicates;
+}
 
 void recenterScene(Scene& scene) {
     Bounds3 b = scene.worldBounds();
@@ -93,6 +127,10 @@ Scene loadScene(const std::string& path, const LoadOptions& options) {
     }
     validateScene(scene);
     recenterScene(scene);
+    scene.duplicateTriangles = countDuplicateTriangles(scene);
+    if (scene.duplicateTriangles)
+        scene.warnings.push_back(std::to_string(scene.duplicateTriangles) +
+                                 " triangles repeat another exactly; where they overlap the lowest-numbered one is shown");
 
     addEmissiveMeshLights(scene);
     mergeAreaLightsWithEmitters(scene);

@@ -36,6 +36,9 @@ void addEmissiveMeshLights(Scene& scene);
 // with ray offsets of about 0.1 unit. Subtracting a centre of the same magnitude is exact (Sterbenz).
 void recenterScene(Scene& scene);
 
+// Triangles whose three vertex positions repeat an earlier triangle of a world-space mesh.
+uint64_t countDuplicateTriangles(const Scene& scene);
+
 // Binds each area light to the emissive mesh that occupies its rectangle (CS184 boxes have both).
 void mergeAreaLightsWithEmitters(Scene& scene);
 

@@ -311,6 +311,50 @@ TEST(Degenerate, ZeroAreaSliverAndParallelCasesStayFinite) {
     EXPECT_EQ(report.totalGenuine(), 0u);
 }
 
+TEST(HardCases, AcceleratorsAgreeOnFarAwayAndTinyScenes) {
+    auto dir = test::scratchDir();
+    for (auto [scale, shift] : {std::pair{1.0, Vec3d(1e6, 1e6, -1e6)}, std::pair{1e-3, Vec3d(0.0)}, std::pair{1e3, Vec3d(0.0)}}) {
+        Scene s = loadScene(writeBoxObj(dir, "box", scale, shift));
+        auto embree = makeEmbreeAccelerator(s);
+        auto reference = makeReferenceAccelerator(s);
+        CrosscheckReport report = crosscheck(s, *embree, *reference, 20000, 5);
+        EXPECT_EQ(report.totalGenuine(), 0u) << scale;
+    }
+}
+
+TEST(Degenerate, DuplicateTrianglesLowestIndexWinsInBothAccelerators) {
+    // A grid whose every triangle appears three times (the same surface thrice, in another order).
+    TriangleMesh grid = test::gridMesh(12, 12, 1.0f);
+    std::vector<uint32_t> base = grid.indices;
+    for (int copy = 1; copy < 3; ++copy)
+        for (size_t t = 0; t < base.size(); t += 3)
+            grid.indices.insert(grid.indices.end(), {base[t + size_t(copy)], base[t + (size_t(copy) + 1) % 3], base[t + (size_t(copy) + 2) % 3]});
+    Scene s = test::sceneWith(grid);
+    s.duplicateTriangles = countDuplicateTriangles(s);
+    uint32_t n = uint32_t(base.size() / 3);
+    EXPECT_EQ(s.duplicateTriangles, 2u * n);
+    for (int threads : {1, 2}) {
+        EmbreeOptions opt;
+        opt.threads = threads;
+        auto embree = makeEmbreeAccelerator(s, opt);
+        auto reference = makeReferenceAccelerator(s);
+        int hits = 0;
+        for (int i = 0; i < 5000; ++i) {
+            Sampler r(6, uint64_t(i), 0);
+            Ray ray{Vec3(r.next1D() * 12, r.next1D() * 12, 2), 0, Vec3(r.next1D() - 0.5f, r.next1D() - 0.5f, -1), kInfinity};
+            Hit a, b;
+            bool ha = embree->intersect(ray, a), hb = reference->intersect(ray, b);
+            ASSERT_EQ(ha, hb);
+            if (!ha) continue;
+            ++hits;
+            EXPECT_LT(a.prim, n) << "embree picked a later duplicate";
+            EXPECT_LT(b.prim, n) << "reference picked a later duplicate";
+            EXPECT_EQ(a.prim, b.prim);
+        }
+        EXPECT_GT(hits, 1000);
+    }
+}
+
 // --- Deep paths, extreme radiance, non-finite samples ----------------------------------------------
 
 TEST(DeepPaths, ThousandBouncesWithoutRouletteStayFinite) {

@@ -194,6 +194,8 @@ bool LightSet::sample(size_t i, const Vec3& ref, float u1, float u2, LightSample
             uniformTriangle(v1, u2, b1, b2);
             const Vec3* tri = &e.triangles[3 * t];
             Vec3 p = tri[0] + tri[1] * b1 + tri[2] * b2;
+            // Rounding of p0 + e1 b1 + e2 b2 (pbrt's gamma bound for a barycentric interpolation).
+            out.pError = (abs(tri[0]) + abs(tri[1] * b1) + abs(tri[2] * b2)) * gamma(7);
             const Vec3& n = e.normals[t];
             Vec3 d = p - ref;
             float dist2 = dot(d, d);

@@ -13,6 +13,7 @@ struct LightSample {
     Color Li;        // radiance arriving at the reference point (before visibility)
     Vec3 wi;         // unit direction towards the light
     Vec3 p;          // point on the light (finite lights)
+    Vec3 pError;     // absolute error bound of p
     float pdf = 0;   // solid angle density; 1 for delta lights
     bool delta = false;
     bool infinite = false;  // shadow ray has no end point

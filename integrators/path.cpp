@@ -97,7 +97,7 @@ void PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayCounter& coun
                 Color f = bsdf.eval(wo, wi) * std::abs(wi.z);
                 // Geometric side check: no light from behind the actual surface through a bent normal.
                 if (maxComponent(f) <= 0 || (dot(ls.wi, si.ng) <= 0 && !bsdf.hasTransmission())) continue;
-                Ray shadow = ls.infinite ? spawnRay(si, ls.wi) : spawnRayTo(si, ls.p);
+                Ray shadow = ls.infinite ? spawnRay(si, ls.wi) : spawnRayTo(si, ls.p, ls.pError);
                 ++counter.rays;
                 if (accel_.occluded(shadow)) continue;
                 float pl = pmf * ls.pdf;

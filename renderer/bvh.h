@@ -52,8 +52,7 @@ private:
 // Slab test; tMax is inflated by 1 + 2*gamma(3) so rounding never culls a box the ray touches (pbrt).
 inline bool rayBoxTest(const Bounds3& b, const Vec3& org, const Vec3& invDir, const int dirNeg[3], float tMin,
                        float tMax) {
-    constexpr float kInflate = 1.0f + 2.0f * (3.0f * 0.5f * std::numeric_limits<float>::epsilon()) /
-                                          (1.0f - 3.0f * 0.5f * std::numeric_limits<float>::epsilon());
+    constexpr float kInflate = 1.0f + 2.0f * gamma(3);
     float tx0 = ((dirNeg[0] ? b.hi.x : b.lo.x) - org.x) * invDir.x;
     float tx1 = ((dirNeg[0] ? b.lo.x : b.hi.x) - org.x) * invDir.x * kInflate;
     float ty0 = ((dirNeg[1] ? b.hi.y : b.lo.y) - org.y) * invDir.y;

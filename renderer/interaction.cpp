@@ -5,11 +5,6 @@
 namespace kiln {
 namespace {
 
-constexpr float gamma(int n) {
-    constexpr float eps = std::numeric_limits<float>::epsilon() * 0.5f;
-    return (n * eps) / (1 - n * eps);
-}
-
 void faceForward(SurfaceInteraction& si, const Vec3& rayDir) {
     si.nsStored = si.ns;
     si.frontFace = dot(si.ng, rayDir) < 0;
@@ -86,14 +81,20 @@ SurfaceInteraction makeInteraction(const Scene& scene, const Ray& ray, const Hit
     return si;
 }
 
+namespace {
+
+// The error bound of a point alone is not enough for Embree: its float intersection test reports t with
+// an error of a few ulps of the coordinates involved (a point exactly on the plane y = 0 has a zero
+// bound, yet Embree finds t = 0 there). So offsets never fall below kTraversalUlps ulps of the largest
+// coordinate; docs/accelerators.md shows the crosscheck that found it.
+constexpr float kTraversalUlps = 32.0f;
+
+float traversalError(const Vec3& p) { return kTraversalUlps * std::numeric_limits<float>::epsilon() * maxComponent(abs(p)); }
+
+}  // namespace
+
 Vec3 offsetRayOrigin(const SurfaceInteraction& si, const Vec3& dir) {
-    // The error bound of p alone is not enough for Embree: its float intersection test reports t with
-    // an error of a few ulps of the coordinates involved (a point exactly on the plane y = 0 has a zero
-    // bound, yet Embree finds t = 0 there). So the offset never falls below kTraversalUlps ulps of the
-    // largest coordinate of p; docs/accelerators.md shows the crosscheck that measures it.
-    constexpr float kTraversalUlps = 32.0f;
-    float d = std::max(dot(abs(si.ng), si.pError),
-                       kTraversalUlps * std::numeric_limits<float>::epsilon() * maxComponent(abs(si.p)));
+    float d = std::max(dot(abs(si.ng), si.pError), traversalError(si.p));
     Vec3 offset = si.ng * d;
     if (dot(dir, si.ng) < 0) offset = -offset;
     Vec3 po = si.p + offset;
@@ -109,12 +110,15 @@ Ray spawnRay(const SurfaceInteraction& si, const Vec3& dir) {
     return Ray{offsetRayOrigin(si, dir), 0.0f, dir, kInfinity};
 }
 
-Ray spawnRayTo(const SurfaceInteraction& si, const Vec3& target) {
-    Vec3 d = target - si.p;
-    Vec3 o = offsetRayOrigin(si, d);
-    // The target itself is a surface: stop 1 - shadowEpsilon short so it does not occlude itself.
-    constexpr float kShadowEpsilon = 1e-4f;
-    return Ray{o, 0.0f, target - o, 1.0f - kShadowEpsilon};
+Ray spawnRayTo(const SurfaceInteraction& si, const Vec3& target, const Vec3& targetError) {
+    Vec3 o = offsetRayOrigin(si, target - si.p);
+    Vec3 d = target - o;
+    float len = length(d);
+    if (len == 0) return Ray{o, 0.0f, d, 0.0f};
+    // Stop short of the target by its own error bound along the ray (and Embree's distance error), so the
+    // surface the target lies on cannot occlude it: a bound, not a guess.
+    float shortBy = dot(abs(d / len), targetError) + traversalError(target);
+    return Ray{o, 0.0f, d, std::max(0.0f, 1.0f - 2 * shortBy / len)};
 }
 
 }  // namespace kiln

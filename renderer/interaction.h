@@ -25,7 +25,8 @@ SurfaceInteraction makeInteraction(const Scene& scene, const Ray& ray, const Hit
 // Origin pushed off the surface by the error bound along the normal, on the side of dir.
 Vec3 offsetRayOrigin(const SurfaceInteraction& si, const Vec3& dir);
 Ray spawnRay(const SurfaceInteraction& si, const Vec3& dir);
-// A ray to a point (shadow rays): stops short of the target by a relative bound, not a guess.
-Ray spawnRayTo(const SurfaceInteraction& si, const Vec3& target);
+// A ray to a point (shadow rays): stops short of the target by the target's error bound (and Embree's
+// distance error), so the surface the target lies on does not occlude it.
+Ray spawnRayTo(const SurfaceInteraction& si, const Vec3& target, const Vec3& targetError = Vec3(0.0f));
 
 }  // namespace kiln

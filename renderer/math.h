@@ -183,6 +183,12 @@ inline Vec3 transformNormal(const Mat4& inv, const Vec3& n) {
 }
 inline Vec3 Mat4::normal(const Vec3& n) const { return transformNormal(inverse(), n); }
 
+// pbrt's gamma(n) = n u / (1 - n u), u = eps / 2: bounds the relative error of n chained float operations.
+constexpr float gamma(int n) {
+    constexpr float u = std::numeric_limits<float>::epsilon() * 0.5f;
+    return (float(n) * u) / (1 - float(n) * u);
+}
+
 // The next representable float towards +infinity / -infinity (pbrt's NextFloatUp/Down), without libm.
 inline float nextFloatUp(float v) {
     if (std::isinf(v) && v > 0) return v;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "integrators/lights.h"
 #include "integrators/path.h"
 #include "renderer/crosscheck.h"
 #include "renderer/interaction.h"
@@ -146,6 +147,45 @@ TEST(Watertightness, FarFromTheOriginToo) {
     EXPECT_EQ(c.embree, 0u);
     EXPECT_EQ(c.reference, 0u);
     EXPECT_LE(c.embreeAtVertices, c.vertexRays / 200);
+}
+
+TEST(ShadowRays, StopShortOfTheLightByItsErrorBoundAndNeverSelfOcclude) {
+    for (float shift : {0.0f, 1e3f, 1e5f}) {
+        // A floor and an emissive panel facing it, nothing in between; no recentring (built here).
+        TriangleMesh floor = test::gridMesh(8, 8, 0.25f), panel = test::gridMesh(2, 2, 0.25f);
+        for (size_t v = 0; v < floor.vertexCount(); ++v) floor.positions[3 * v] += shift;
+        for (size_t v = 0; v < panel.vertexCount(); ++v) {
+            panel.positions[3 * v] += 0.75f + shift;
+            panel.positions[3 * v + 1] += 0.75f;
+            panel.positions[3 * v + 2] = 1.0f;
+        }
+        Scene s = test::sceneWith(floor);
+        panel.materialIds = {1};
+        s.meshes.push_back(panel);
+        Material light;
+        light.kind = MaterialKind::Emission;
+        light.emission = Color(5.0f);
+        s.materials.push_back(light);
+        addEmissiveMeshLights(s);
+        LightSet lights(s);
+        for (bool useEmbree : {true, false}) {
+            auto accel = useEmbree ? makeEmbreeAccelerator(s) : makeReferenceAccelerator(s);
+            int occluded = 0, tested = 0;
+            for (int i = 0; i < 20000; ++i) {
+                Sampler r(8, uint64_t(i), 0);
+                Ray down{Vec3(shift + r.next1D() * 2, r.next1D() * 2, 0.5f), 0, Vec3(0, 0, -1), kInfinity};
+                Hit hit;
+                if (!accel->intersect(down, hit) || hit.shape != 0) continue;
+                SurfaceInteraction si = makeInteraction(s, down, hit);
+                LightSample ls;
+                if (!lights.sample(0, si.p, r.next1D(), r.next1D(), ls)) continue;
+                ++tested;
+                occluded += accel->occluded(spawnRayTo(si, ls.p, ls.pError));
+            }
+            EXPECT_GT(tested, 10000);
+            EXPECT_EQ(occluded, 0) << "shift " << shift << (useEmbree ? " embree" : " reference");
+        }
+    }
 }
 
 // --- Far away and rescaled -------------------------------------------------------------------------

@@ -1,5 +1,7 @@
 #include "integrators/path.h"
 
+#include <type_traits>
+
 #include "renderer/interaction.h"
 
 namespace kiln {
@@ -7,6 +9,32 @@ namespace kiln {
 PathIntegrator::PathIntegrator(const Scene& scene, const Accelerator& accel, const PathOptions& options)
     : Integrator(scene, accel), opt_(options), lights_(scene) {
     opt_.lightSamples = std::max(1, opt_.lightSamples);
+    trace_ = &PathIntegrator::trace<false, true, false, true>;  // general until a plan says otherwise
+}
+
+void PathIntegrator::usePlan(const RenderPlan& plan) {
+    if (plan.general) {
+        trace_ = &PathIntegrator::trace<false, true, false, true>;
+        return;
+    }
+    bool diffuse = plan.diffuseOnly, infinite = plan.infiniteLights;
+    bool deltaOnly = plan.deltaLightsOnly && !plan.emitters && !plan.infiniteLights;
+    bool split = plan.aovs.splitsLight();
+    // Chosen once per render: each combination is its own instantiation.
+    static constexpr TraceFn kTable[2][2][2][2] = {
+        {{{&PathIntegrator::trace<false, false, false, false>, &PathIntegrator::trace<false, false, false, true>},
+          {&PathIntegrator::trace<false, false, true, false>, &PathIntegrator::trace<false, false, true, true>}},
+         {{&PathIntegrator::trace<false, true, false, false>, &PathIntegrator::trace<false, true, false, true>},
+          {&PathIntegrator::trace<false, true, true, false>, &PathIntegrator::trace<false, true, true, true>}}},
+        {{{&PathIntegrator::trace<true, false, false, false>, &PathIntegrator::trace<true, false, false, true>},
+          {&PathIntegrator::trace<true, false, true, false>, &PathIntegrator::trace<true, false, true, true>}},
+         {{&PathIntegrator::trace<true, true, false, false>, &PathIntegrator::trace<true, true, false, true>},
+          {&PathIntegrator::trace<true, true, true, false>, &PathIntegrator::trace<true, true, true, true>}}}};
+    trace_ = kTable[diffuse][infinite][deltaOnly][split];
+}
+
+void PathIntegrator::Li(const Ray& ray, Sampler& sampler, RayCounter& counter, SampleRecord& record) const {
+    (this->*trace_)(ray, sampler, counter, record);
 }
 
 float PathIntegrator::misWeight(float nf, float fPdf, float ng, float gPdf) const {
@@ -20,18 +48,43 @@ Lobe lobeOf(MaterialKind kind, bool transmission) {
     return kind == MaterialKind::Lambertian ? Lobe::Diffuse : Lobe::Specular;
 }
 
+// The BSDF of a diffuse-only scene: Lambert or black (emitters), no Fresnel or specular code at all.
+class LambertBsdf {
+public:
+    LambertBsdf(const Material& m, MicrofacetModel) : albedo_(m.albedo), black_(m.kind == MaterialKind::Emission) {}
+    bool isDelta() const { return false; }
+    bool isBlack() const { return black_; }
+    bool hasTransmission() const { return false; }
+    Color eval(const Vec3& wo, const Vec3& wi) const { return wo.z * wi.z > 0 ? albedo_ * kInvPi : Color(0.0f); }
+    float pdf(const Vec3& wo, const Vec3& wi) const { return wo.z * wi.z > 0 ? std::abs(wi.z) * kInvPi : 0.0f; }
+    bool sample(const Vec3& wo, float, float u1, float u2, BsdfSample& out) const {
+        out = BsdfSample{};
+        out.wi = cosineHemisphere(u1, u2);
+        if (wo.z < 0) out.wi.z = -out.wi.z;
+        out.pdf = std::abs(out.wi.z) * kInvPi;
+        out.f = albedo_ * kInvPi;
+        return out.pdf > 0;
+    }
+
+private:
+    Color albedo_;
+    bool black_;
+};
+
 }  // namespace
 
-void PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayCounter& counter, SampleRecord& rec) const {
+template <bool DiffuseOnly, bool Infinite, bool DeltaLightsOnly, bool SplitLight>
+void PathIntegrator::trace(const Ray& cameraRay, Sampler& sampler, RayCounter& counter, SampleRecord& rec) const {
     Color& L = rec.L;
     Color beta(1.0f);
-    const bool splitLight = aovs_.splitsLight();
+    const bool splitLight = SplitLight && aovs_.splitsLight();
     Lobe firstLobe = Lobe::Diffuse;  // how the path left its first vertex (for the lobe AOVs)
     // Light that bounced `bounce` times; with accumulation off only the maxDepth-th bounce is kept.
     // Every contribution lands in exactly one of emission / direct / indirect, so they sum to the beauty.
     auto add = [&](int bounce, const Color& c, Lobe lobe) {
         if (!opt_.accumulateBounces && bounce != opt_.maxDepth) return;
         L += c;
+        if constexpr (!SplitLight) return;
         if (!splitLight) return;
         if (bounce == 0) rec.emission += c;
         else if (bounce == 1) rec.direct += c;
@@ -48,6 +101,7 @@ void PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayCounter& coun
 
     // Weight of emission found by following the BSDF-sampled ray, against NEE having sampled light li.
     auto emissionWeight = [&](int li, const Vec3& dir, const Vec3& x, const Vec3& n) {
+        if constexpr (DeltaLightsOnly) return 1.0f;  // no light can be hit: emission here is unweighted
         if (specular || li < 0 || !useNee) return 1.0f;
         if (opt_.sampling == DirectSampling::Light) return 0.0f;
         float pl = lights_.selectPmf(size_t(li)) * lights_.pdf(size_t(li), prevP, dir, x, n);
@@ -58,11 +112,13 @@ void PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayCounter& coun
         Hit hit;
         ++counter.rays;
         if (!accel_.intersect(ray, hit)) {
-            Vec3 dir = normalize(ray.dir);
-            for (size_t i : lights_.infiniteLights()) {
-                Color Le = lights_.escaped(i, dir, bounce == 0);
-                if (maxComponent(Le) > 0)
-                    add(bounce, beta * Le * emissionWeight(int(i), dir, Vec3(0.0f), Vec3(0.0f)), firstLobe);
+            if constexpr (Infinite) {
+                Vec3 dir = normalize(ray.dir);
+                for (size_t i : lights_.infiniteLights()) {
+                    Color Le = lights_.escaped(i, dir, bounce == 0);
+                    if (maxComponent(Le) > 0)
+                        add(bounce, beta * Le * emissionWeight(int(i), dir, Vec3(0.0f), Vec3(0.0f)), firstLobe);
+                }
             }
             break;
         }
@@ -75,7 +131,7 @@ void PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayCounter& coun
             add(bounce, beta * Le * emissionWeight(li, normalize(ray.dir), si.p, si.ng), firstLobe);
         }
         if (bounce >= opt_.maxDepth) break;
-        Bsdf bsdf(mat, opt_.microfacet);
+        std::conditional_t<DiffuseOnly, LambertBsdf, Bsdf> bsdf(mat, opt_.microfacet);
         if (bsdf.isBlack()) break;
         // A shading normal bent so far that the viewer is below its tangent plane would make the surface
         // black: shade such a vertex with the geometric normal instead (on the stored normal's side).
@@ -101,14 +157,18 @@ void PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayCounter& coun
                 ++counter.rays;
                 if (accel_.occluded(shadow)) continue;
                 float pl = pmf * ls.pdf;
-                float w = (ls.delta || opt_.sampling == DirectSampling::Light || !lights_.hittable(li))
-                              ? 1.0f
-                              : misWeight(nLight, pl, 1, bsdf.pdf(wo, wi));
+                float w = 1.0f;
+                if constexpr (!DeltaLightsOnly)
+                    if (!ls.delta && opt_.sampling != DirectSampling::Light && lights_.hittable(li))
+                        w = misWeight(nLight, pl, 1, bsdf.pdf(wo, wi));
                 add(bounce + 1, beta * f * ls.Li * (w / (pl * nLight)), bounce == 0 ? lobeOf(mat.kind, false) : firstLobe);
             }
         }
 
-        // Continue the path.
+        // Continue the path. With only delta lights and no emitters, a ray after the last bounce could find
+        // nothing: not traced.
+        if constexpr (DeltaLightsOnly)
+            if (bounce + 1 >= opt_.maxDepth) break;
         BsdfSample bs;
         if (opt_.sampling == DirectSampling::Hemisphere && !bsdf.isDelta()) {
             Vec3 wi = uniformHemisphere(sampler.next1D(), sampler.next1D());

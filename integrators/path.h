@@ -5,6 +5,7 @@
 #include "integrators/bsdf.h"
 #include "integrators/integrator.h"
 #include "integrators/lights.h"
+#include "integrators/render_plan.h"
 
 namespace kiln {
 
@@ -31,8 +32,14 @@ public:
     const char* name() const override { return "path"; }
     const PathOptions& options() const { return opt_; }
     const LightSet& lights() const { return lights_; }
+    // Chooses the path specialised for the plan (the general one until called, or with plan.general).
+    void usePlan(const RenderPlan& plan);
 
 private:
+    template <bool DiffuseOnly, bool Infinite, bool DeltaLightsOnly, bool SplitLight>
+    void trace(const Ray& ray, Sampler& sampler, RayCounter& counter, SampleRecord& record) const;
+    using TraceFn = void (PathIntegrator::*)(const Ray&, Sampler&, RayCounter&, SampleRecord&) const;
+    TraceFn trace_;
     float misWeight(float nf, float fPdf, float ng, float gPdf) const;
     PathOptions opt_;
     LightSet lights_;

@@ -2,6 +2,7 @@
 
 #include "renderer/cli_args.h"
 #include "renderer/commands.h"
+#include "integrators/render_plan.h"
 #include "scene/scene_info.h"
 #include "scene/scene_loader.h"
 
@@ -27,7 +28,14 @@ int runInfo(const std::vector<std::string>& args) {
     }
     if (pos.size() != 1) throw UsageError("needs exactly one scene file (see 'kiln info --help')");
     Scene scene = loadScene(pos[0], load);
-    std::fputs((json ? sceneInfoJson(scene) : sceneInfoText(scene)).c_str(), stdout);
+    if (json) {
+        std::fputs(sceneInfoJson(scene).c_str(), stdout);
+        return 0;
+    }
+    std::fputs(sceneInfoText(scene).c_str(), stdout);
+    auto accel = makeEmbreeAccelerator(scene);
+    RenderPlan plan = planFor(scene, *accel, AovRequest::defaults());
+    std::printf("render plan (%s)\n%s", plan.compact().c_str(), plan.text().c_str());
     return 0;
 }
 

@@ -5,6 +5,7 @@
 #include "color/image_output.h"
 #include "integrators/integrator.h"
 #include "integrators/path.h"
+#include "integrators/render_plan.h"
 #include "renderer/accel_options.h"
 #include "renderer/camera.h"
 #include "renderer/commands.h"
@@ -131,6 +132,13 @@ int runRender(const std::vector<std::string>& args) {
     });
     parser.flag("heatmap", "", "also write OUT.samples.png, the per-pixel sample counts as a heat map "
                 "(always with -a)", o.heatMap);
+    bool generalPlan = false;
+    parser.option("plan", "", 1, "auto|general", "auto (default): the path specialised for what the scene holds; "
+                  "general: every feature on (the baseline the specialisations are checked against)",
+                  [&](const std::vector<std::string>& v) {
+                      if (v[0] != "auto" && v[0] != "general") throw UsageError("--plan takes auto or general, got '" + v[0] + "'");
+                      generalPlan = v[0] == "general";
+                  });
     int debugX = -1, debugY = -1, debugSample = -1;
     parser.option("pixel", "", 2, "X Y", "debug: trace only this pixel (with --sample) and print what it returns",
                   [&](const std::vector<std::string>& v) {
@@ -194,6 +202,11 @@ int runRender(const std::vector<std::string>& args) {
         throw UsageError(std::string("--aov: ") + e.what());
     }
     integrator->setAovs(aovs);
+    RenderPlan plan = planFor(scene, *accel, aovs, generalPlan);
+    if (auto* path = dynamic_cast<PathIntegrator*>(integrator.get())) path->usePlan(plan);
+    if (plan.deltaLightsOnly && o.path.sampling == DirectSampling::Hemisphere && o.integrator == "path")
+        std::fprintf(stderr, "kiln: warning: %s: hemisphere sampling cannot see point, spot or directional lights, "
+                             "the only lights here: the image will be black but for emitters\n", pos[0].c_str());
 
     if (debugX >= 0 || debugSample >= 0) {
         if (debugX < 0 || debugSample < 0) throw UsageError("--pixel and --sample go together");
@@ -243,6 +256,8 @@ int runRender(const std::vector<std::string>& args) {
                   {"display", o.display},
                   {"view", o.view},
                   {"working_space", "lin_rec709 (linear Rec.709 primaries, D65)"},
+                  {"plan", plan.compact()},
+                  {"plan_decisions", plan.text()},
                   {"nonfinite_samples", std::to_string(stats.nonFiniteSamples)}};
     writeExr(exrPath, film, meta, o.exr);
     writePreview(previewPath, film, o.display, o.view);

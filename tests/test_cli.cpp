@@ -104,6 +104,21 @@ TEST(Cli, OutputOptions) {
     EXPECT_EQ(info.code, 0) << info.err;
 }
 
+TEST(Cli, PlanIsPrintedRecordedAndOverridable) {
+    auto dir = test::scratchDir();
+    CliRun info = runKiln("info " + test::cs184("meshedit/cow.dae"));
+    EXPECT_NE(info.out.find("render plan (diffuse-only,delta-lights-only)"), std::string::npos) << info.out;
+    CliRun hemi = runKiln("render " + test::cs184("meshedit/cow.dae") + " -H -r 8 6 -q -o " + (dir / "h").string());
+    EXPECT_EQ(hemi.code, 0);
+    EXPECT_NE(hemi.err.find("hemisphere sampling cannot see"), std::string::npos) << hemi.err;
+    CliRun general = runKiln("render " + test::cs184("meshedit/cow.dae") + " --plan general -r 8 6 -q -o " + (dir / "g").string());
+    EXPECT_EQ(general.code, 0) << general.err;
+    CliRun header = runKiln("render " + test::cs184("sky/CBspheres.dae") + " -r 8 6 -q -o " + (dir / "p").string());
+    ASSERT_EQ(header.code, 0);
+    EXPECT_EQ(std::system(("oiiotool --info -v " + (dir / "p.exr").string() + " | grep -q 'kiln:plan: \"delta-specular'").c_str()), 0);
+    EXPECT_EQ(runKiln("render x.dae --plan fastest").code, 2);
+}
+
 TEST(Cli, InfoJsonAndCrosscheck) {
     CliRun info = runKiln("info --json " + test::cs184("sky/CBspheres.dae"));
     EXPECT_EQ(info.code, 0);

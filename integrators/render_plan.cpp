@@ -1,0 +1,121 @@
+#include "integrators/render_plan.h"
+
+#include <set>
+
+#include "renderer/camera.h"
+#include "renderer/interaction.h"
+#include "renderer/sampler.h"
+#include "renderer/warp.h"
+
+namespace kiln {
+namespace {
+
+// Fraction of rays that escape from surface points the camera sees, in uniform directions.
+float escapeFraction(const Scene& scene, const Accelerator& accel) {
+    CameraModel camera(scene.camera, 64, 48);
+    int escaped = 0, probes = 0;
+    for (int i = 0; i < 4096 && probes < 2048; ++i) {
+        Sampler s(1234, uint64_t(i), 0);
+        Ray primary = camera.generateRay(s.next1D() * 64, s.next1D() * 48);
+        Hit hit;
+        if (!accel.intersect(primary, hit)) continue;
+        SurfaceInteraction si = makeInteraction(scene, primary, hit);
+        Vec3 d = uniformSphere(s.next1D(), s.next1D());
+        if (dot(d, si.ng) < 0) d = -d;
+        Hit h2;
+        ++probes;
+        escaped += !accel.intersect(spawnRay(si, d), h2);
+    }
+    return probes ? float(escaped) / float(probes) : 1.0f;
+}
+
+}  // namespace
+
+RenderPlan planFor(const Scene& scene, const Accelerator& accel, const AovRequest& aovs, bool general) {
+    RenderPlan p;
+    p.general = general;
+    p.aovs = aovs;
+    std::set<uint32_t> used;
+    for (const TriangleMesh& m : scene.meshes) used.insert(m.materialIds.begin(), m.materialIds.end());
+    for (const Sphere& s : scene.spheres) used.insert(s.material);
+    bool anyDiffuse = false;
+    p.diffuseOnly = true;
+    for (uint32_t id : used) {
+        MaterialKind k = scene.materials[id].kind;
+        p.deltaSpecular |= k == MaterialKind::Mirror || k == MaterialKind::Glass || k == MaterialKind::Refraction;
+        p.transmission |= k == MaterialKind::Glass || k == MaterialKind::Refraction;
+        p.roughConductor |= k == MaterialKind::Microfacet;
+        p.glossy |= k == MaterialKind::Glossy;
+        anyDiffuse |= k == MaterialKind::Lambertian;
+        p.diffuseOnly &= k == MaterialKind::Lambertian || k == MaterialKind::Emission;
+        p.emitters |= maxComponent(scene.materials[id].emission) > 0;
+    }
+    p.deltaLightsOnly = !scene.lights.empty();
+    for (const Light& l : scene.lights) {
+        bool delta = l.kind == LightKind::Point || l.kind == LightKind::Spot || l.kind == LightKind::Directional;
+        p.deltaLightsOnly &= delta;
+        p.areaLights |= l.kind == LightKind::Area || l.kind == LightKind::MeshEmitter;
+        p.infiniteLights |= l.kind == LightKind::Environment || l.kind == LightKind::Ambient;
+    }
+    p.spheres = !scene.spheres.empty();
+    p.instances = !scene.instances.empty();
+    p.caustics = p.deltaSpecular && anyDiffuse && !scene.lights.empty();
+    p.thinLens = scene.camera.apertureRadius > 0;
+    p.escapeFraction = escapeFraction(scene, accel);
+    p.closed = p.escapeFraction < 0.01f;
+
+    auto say = [&](const std::string& decision, const std::string& reason) { p.decisions.push_back(decision + ": " + reason); };
+    if (general) say("general path", "--plan general: every feature on, as a baseline");
+    say(p.diffuseOnly && !general ? "Lambert-only shading (no Fresnel, no specular code)" : "full BSDF set",
+        p.diffuseOnly ? "every surface is Lambertian or an emitter" : "the scene has non-Lambertian surfaces");
+    if (p.deltaLightsOnly && !p.emitters)
+        say(general ? "MIS code kept" : "direct light by light sampling only, no MIS; no continuation ray after the last bounce",
+            "only point/spot/directional lights and no emitting surface: BSDF-sampled rays can never find light");
+    else
+        say("light sampling with MIS against BSDF sampling", "the scene has lights that rays can hit");
+    say(p.infiniteLights || general ? "environment lookup on escape" : "no environment lookup on escape",
+        p.infiniteLights ? "environment or ambient light present" : "no environment or ambient light");
+    say(p.spheres ? "sphere geometry registered" : "no sphere geometry registered",
+        p.spheres ? std::to_string(scene.spheres.size()) + " analytic spheres" : "no analytic spheres");
+    if (p.instances) say("two-level traversal", std::to_string(scene.instances.size()) + " instances");
+    if (p.caustics)
+        say("caustics reachable only by BSDF sampling", "specular (mirror/glass) surfaces and diffuse receivers: "
+                                                         "expect noise there, more samples clear it");
+    say(p.thinLens ? "thin-lens camera sampling" : "pinhole camera", p.thinLens ? "aperture > 0" : "no aperture");
+    say(p.aovs.splitsLight() || general ? "light AOVs accumulated" : "no light AOVs accumulated",
+        p.aovs.splitsLight() ? "requested with --aov" : "none requested");
+    char escape[96];
+    std::snprintf(escape, sizeof escape, "%.1f %% of probe rays from visible surfaces escape", 100.0 * p.escapeFraction);
+    say(p.closed ? "closed scene: roulette, not escape, ends paths" : "open scene: paths mostly end by escaping", escape);
+    return p;
+}
+
+std::string RenderPlan::text() const {
+    std::string out;
+    for (const std::string& d : decisions) out += "  " + d + "\n";
+    return out;
+}
+
+std::string RenderPlan::compact() const {
+    std::string out;
+    auto flag = [&](bool on, const char* name) {
+        if (on) out += std::string(out.empty() ? "" : ",") + name;
+    };
+    flag(general, "general");
+    flag(diffuseOnly, "diffuse-only");
+    flag(deltaSpecular, "delta-specular");
+    flag(transmission, "transmission");
+    flag(roughConductor, "rough-conductor");
+    flag(glossy, "glossy");
+    flag(deltaLightsOnly, "delta-lights-only");
+    flag(areaLights, "area-lights");
+    flag(infiniteLights, "infinite-lights");
+    flag(spheres, "spheres");
+    flag(instances, "instances");
+    flag(caustics, "caustics");
+    flag(thinLens, "thin-lens");
+    flag(closed, "closed");
+    return out;
+}
+
+}  // namespace kiln

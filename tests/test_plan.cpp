@@ -1,0 +1,112 @@
+// The render plan: what each CS184 scene calls for, and the specialised paths giving the general path's
+// image.
+#include "integrators/path.h"
+#include "integrators/render_plan.h"
+#include "renderer/render_loop.h"
+#include "scene/scene_loader.h"
+#include "test_support.h"
+
+namespace kiln {
+namespace {
+
+struct PlanCase {
+    const char* path;
+    const char* features;  // RenderPlan::compact() without the closed flag
+};
+
+void PrintTo(const PlanCase& c, std::ostream* os) { *os << c.path; }
+
+class Cs184Plan : public ::testing::TestWithParam<PlanCase> {};
+
+TEST_P(Cs184Plan, MatchesWhatTheSceneHolds) {
+    Scene s = loadScene(test::cs184(GetParam().path));
+    auto accel = makeEmbreeAccelerator(s);
+    RenderPlan plan = planFor(s, *accel, AovRequest{});
+    std::string compact = plan.compact();
+    EXPECT_EQ(compact, GetParam().features) << plan.text();
+    EXPECT_FALSE(plan.closed);  // every CS184 scene is open towards its camera
+    EXPECT_FALSE(plan.decisions.empty());
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Library, Cs184Plan,
+    ::testing::Values(
+        PlanCase{"keenan/banana.dae", "diffuse-only,infinite-lights"},
+        PlanCase{"keenan/building.dae", "diffuse-only,infinite-lights"},
+        PlanCase{"meshedit/cow.dae", "diffuse-only,delta-lights-only"},
+        PlanCase{"meshedit/maxplanck.dae", "diffuse-only,delta-lights-only"},
+        PlanCase{"simple/cube.dae", "diffuse-only,delta-lights-only"},
+        PlanCase{"sky/CBbunny.dae", "diffuse-only,area-lights"},
+        PlanCase{"sky/CBbunny_microfacet_cu.dae", "rough-conductor,area-lights"},
+        PlanCase{"sky/CBcoil.dae", "delta-specular,area-lights,caustics"},
+        PlanCase{"sky/CBempty.dae", "diffuse-only,area-lights"},
+        PlanCase{"sky/CBgems.dae", "delta-specular,transmission,area-lights,caustics"},
+        PlanCase{"sky/CBspheres.dae", "delta-specular,transmission,area-lights,spheres,caustics"},
+        PlanCase{"sky/CBspheres_lambertian.dae", "diffuse-only,area-lights,spheres"},
+        PlanCase{"sky/CBspheres_microfacet_al_ag.dae", "rough-conductor,area-lights,spheres"},
+        PlanCase{"sky/bunny.dae", "diffuse-only,infinite-lights"},
+        PlanCase{"sky/bunny_microfacet_cu.dae", "rough-conductor,infinite-lights"},
+        PlanCase{"variants/2018-2020/sky/CBspheres_glossy.dae", "glossy,area-lights,spheres"},
+        PlanCase{"variants/p3-2-sp23/sky/CBspheres_refract.dae",
+                 "delta-specular,transmission,area-lights,spheres,caustics"}),
+    [](const auto& info) {
+        std::string n = info.param.path;
+        for (char& c : n)
+            if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+        return n;
+    });
+
+Film render(const Scene& s, const Accelerator& accel, const PathOptions& opt, const RenderPlan& plan,
+            uint64_t* rays = nullptr) {
+    PathIntegrator integrator(s, accel, opt);
+    integrator.setAovs(plan.aovs);
+    integrator.usePlan(plan);
+    RenderSettings settings;
+    settings.width = 40, settings.height = 30, settings.spp = 8, settings.progress = false;
+    Film film(40, 30, plan.aovs);
+    RenderStats stats = renderImage(s, integrator, settings, film);
+    if (rays) *rays = stats.rays;
+    return film;
+}
+
+TEST(SpecialisedPaths, GiveTheGeneralPathsImage) {
+    // Each specialisation removes code that cannot contribute, and draws the same random numbers, so the
+    // images are not only statistically equal but identical.
+    struct Case {
+        const char* scene;
+        int depth;
+        const char* aovs;
+    };
+    for (const Case& c : {Case{"sky/CBspheres_lambertian.dae", 5, "none"}, Case{"meshedit/cow.dae", 1, "none"},
+                          Case{"meshedit/cow.dae", 3, "none"}, Case{"sky/bunny.dae", 4, "none"},
+                          Case{"sky/CBbunny_microfacet_cu.dae", 5, "none"}, Case{"sky/CBspheres.dae", 5, "default"}}) {
+        Scene s = loadScene(test::cs184(c.scene));
+        auto accel = makeEmbreeAccelerator(s);
+        PathOptions opt;
+        opt.maxDepth = c.depth;
+        AovRequest aovs = AovRequest::parse(c.aovs, c.depth);
+        RenderPlan special = planFor(s, *accel, aovs), general = planFor(s, *accel, aovs, true);
+        Film a = render(s, *accel, opt, special), b = render(s, *accel, opt, general);
+        double sum = 0;
+        for (int y = 0; y < 30; ++y)
+            for (int x = 0; x < 40; ++x) {
+                ASSERT_EQ(a.pixel(x, y), b.pixel(x, y)) << c.scene << " -m " << c.depth << " at " << x << "," << y;
+                sum += luminance(a.pixel(x, y));
+            }
+        EXPECT_GT(sum, 0.0) << c.scene;
+    }
+}
+
+TEST(SpecialisedPaths, DeltaLightsOnlySkipsTheUselessLastRay) {
+    Scene s = loadScene(test::cs184("meshedit/cow.dae"));
+    auto accel = makeEmbreeAccelerator(s);
+    PathOptions opt;
+    opt.maxDepth = 1;
+    uint64_t special = 0, general = 0;
+    render(s, *accel, opt, planFor(s, *accel, AovRequest{}), &special);
+    render(s, *accel, opt, planFor(s, *accel, AovRequest{}, true), &general);
+    EXPECT_LT(special, general);  // camera + shadow rays only; the general path also traces a continuation
+}
+
+}  // namespace
+}  // namespace kiln

@@ -7,7 +7,10 @@
 #include <cstdio>
 #include <thread>
 
+#include "integrators/path.h"
+#include "integrators/render_plan.h"
 #include "renderer/accel_options.h"
+#include "renderer/render_loop.h"
 #include "renderer/commands.h"
 #include "renderer/ray_sets.h"
 #include "renderer/reference_bvh.h"
@@ -56,9 +59,57 @@ double cs184Baseline(const std::string& scene) {
 
 }  // namespace
 
+// kiln bench plan: render time of the plan's specialised path against the general path, same run,
+// alternating, median of the repeats.
+int benchPlan(const std::vector<std::string>& args) {
+    ArgParser parser("bench plan", "SCENE... [-s SPP] [-r W H] [-m DEPTH] [--repeats N]");
+    int spp = 16, depth = 5, repeats = 3, width = 240, height = 180;
+    parser.intOption("spp", "s", "samples per pixel (default 16)", spp, 1, 1 << 16);
+    parser.intOption("max-depth", "m", "CS184 depth (default 5)", depth, 0, 1000);
+    parser.intOption("repeats", "", "timed renders of each path, median reported (default 3)", repeats, 1, 50);
+    parser.option("resolution", "r", 2, "W H", "image size (default 240 180)", [&](const std::vector<std::string>& v) {
+        width = ArgParser::toInt("-r", v[0], 1, 8192);
+        height = ArgParser::toInt("-r", v[1], 1, 8192);
+    });
+    std::vector<std::string> pos = parser.parse(args);
+    if (parser.helpRequested()) {
+        std::fputs(parser.helpText().c_str(), stdout);
+        return 0;
+    }
+    if (pos.empty()) throw UsageError("needs at least one scene file");
+    std::printf("%-32s %-44s %10s %10s %8s\n", "scene", "plan", "special s", "general s", "speed-up");
+    for (const std::string& path : pos) {
+        Scene scene = loadScene(path);
+        auto accel = makeEmbreeAccelerator(scene);
+        PathOptions opt;
+        opt.maxDepth = depth;
+        RenderPlan plans[2] = {planFor(scene, *accel, AovRequest{}), planFor(scene, *accel, AovRequest{}, true)};
+        RenderSettings settings;
+        settings.width = width, settings.height = height, settings.spp = spp, settings.progress = false;
+        std::vector<double> times[2];
+        for (int r = 0; r < repeats; ++r)
+            for (int k = 0; k < 2; ++k) {
+                PathIntegrator integrator(scene, *accel, opt);
+                integrator.usePlan(plans[k]);
+                Film film(width, height);
+                times[k].push_back(renderImage(scene, integrator, settings, film).seconds);
+            }
+        for (auto& t : times) std::sort(t.begin(), t.end());
+        double special = times[0][times[0].size() / 2], general = times[1][times[1].size() / 2];
+        std::string name = path.substr(path.find_last_of('/') + 1);
+        std::printf("%-32s %-44s %10.3f %10.3f %7.2fx\n", name.c_str(), plans[0].compact().c_str(), special, general,
+                    general / special);
+        std::fflush(stdout);
+    }
+    std::printf("\n%dx%d, %d spp, -m %d, median of %d alternating renders per path; speed-up = general / special\n",
+                width, height, spp, depth, repeats);
+    return 0;
+}
+
 int runBench(const std::vector<std::string>& args) {
+    if (!args.empty() && args[0] == "plan") return benchPlan(std::vector<std::string>(args.begin() + 1, args.end()));
     if (args.empty() || (args[0] != "accel" && args[0] != "-h" && args[0] != "--help"))
-        throw UsageError("usage: kiln bench accel SCENE... [--rays N] [--repeats N]");
+        throw UsageError("usage: kiln bench accel|plan SCENE... (see 'kiln bench accel --help', 'kiln bench plan --help')");
     ArgParser parser("bench accel", "SCENE... [--rays N] [--repeats N] [--threads N]");
     int rays = 200000, repeats = 3, threads = int(std::thread::hardware_concurrency());
     AcceleratorChoice choice;

@@ -18,6 +18,7 @@ constexpr const char* kUsage =
     "  info SCENE        describe a scene (--json for the machine-readable form)\n"
     "  crosscheck SCENE  trace the same rays through Embree and the reference BVH and compare\n"
     "  bench accel       build time and rays/s of both accelerators\n"
+    "  bench plan        render time of the plan's specialised path against the general one\n"
     "\n"
     "'kiln <command> --help' lists each command's options.\n";
 

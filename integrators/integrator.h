@@ -23,6 +23,7 @@ public:
     virtual void Li(const Ray& ray, Sampler& sampler, RayCounter& counter, SampleRecord& record) const = 0;
     Color Li(const Ray& ray, Sampler& sampler, RayCounter& counter) const {
         SampleRecord r;
+        r.reset(aovs_);
         Li(ray, sampler, counter, r);
         return r.L;
     }

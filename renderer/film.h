@@ -21,6 +21,7 @@ public:
     bool add(int x, int y, const SampleRecord& r);
     bool add(int x, int y, const Color& c) {
         SampleRecord r;
+        r.reset(layout_.request());
         r.L = c;
         return add(x, y, r);
     }

@@ -113,12 +113,14 @@ Ray spawnRay(const SurfaceInteraction& si, const Vec3& dir) {
 Ray spawnRayTo(const SurfaceInteraction& si, const Vec3& target, const Vec3& targetError) {
     Vec3 o = offsetRayOrigin(si, target - si.p);
     Vec3 d = target - o;
-    float len = length(d);
-    if (len == 0) return Ray{o, 0.0f, d, 0.0f};
+    float len2 = dot(d, d);
+    if (len2 == 0) return Ray{o, 0.0f, d, 0.0f};
     // Stop short of the target by its own error bound along the ray (and Embree's distance error), so the
-    // surface the target lies on cannot occlude it: a bound, not a guess.
-    float shortBy = dot(abs(d / len), targetError) + traversalError(target);
-    return Ray{o, 0.0f, d, std::max(0.0f, 1.0f - 2 * shortBy / len)};
+    // surface the target lies on cannot occlude it: a bound, not a guess. In units of t (|d| = len):
+    // (dot(|d|, err) / len + traversal) / len.
+    float invLen = 1.0f / std::sqrt(len2);
+    float shortBy = dot(abs(d), targetError) * invLen + traversalError(target);
+    return Ray{o, 0.0f, d, std::max(0.0f, 1.0f - 2 * shortBy * invLen)};
 }
 
 }  // namespace kiln

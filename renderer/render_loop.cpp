@@ -22,13 +22,14 @@ std::atomic<bool>& renderCancelFlag() {
 
 namespace {
 
-SampleRecord trace(const CameraModel& camera, const Integrator& integrator, uint64_t seed, int width, int x, int y,
-                   int s, RayCounter& counter) {
+SampleRecord trace(const CameraModel& camera, const Integrator& integrator, const AovRequest& aovs, uint64_t seed,
+                   int width, int x, int y, int s, RayCounter& counter) {
     Sampler sampler(seed, uint64_t(y) * uint64_t(width) + uint64_t(x), uint64_t(s));
     float jx = sampler.next1D(), jy = sampler.next1D();
     float lu = sampler.next1D(), lv = sampler.next1D();
     Ray ray = camera.generateRay(float(x) + jx, float(y) + jy, lu, lv);
     SampleRecord record;
+    record.reset(aovs);
     integrator.Li(ray, sampler, counter, record);
     return record;
 }
@@ -38,7 +39,8 @@ SampleRecord trace(const CameraModel& camera, const Integrator& integrator, uint
 SampleRecord traceSample(const Scene& scene, const Integrator& integrator, const RenderSettings& settings, int x, int y,
                          int sample, RayCounter& counter) {
     CameraModel camera(scene.camera, settings.width, settings.height);
-    return trace(camera, integrator, settings.seed, settings.width, x, y, sample, counter);
+    AovRequest all = AovRequest::parse("all", kMaxBounceLayers);
+    return trace(camera, integrator, all, settings.seed, settings.width, x, y, sample, counter);
 }
 
 RenderStats renderImage(const Scene& scene, const Integrator& integrator, const RenderSettings& settings, Film& film) {
@@ -76,7 +78,8 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator, const 
                     continue;
                 }
                 for (int s = firstSample; s < firstSample + sampleCount; ++s) {
-                    SampleRecord record = trace(camera, integrator, settings.seed, settings.width, x, y, s, counter);
+                    SampleRecord record =
+                        trace(camera, integrator, film.layout().request(), settings.seed, settings.width, x, y, s, counter);
                     if (film.add(x, y, record)) continue;
                     // Non-finite: dropped from the image, counted, and kept for replay.
                     ++badCount;

@@ -108,8 +108,10 @@ int benchPlan(const std::vector<std::string>& args) {
 
 int runBench(const std::vector<std::string>& args) {
     if (!args.empty() && args[0] == "plan") return benchPlan(std::vector<std::string>(args.begin() + 1, args.end()));
+    if (!args.empty() && args[0] == "accuracy")
+        return runAccuracyCommand(std::vector<std::string>(args.begin() + 1, args.end()));
     if (args.empty() || (args[0] != "accel" && args[0] != "-h" && args[0] != "--help"))
-        throw UsageError("usage: kiln bench accel|plan SCENE... (see 'kiln bench accel --help', 'kiln bench plan --help')");
+        throw UsageError("usage: kiln bench accel|plan|accuracy SCENE... (see 'kiln bench accel --help', 'kiln bench plan --help')");
     ArgParser parser("bench accel", "SCENE... [--rays N] [--repeats N] [--threads N]");
     int rays = 200000, repeats = 3, threads = int(std::thread::hardware_concurrency());
     AcceleratorChoice choice;

@@ -10,5 +10,6 @@ int runRender(const std::vector<std::string>& args);
 int runInfo(const std::vector<std::string>& args);
 int runCrosscheck(const std::vector<std::string>& args);
 int runBench(const std::vector<std::string>& args);
+int runAccuracyCommand(const std::vector<std::string>& args);  // kiln bench accuracy
 
 }  // namespace kiln

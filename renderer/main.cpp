@@ -19,6 +19,7 @@ constexpr const char* kUsage =
     "  crosscheck SCENE  trace the same rays through Embree and the reference BVH and compare\n"
     "  bench accel       build time and rays/s of both accelerators\n"
     "  bench plan        render time of the plan's specialised path against the general one\n"
+    "  bench accuracy    error against time over spp, strategies, depth, adaptive sampling\n"
     "\n"
     "'kiln <command> --help' lists each command's options.\n";
 

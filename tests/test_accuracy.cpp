@@ -1,0 +1,94 @@
+// The accuracy tool's statistics on synthetic images with known answers, and a smoke run of the sweep.
+#include <fstream>
+
+#include "renderer/accuracy.h"
+#include "test_support.h"
+
+namespace kiln {
+namespace {
+
+Image flat(int w, int h, float v) {
+    Image img;
+    img.width = w, img.height = h;
+    img.pixels.assign(size_t(w) * h, Color(v));
+    return img;
+}
+
+TEST(AccuracyStats, KnownErrors) {
+    Image ref = flat(4, 3, 0.5f), test = flat(4, 3, 0.6f);
+    ErrorStats e = compareImages(test, ref);
+    EXPECT_NEAR(e.rmse, 0.1, 1e-6);
+    EXPECT_NEAR(e.bias, 0.1, 1e-6);
+    EXPECT_NEAR(e.relMse, 0.01 / (0.25 + 0.01), 1e-6);
+    EXPECT_EQ(compareImages(ref, ref).rmse, 0.0);
+    // A reference with known variance: its share is removed from the squared error.
+    ref.variance.assign(ref.pixels.size(), 0.0075);
+    EXPECT_NEAR(compareImages(test, ref).rmse, std::sqrt(0.01 - 0.0075), 1e-6);
+}
+
+TEST(AccuracyStats, LogLogSlope) {
+    std::vector<double> x, y, z;
+    for (double s = 1; s <= 1024; s *= 2) x.push_back(s), y.push_back(3.0 / s), z.push_back(0.2 / std::sqrt(s));
+    EXPECT_NEAR(logLogSlope(x, y), -1.0, 1e-12);
+    EXPECT_NEAR(logLogSlope(x, z), -0.5, 1e-12);
+    EXPECT_EQ(logLogSlope({1.0}, {1.0}), 0.0);  // one point fits no line
+    EXPECT_NEAR(efficiency(0.01, 2.0), 50.0, 1e-9);
+}
+
+TEST(AccuracyStats, SvgPlotHasSeriesAndTheSlopeLine) {
+    std::string svg = svgLogLogPlot("t", "time", "error", {{"a", {1, 2, 4}, {1, 0.5, 0.25}}, {"b", {1, 10}, {2, 0.2}}}, true);
+    EXPECT_EQ(svg.rfind("<svg", 0), 0u);
+    EXPECT_NE(svg.find("</svg>"), std::string::npos);
+    size_t polylines = 0;
+    for (size_t at = svg.find("<polyline"); at != std::string::npos; at = svg.find("<polyline", at + 1)) ++polylines;
+    EXPECT_EQ(polylines, 2u);
+    EXPECT_NE(svg.find("slope -1"), std::string::npos);
+}
+
+TEST(AccuracySweep, QuickRunErrorFallsWithSppAndReusesTheReference) {
+    AccuracyOptions o;
+    o.scene = test::cs184("sky/CBspheres_lambertian.dae");
+    o.outDir = (test::scratchDir() / "acc").string();
+    o.width = 32, o.height = 24, o.referenceSpp = 512, o.quick = true;
+    AccuracyResult first = runAccuracy(o);
+    EXPECT_FALSE(first.referenceCached);
+    std::vector<double> spp, rel;
+    for (const AccuracyRun& r : first.runs)
+        if (r.group == "spp") spp.push_back(r.spp), rel.push_back(r.error.relMse);
+    ASSERT_GE(spp.size(), 4u);
+    EXPECT_LT(rel.back(), rel.front() / 4);            // 16 spp against 1 spp
+    EXPECT_LT(logLogSlope(spp, rel), -0.6);             // about -1
+    for (const char* f : {"accuracy.csv", "error_vs_time.svg", "spp.svg", "summary.md"})
+        EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(o.outDir) / f)) << f;
+    std::ifstream csv(std::filesystem::path(o.outDir) / "accuracy.csv");
+    std::string line;
+    int rows = 0;
+    while (std::getline(csv, line)) ++rows;
+    EXPECT_EQ(rows, int(first.runs.size()) + 1);
+    AccuracyResult second = runAccuracy(o);
+    EXPECT_TRUE(second.referenceCached);
+}
+
+TEST(AccuracySweep, AovErrorsOnRequest) {
+    AccuracyOptions o;
+    o.scene = test::cs184("sky/CBspheres_lambertian.dae");
+    o.outDir = (test::scratchDir() / "acc").string();
+    o.width = 24, o.height = 18, o.referenceSpp = 256, o.quick = true, o.aovs = "direct,indirect";
+    AccuracyResult r = runAccuracy(o);
+    ASSERT_FALSE(r.runs.empty());
+    std::vector<double> direct;
+    for (const AccuracyRun& a : r.runs) {
+        ASSERT_EQ(a.aovErrors.size(), 2u);
+        EXPECT_EQ(a.aovErrors[0].first, "direct");
+        EXPECT_EQ(a.aovErrors[1].first, "indirect");
+        if (a.group == "spp") direct.push_back(a.aovErrors[0].second.relMse);
+    }
+    EXPECT_LT(direct.back(), direct.front());  // the direct layer converges too
+    std::ifstream csv(std::filesystem::path(o.outDir) / "accuracy.csv");
+    std::string header;
+    std::getline(csv, header);
+    EXPECT_NE(header.find("rel_mse_direct,rel_mse_indirect"), std::string::npos) << header;
+}
+
+}  // namespace
+}  // namespace kiln

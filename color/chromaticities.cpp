@@ -14,7 +14,8 @@ Mat3 multiply(const Mat3& a, const Mat3& b) {
 }
 
 Mat3 inverse(const Mat3& m) {
-    double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+    double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+                 m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
                  m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
     Mat3 r;
     r[0][0] = (m[1][1] * m[2][2] - m[1][2] * m[2][1]) / det;
@@ -49,7 +50,8 @@ Mat3 rgbToXyz(const Chromaticities& c) {
 
 // Bradford cone response: adapts XYZ from one white to another.
 Mat3 bradford(double srcX, double srcY, double dstX, double dstY) {
-    const Mat3 b = {{{0.8951, 0.2664, -0.1614}, {-0.7502, 1.7135, 0.0367}, {0.0389, -0.0685, 1.0296}}};
+    const Mat3 b = {
+        {{0.8951, 0.2664, -0.1614}, {-0.7502, 1.7135, 0.0367}, {0.0389, -0.0685, 1.0296}}};
     auto s = xyToXYZ(srcX, srcY), d = xyToXYZ(dstX, dstY);
     Mat3 scale{};
     for (int i = 0; i < 3; ++i) {

@@ -1,5 +1,5 @@
-// Converting RGB with stated chromaticities (an EXR's `chromaticities` attribute) into the working space,
-// linear Rec.709 / D65, with Bradford chromatic adaptation of the white point.
+// Converting RGB with stated chromaticities (an EXR's `chromaticities` attribute) into the working
+// space, linear Rec.709 / D65, with Bradford chromatic adaptation of the white point.
 #pragma once
 
 #include <array>

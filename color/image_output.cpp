@@ -1,10 +1,10 @@
 #include "color/image_output.h"
 
+#include <OpenColorIO/OpenColorIO.h>
 #include <OpenImageIO/color.h>
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
-#include <OpenColorIO/OpenColorIO.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -41,9 +41,11 @@ std::string colorConfigPath() {
     return std::string(KILN_SOURCE_DIR) + "/color/config.ocio";
 }
 
-void writeExr(const std::string& path, const Film& film, const Metadata& metadata, const ExrOptions& options) {
+void writeExr(const std::string& path, const Film& film, const Metadata& metadata,
+              const ExrOptions& options) {
     const AovLayout& layout = film.layout();
-    bool samples = layout.request().has(AovKind::Samples), variance = layout.request().has(AovKind::Variance);
+    bool samples = layout.request().has(AovKind::Samples),
+         variance = layout.request().has(AovKind::Variance);
     int nc = 4 + int(layout.channels().size()) + int(samples) + int(variance);
     OIIO::ImageSpec spec(film.width(), film.height(), nc, OIIO::TypeDesc::FLOAT);
     spec.channelnames = {"R", "G", "B", "A"};
@@ -51,13 +53,20 @@ void writeExr(const std::string& path, const Film& film, const Metadata& metadat
     spec.channelformats.assign(4, colourType);
     for (const AovChannel& c : layout.channels()) {
         spec.channelnames.push_back(c.name);
-        spec.channelformats.push_back(c.colour || c.name.rfind("N.", 0) == 0 ? colourType : OIIO::TypeDesc(OIIO::TypeDesc::FLOAT));
+        spec.channelformats.push_back(c.colour || c.name.rfind("N.", 0) == 0
+                                          ? colourType
+                                          : OIIO::TypeDesc(OIIO::TypeDesc::FLOAT));
     }
-    if (samples) spec.channelnames.push_back("samples"), spec.channelformats.push_back(OIIO::TypeDesc::FLOAT);
-    if (variance) spec.channelnames.push_back("variance"), spec.channelformats.push_back(OIIO::TypeDesc::FLOAT);
+    if (samples)
+        spec.channelnames.push_back("samples"),
+            spec.channelformats.push_back(OIIO::TypeDesc::FLOAT);
+    if (variance)
+        spec.channelnames.push_back("variance"),
+            spec.channelformats.push_back(OIIO::TypeDesc::FLOAT);
     spec.alpha_channel = 3;
     if (options.compression != "zip" && options.compression != "piz")
-        throw std::runtime_error(path + ": unknown EXR compression '" + options.compression + "' (zip or piz)");
+        throw std::runtime_error(path + ": unknown EXR compression '" + options.compression +
+                                 "' (zip or piz)");
     spec.attribute("compression", options.compression);
     spec.attribute("Software", std::string("kiln ") + KILN_VERSION);
     spec.attribute("kiln:version", KILN_VERSION);
@@ -99,11 +108,12 @@ void writeExr(const std::string& path, const Film& film, const Metadata& metadat
     if (ec) throw std::runtime_error(path + ": cannot move EXR into place: " + ec.message());
 }
 
-void writePreview(const std::string& path, const Film& film, const std::string& display, const std::string& view) {
+void writePreview(const std::string& path, const Film& film, const std::string& display,
+                  const std::string& view) {
     OIIO::ImageBuf linear = beautyBuffer(film);
     OIIO::ImageBuf shown;
-    if (!OIIO::ImageBufAlgo::ociodisplay(shown, linear, display, view, "lin_rec709", "", false, "", "",
-                                         &colorConfig()))
+    if (!OIIO::ImageBufAlgo::ociodisplay(shown, linear, display, view, "lin_rec709", "", false, "",
+                                         "", &colorConfig()))
         throw std::runtime_error(path + ": colour transform failed: " + shown.geterror());
     std::string tmp = path + ".tmp" + std::filesystem::path(path).extension().string();
     if (!shown.write(tmp, OIIO::TypeDesc::UINT8)) {
@@ -118,7 +128,8 @@ void writePreview(const std::string& path, const Film& film, const std::string& 
 namespace {
 
 // A 3x5 bitmap font for the legend's digits.
-constexpr uint16_t kDigits[10] = {0x7B6F, 0x2C97, 0x73E7, 0x73CF, 0x5BC9, 0x79CF, 0x79EF, 0x7249, 0x7BEF, 0x7BCF};
+constexpr uint16_t kDigits[10] = {0x7B6F, 0x2C97, 0x73E7, 0x73CF, 0x5BC9,
+                                  0x79CF, 0x79EF, 0x7249, 0x7BEF, 0x7BCF};
 
 void drawNumber(std::vector<float>& rgb, int w, int h, int x0, int y0, uint32_t value, int scale) {
     std::string text = std::to_string(value);
@@ -152,7 +163,8 @@ void writeSampleHeatMap(const std::string& path, const Film& film) {
     int w = film.width(), h = film.height();
     uint32_t lo = UINT32_MAX, hi = 0;
     for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) lo = std::min(lo, film.samples(x, y)), hi = std::max(hi, film.samples(x, y));
+        for (int x = 0; x < w; ++x)
+            lo = std::min(lo, film.samples(x, y)), hi = std::max(hi, film.samples(x, y));
     // The legend: a gradient bar under the image with the range's ends written at its ends.
     int scale = std::max(1, w / 200), barH = 8 * scale, legendH = barH + 7 * scale;
     int H = h + legendH;
@@ -202,8 +214,11 @@ void checkDisplayView(const std::string& display, const std::string& view) {
             haveView |= vn == view;
         }
     }
-    if (!haveDisplay) throw std::invalid_argument("unknown display '" + display + "' (known: " + displays + ")");
-    if (!haveView) throw std::invalid_argument("display '" + display + "' has no view '" + view + "' (known: " + views + ")");
+    if (!haveDisplay)
+        throw std::invalid_argument("unknown display '" + display + "' (known: " + displays + ")");
+    if (!haveView)
+        throw std::invalid_argument("display '" + display + "' has no view '" + view +
+                                    "' (known: " + views + ")");
 }
 
 float displayTransform(float linear, const std::string& display, const std::string& view) {
@@ -211,7 +226,8 @@ float displayTransform(float linear, const std::string& display, const std::stri
     OIIO::ImageBuf src(spec), dst;
     float v[3] = {linear, linear, linear};
     src.setpixel(0, 0, v, 3);
-    if (!OIIO::ImageBufAlgo::ociodisplay(dst, src, display, view, "lin_rec709", "", false, "", "", &colorConfig()))
+    if (!OIIO::ImageBufAlgo::ociodisplay(dst, src, display, view, "lin_rec709", "", false, "", "",
+                                         &colorConfig()))
         throw std::runtime_error("colour transform failed: " + dst.geterror());
     float out[3];
     dst.getpixel(0, 0, out, 3);

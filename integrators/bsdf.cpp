@@ -24,7 +24,9 @@ Bsdf::Bsdf(const Material& material, MicrofacetModel model) : m_(material) {
              material.kind == MaterialKind::Refraction;
 }
 
-bool Bsdf::hasTransmission() const { return m_.kind == MaterialKind::Glass || m_.kind == MaterialKind::Refraction; }
+bool Bsdf::hasTransmission() const {
+    return m_.kind == MaterialKind::Glass || m_.kind == MaterialKind::Refraction;
+}
 
 Color Bsdf::eval(const Vec3& wo, const Vec3& wi) const {
     switch (m_.kind) {
@@ -32,7 +34,8 @@ Color Bsdf::eval(const Vec3& wo, const Vec3& wi) const {
             return sameHemisphere(wo, wi) ? m_.albedo * kInvPi : Color(0.0f);
         case MaterialKind::Microfacet: {
             if (!sameHemisphere(wo, wi)) return Color(0.0f);
-            Vec3 o = wo.z < 0 ? -wo : wo, i = wo.z < 0 ? -wi : wi;  // metal is opaque from both sides
+            Vec3 o = wo.z < 0 ? -wo : wo,
+                 i = wo.z < 0 ? -wi : wi;  // metal is opaque from both sides
             Vec3 h = o + i;
             if (dot(h, h) == 0) return Color(0.0f);
             h = normalize(h);
@@ -44,13 +47,15 @@ Color Bsdf::eval(const Vec3& wo, const Vec3& wi) const {
             float n = m_.shininess, c = dot(reflectLocal(wo), wi);
             return c > 0 ? m_.reflectance * ((n + 2) / (2 * kPi) * std::pow(c, n)) : Color(0.0f);
         }
-        default: return Color(0.0f);  // delta lobes and emission
+        default:
+            return Color(0.0f);  // delta lobes and emission
     }
 }
 
 float Bsdf::pdf(const Vec3& wo, const Vec3& wi) const {
     switch (m_.kind) {
-        case MaterialKind::Lambertian: return sameHemisphere(wo, wi) ? std::abs(wi.z) * kInvPi : 0.0f;
+        case MaterialKind::Lambertian:
+            return sameHemisphere(wo, wi) ? std::abs(wi.z) * kInvPi : 0.0f;
         case MaterialKind::Microfacet: {
             if (!sameHemisphere(wo, wi)) return 0.0f;
             Vec3 o = wo.z < 0 ? -wo : wo, i = wo.z < 0 ? -wi : wi;
@@ -62,7 +67,8 @@ float Bsdf::pdf(const Vec3& wo, const Vec3& wi) const {
         }
         case MaterialKind::Glossy:
             return sameHemisphere(wo, wi) ? phongPdf(reflectLocal(wo), wi, m_.shininess) : 0.0f;
-        default: return 0.0f;
+        default:
+            return 0.0f;
     }
 }
 
@@ -81,7 +87,8 @@ bool Bsdf::sample(const Vec3& wo, float uc, float u1, float u2, BsdfSample& out)
         case MaterialKind::Microfacet: {
             Vec3 h = micro_.sampleH(u1, u2);
             if (wo.z < 0) h = -h;
-            // A microfacet facing away from wo cannot reflect it (its mirror image is counted by -h).
+            // A microfacet facing away from wo cannot reflect it (its mirror image is counted by
+            // -h).
             if (dot(wo, h) <= 0) return false;
             Vec3 wi = reflectAbout(wo, h);
             if (!sameHemisphere(wo, wi)) return false;
@@ -94,7 +101,8 @@ bool Bsdf::sample(const Vec3& wo, float uc, float u1, float u2, BsdfSample& out)
             // Direction around the mirror direction with density (n+1)/(2 pi) cos^n.
             Vec3 r = reflectLocal(wo);
             float n = m_.shininess;
-            float cosA = std::pow(u1, 1 / (n + 1)), sinA = std::sqrt(std::max(0.0f, 1 - cosA * cosA));
+            float cosA = std::pow(u1, 1 / (n + 1)),
+                  sinA = std::sqrt(std::max(0.0f, 1 - cosA * cosA));
             float phi = 2 * kPi * u2;
             Frame frame(r);
             Vec3 wi = frame.toWorld(Vec3(sinA * std::cos(phi), sinA * std::sin(phi), cosA));
@@ -123,13 +131,15 @@ bool Bsdf::sample(const Vec3& wo, float uc, float u1, float u2, BsdfSample& out)
             bool canRefract = refract(wo, n, eta, wt);
             out.delta = true;
             if (glass && (!canRefract || uc < F)) {
-                // Reflection chosen with probability F (or always, under total internal reflection).
+                // Reflection chosen with probability F (or always, under total internal
+                // reflection).
                 out.wi = reflectLocal(wo);
                 out.pdf = canRefract ? F : 1.0f;
                 out.f = m_.reflectance * (canRefract ? F : 1.0f) / std::abs(out.wi.z);
                 return true;
             }
-            if (!canRefract) return false;  // refraction-only material: total internal reflection absorbs
+            if (!canRefract)
+                return false;  // refraction-only material: total internal reflection absorbs
             out.wi = wt;
             out.transmission = true;
             float T = glass ? 1 - F : 1.0f;
@@ -138,7 +148,8 @@ bool Bsdf::sample(const Vec3& wo, float uc, float u1, float u2, BsdfSample& out)
             out.f = m_.transmittance * (T / (eta * eta)) / std::abs(wt.z);
             return true;
         }
-        case MaterialKind::Emission: return false;
+        case MaterialKind::Emission:
+            return false;
     }
     return false;
 }

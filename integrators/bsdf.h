@@ -1,5 +1,6 @@
-// BSDFs of every material kind, evaluated in the local shading frame (z = the shading normal as the file
-// orients it, so z < 0 is "inside" for dielectrics). Sampling, pdf and evaluation agree (chi-square tests).
+// BSDFs of every material kind, evaluated in the local shading frame (z = the shading normal as the
+// file orients it, so z < 0 is "inside" for dielectrics). Sampling, pdf and evaluation agree
+// (chi-square tests).
 #pragma once
 
 #include "integrators/microfacet.h"
@@ -9,15 +10,15 @@
 namespace kiln {
 
 struct BsdfSample {
-    Color f;          // BSDF value (for delta lobes: the value whose ratio to pdf is the weight)
-    Vec3 wi;          // local
-    float pdf = 0;    // solid angle; for delta lobes the discrete probability of the lobe
+    Color f;        // BSDF value (for delta lobes: the value whose ratio to pdf is the weight)
+    Vec3 wi;        // local
+    float pdf = 0;  // solid angle; for delta lobes the discrete probability of the lobe
     bool delta = false;
     bool transmission = false;
 };
 
 class Bsdf {
-public:
+  public:
     explicit Bsdf(const Material& material, MicrofacetModel model = MicrofacetModel::Beckmann);
     bool isDelta() const { return delta_; }
     bool isBlack() const { return m_.kind == MaterialKind::Emission; }
@@ -28,7 +29,7 @@ public:
     // uc picks a lobe (glass), (u1, u2) the direction. False when no direction is produced.
     bool sample(const Vec3& wo, float uc, float u1, float u2, BsdfSample& out) const;
 
-private:
+  private:
     const Material& m_;
     Microfacet micro_;
     bool delta_;

@@ -1,4 +1,5 @@
-// Piecewise-constant 1D and 2D distributions for importance sampling (lights by power, environment maps).
+// Piecewise-constant 1D and 2D distributions for importance sampling (lights by power, environment
+// maps).
 #pragma once
 
 #include <algorithm>
@@ -7,7 +8,7 @@
 namespace kiln {
 
 class Distribution1D {
-public:
+  public:
     Distribution1D() = default;
     explicit Distribution1D(std::vector<float> f) : f_(std::move(f)), cdf_(f_.size() + 1, 0.0f) {
         for (size_t i = 0; i < f_.size(); ++i) cdf_[i + 1] = cdf_[i] + std::max(0.0f, f_[i]);
@@ -38,7 +39,7 @@ public:
     float density(size_t i) const { return pmf(i) * float(f_.size()); }
     float integral() const { return uniform_ ? 0.0f : total_ / float(f_.size()); }
 
-private:
+  private:
     size_t index(float u) const {
         size_t i = size_t(std::upper_bound(cdf_.begin(), cdf_.end(), u) - cdf_.begin());
         i = std::clamp<size_t>(i, 1, f_.size()) - 1;
@@ -52,7 +53,7 @@ private:
 
 // f(u, v) on a w x h grid (row v, column u).
 class Distribution2D {
-public:
+  public:
     Distribution2D() = default;
     Distribution2D(const std::vector<float>& f, size_t w, size_t h) : w_(w), h_(h) {
         std::vector<float> rowSums(h);
@@ -72,11 +73,12 @@ public:
         pdf = pdfV * pdfU;
     }
     float pdf(float u, float v) const {
-        size_t iu = std::min(size_t(u * float(w_)), w_ - 1), iv = std::min(size_t(v * float(h_)), h_ - 1);
+        size_t iu = std::min(size_t(u * float(w_)), w_ - 1),
+               iv = std::min(size_t(v * float(h_)), h_ - 1);
         return marginal_.density(iv) * rows_[iv].density(iu);
     }
 
-private:
+  private:
     size_t w_ = 0, h_ = 0;
     std::vector<Distribution1D> rows_;
     Distribution1D marginal_;

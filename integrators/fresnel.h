@@ -7,8 +7,8 @@
 
 namespace kiln {
 
-// Reflectance of a dielectric interface; cosThetaI > 0 means arriving from the side with index 1 and
-// eta = n_t / n_i. Handles leaving (cosThetaI < 0) and total internal reflection (returns 1).
+// Reflectance of a dielectric interface; cosThetaI > 0 means arriving from the side with index 1
+// and eta = n_t / n_i. Handles leaving (cosThetaI < 0) and total internal reflection (returns 1).
 inline float fresnelDielectric(float cosThetaI, float eta) {
     cosThetaI = std::clamp(cosThetaI, -1.0f, 1.0f);
     if (cosThetaI < 0) {
@@ -24,7 +24,8 @@ inline float fresnelDielectric(float cosThetaI, float eta) {
     return 0.5f * (rParl * rParl + rPerp * rPerp);
 }
 
-// Reflectance of a conductor with complex index eta + i k (relative to the outside medium), per channel.
+// Reflectance of a conductor with complex index eta + i k (relative to the outside medium), per
+// channel.
 inline float fresnelConductor1(float cosThetaI, float eta, float k) {
     cosThetaI = std::clamp(cosThetaI, 0.0f, 1.0f);
     float cos2 = cosThetaI * cosThetaI, sin2 = 1 - cos2;

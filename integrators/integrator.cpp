@@ -2,24 +2,35 @@
 
 #include <stdexcept>
 
-#include "integrators/normals.h"
 #include "integrators/fresnel.h"
+#include "integrators/normals.h"
 #include "integrators/path.h"
 #include "renderer/interaction.h"
 
 namespace kiln {
 
-void Integrator::recordSurface(const Ray& ray, const Hit& hit, const SurfaceInteraction& si, SampleRecord& r) const {
+void Integrator::recordSurface(const Ray& ray, const Hit& hit, const SurfaceInteraction& si,
+                               SampleRecord& r) const {
     const Material& m = scene_.materials[si.material];
     if (aovs_.has(AovKind::Albedo)) {
         switch (m.kind) {
-            case MaterialKind::Lambertian: r.albedo = m.albedo; break;
+            case MaterialKind::Lambertian:
+                r.albedo = m.albedo;
+                break;
             case MaterialKind::Mirror:
-            case MaterialKind::Glossy: r.albedo = m.reflectance; break;
-            case MaterialKind::Microfacet: r.albedo = fresnelConductor(1.0f, m.eta, m.k); break;
+            case MaterialKind::Glossy:
+                r.albedo = m.reflectance;
+                break;
+            case MaterialKind::Microfacet:
+                r.albedo = fresnelConductor(1.0f, m.eta, m.k);
+                break;
             case MaterialKind::Glass:
-            case MaterialKind::Refraction: r.albedo = m.transmittance; break;
-            case MaterialKind::Emission: r.albedo = Color(0.0f); break;
+            case MaterialKind::Refraction:
+                r.albedo = m.transmittance;
+                break;
+            case MaterialKind::Emission:
+                r.albedo = Color(0.0f);
+                break;
         }
     }
     r.normal = si.ns;
@@ -31,11 +42,12 @@ void Integrator::recordSurface(const Ray& ray, const Hit& hit, const SurfaceInte
 
 const char* integratorNames() { return "path, normals"; }
 
-std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Scene& scene, const Accelerator& accel,
-                                           const PathOptions& options) {
+std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Scene& scene,
+                                           const Accelerator& accel, const PathOptions& options) {
     if (name == "path") return std::make_unique<PathIntegrator>(scene, accel, options);
     if (name == "normals") return std::make_unique<NormalsIntegrator>(scene, accel);
-    throw std::invalid_argument("unknown integrator '" + name + "' (known: " + integratorNames() + ")");
+    throw std::invalid_argument("unknown integrator '" + name + "' (known: " + integratorNames() +
+                                ")");
 }
 
 }  // namespace kiln

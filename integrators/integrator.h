@@ -16,11 +16,12 @@ struct RayCounter {
 };
 
 class Integrator {
-public:
+  public:
     Integrator(const Scene& scene, const Accelerator& accel) : scene_(scene), accel_(accel) {}
     virtual ~Integrator() = default;
     // Radiance along a camera ray into record.L, and the AOVs requested by setAovs().
-    virtual void Li(const Ray& ray, Sampler& sampler, RayCounter& counter, SampleRecord& record) const = 0;
+    virtual void Li(const Ray& ray, Sampler& sampler, RayCounter& counter,
+                    SampleRecord& record) const = 0;
     Color Li(const Ray& ray, Sampler& sampler, RayCounter& counter) const {
         SampleRecord r;
         r.reset(aovs_);
@@ -30,9 +31,10 @@ public:
     virtual const char* name() const = 0;
     void setAovs(const AovRequest& aovs) { aovs_ = aovs; }
 
-protected:
+  protected:
     // First-visible-surface AOVs (albedo, N, P, Z, ids), shared by every integrator.
-    void recordSurface(const Ray& ray, const Hit& hit, const struct SurfaceInteraction& si, SampleRecord& r) const;
+    void recordSurface(const Ray& ray, const Hit& hit, const struct SurfaceInteraction& si,
+                       SampleRecord& r) const;
 
     const Scene& scene_;
     const Accelerator& accel_;
@@ -42,8 +44,8 @@ protected:
 struct PathOptions;
 
 // Names: "path" (the default), "normals". Throws std::invalid_argument for an unknown name.
-std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Scene& scene, const Accelerator& accel,
-                                           const PathOptions& options);
+std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Scene& scene,
+                                           const Accelerator& accel, const PathOptions& options);
 const char* integratorNames();
 
 }  // namespace kiln

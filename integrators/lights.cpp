@@ -1,7 +1,6 @@
 #include "integrators/lights.h"
 
 #include <OpenImageIO/imageio.h>
-
 #include <OpenImageIO/strutil.h>
 
 #include <cmath>
@@ -15,7 +14,8 @@ namespace {
 
 float spotFalloff(const Light& l, const Vec3& wFromLight) {
     float c = dot(normalize(l.direction), wFromLight);
-    float cosOuter = std::cos(radians(l.spotOuterDeg)), cosInner = std::cos(radians(l.spotInnerDeg));
+    float cosOuter = std::cos(radians(l.spotOuterDeg)),
+          cosInner = std::cos(radians(l.spotInnerDeg));
     if (c <= cosOuter) return 0;
     if (c >= cosInner) return 1;
     float t = (c - cosOuter) / (cosInner - cosOuter);
@@ -30,23 +30,29 @@ EnvironmentMap loadEnvironment(const Light& l) {
         return env;
     }
     auto in = OIIO::ImageInput::open(l.environmentPath);
-    if (!in) throw std::runtime_error(l.environmentPath + ": cannot read environment map: " + OIIO::geterror());
+    if (!in)
+        throw std::runtime_error(l.environmentPath +
+                                 ": cannot read environment map: " + OIIO::geterror());
     const OIIO::ImageSpec& spec = in->spec();
     env.width = spec.width, env.height = spec.height;
     std::vector<float> data(size_t(spec.width) * spec.height * spec.nchannels);
     if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, data.data()))
-        throw std::runtime_error(l.environmentPath + ": cannot read environment map: " + in->geterror());
-    // Convert to the working space from what the file states: EXR chromaticities (e.g. a D50 white), or
-    // an sRGB-encoded 8-bit image. Without either, the file is taken as linear Rec.709.
+        throw std::runtime_error(l.environmentPath +
+                                 ": cannot read environment map: " + in->geterror());
+    // Convert to the working space from what the file states: EXR chromaticities (e.g. a D50
+    // white), or an sRGB-encoded 8-bit image. Without either, the file is taken as linear Rec.709.
     Mat3 toWorking = {{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
-    if (const OIIO::ParamValue* chroma = spec.find_attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8))) {
+    if (const OIIO::ParamValue* chroma =
+            spec.find_attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8))) {
         Chromaticities c;
         for (int i = 0; i < 8; ++i) c[size_t(i)] = static_cast<const float*>(chroma->data())[i];
         if (!sameChromaticities(c, kRec709D65)) toWorking = toWorkingSpace(c);
     }
     bool srgbEncoded = spec.format.basetype == OIIO::TypeDesc::UINT8 ||
                        OIIO::Strutil::iequals(spec.get_string_attribute("oiio:ColorSpace"), "sRGB");
-    auto decode = [](float v) { return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f); };
+    auto decode = [](float v) {
+        return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
+    };
     env.pixels.resize(size_t(env.width) * env.height);
     std::vector<float> weight(env.pixels.size());
     for (int y = 0; y < env.height; ++y) {
@@ -55,9 +61,11 @@ EnvironmentMap loadEnvironment(const Light& l) {
             const float* p = &data[(size_t(y) * env.width + x) * spec.nchannels];
             Color c = Color(p[0], p[1], p[2]);
             if (srgbEncoded) c = Color(decode(c.x), decode(c.y), decode(c.z));
-            c = Color(float(toWorking[0][0] * c.x + toWorking[0][1] * c.y + toWorking[0][2] * c.z),
-                      float(toWorking[1][0] * c.x + toWorking[1][1] * c.y + toWorking[1][2] * c.z),
-                      float(toWorking[2][0] * c.x + toWorking[2][1] * c.y + toWorking[2][2] * c.z)) * env.scale;
+            c = Color(
+                    float(toWorking[0][0] * c.x + toWorking[0][1] * c.y + toWorking[0][2] * c.z),
+                    float(toWorking[1][0] * c.x + toWorking[1][1] * c.y + toWorking[1][2] * c.z),
+                    float(toWorking[2][0] * c.x + toWorking[2][1] * c.y + toWorking[2][2] * c.z)) *
+                env.scale;
             if (!isFinite(c)) c = Color(0.0f);
             c = max(c, Color(0.0f));
             env.pixels[size_t(y) * env.width + x] = c;
@@ -87,7 +95,8 @@ Color EnvironmentMap::lookup(const Vec3& dir) const {
     if (pixels.empty()) return constant;
     float u, v;
     coordinates(dir, u, v);
-    int x = std::min(width - 1, int(u * float(width))), y = std::min(height - 1, int(v * float(height)));
+    int x = std::min(width - 1, int(u * float(width))),
+        y = std::min(height - 1, int(v * float(height)));
     return pixels[size_t(y) * width + x];
 }
 
@@ -104,7 +113,8 @@ LightSet::LightSet(const Scene& scene) {
                 const TriangleMesh& m = scene.meshes[l.mesh];
                 std::vector<float> areas;
                 for (size_t t = 0; t < m.triangleCount(); ++t) {
-                    Vec3 a = m.vertex(m.indices[3 * t]), bb = m.vertex(m.indices[3 * t + 1]), c = m.vertex(m.indices[3 * t + 2]);
+                    Vec3 a = m.vertex(m.indices[3 * t]), bb = m.vertex(m.indices[3 * t + 1]),
+                         c = m.vertex(m.indices[3 * t + 2]);
                     e.triangles.insert(e.triangles.end(), {a, bb - a, c - a});
                     areas.push_back(0.5f * length(cross(bb - a, c - a)));
                     e.area += areas.back();
@@ -143,12 +153,18 @@ float LightSet::power(const Entry& e, float r) const {
     float lum = luminance(l.radiance);
     switch (l.kind) {
         case LightKind::Area:
-        case LightKind::MeshEmitter: return lum * e.area * kPi * (e.oneSided ? 1.0f : 2.0f);
-        case LightKind::Point: return 4 * kPi * lum;
+        case LightKind::MeshEmitter:
+            return lum * e.area * kPi * (e.oneSided ? 1.0f : 2.0f);
+        case LightKind::Point:
+            return 4 * kPi * lum;
         case LightKind::Spot:
-            return 2 * kPi * lum * (1 - 0.5f * (std::cos(radians(l.spotInnerDeg)) + std::cos(radians(l.spotOuterDeg))));
-        case LightKind::Directional: return lum * kPi * r * r;
-        case LightKind::Ambient: return lum * kPi * kPi * r * r;
+            return 2 * kPi * lum *
+                   (1 -
+                    0.5f * (std::cos(radians(l.spotInnerDeg)) + std::cos(radians(l.spotOuterDeg))));
+        case LightKind::Directional:
+            return lum * kPi * r * r;
+        case LightKind::Ambient:
+            return lum * kPi * kPi * r * r;
         case LightKind::Environment: {
             float avg = e.env.pixels.empty() ? luminance(e.env.constant) : 0.0f;
             for (const Color& c : e.env.pixels) avg += luminance(c) / float(e.env.pixels.size());
@@ -160,14 +176,15 @@ float LightSet::power(const Entry& e, float r) const {
 
 bool LightSet::hittable(size_t i) const {
     const Light& l = *lights_[i].light;
-    return l.kind == LightKind::MeshEmitter || l.kind == LightKind::Environment || l.kind == LightKind::Ambient ||
-           (l.kind == LightKind::Area && l.hasMesh);
+    return l.kind == LightKind::MeshEmitter || l.kind == LightKind::Environment ||
+           l.kind == LightKind::Ambient || (l.kind == LightKind::Area && l.hasMesh);
 }
 
 bool LightSet::allDelta() const {
     for (const Entry& e : lights_) {
         LightKind k = e.light->kind;
-        if (k != LightKind::Point && k != LightKind::Spot && k != LightKind::Directional) return false;
+        if (k != LightKind::Point && k != LightKind::Spot && k != LightKind::Directional)
+            return false;
     }
     return true;
 }
@@ -185,7 +202,8 @@ bool LightSet::sample(size_t i, const Vec3& ref, float u1, float u2, LightSample
     switch (l.kind) {
         case LightKind::Area:
         case LightKind::MeshEmitter: {
-            // One uniform number picks the triangle by area and, rescaled within its slice, the point.
+            // One uniform number picks the triangle by area and, rescaled within its slice, the
+            // point.
             float pdfUnused;
             size_t t;
             float x = e.triangleArea.sampleContinuous(u1, pdfUnused, t);
@@ -266,7 +284,8 @@ float LightSet::pdf(size_t i, const Vec3& ref, const Vec3& wi, const Vec3& x, co
             float cosL = std::abs(dot(n, wi));
             return cosL > 0 && e.area > 0 ? dot(d, d) / (cosL * e.area) : 0.0f;
         }
-        case LightKind::Ambient: return wi.y > 0 ? uniformHemispherePdf() : 0.0f;
+        case LightKind::Ambient:
+            return wi.y > 0 ? uniformHemispherePdf() : 0.0f;
         case LightKind::Environment: {
             if (e.env.pixels.empty()) return uniformSpherePdf();
             float u, v;
@@ -274,7 +293,8 @@ float LightSet::pdf(size_t i, const Vec3& ref, const Vec3& wi, const Vec3& x, co
             float sinTheta = std::sin(v * kPi);
             return sinTheta > 0 ? e.env.distribution.pdf(u, v) / (2 * kPi * kPi * sinTheta) : 0.0f;
         }
-        default: return 0.0f;  // delta lights are never hit
+        default:
+            return 0.0f;  // delta lights are never hit
     }
 }
 

@@ -10,11 +10,11 @@
 namespace kiln {
 
 struct LightSample {
-    Color Li;        // radiance arriving at the reference point (before visibility)
-    Vec3 wi;         // unit direction towards the light
-    Vec3 p;          // point on the light (finite lights)
-    Vec3 pError;     // absolute error bound of p
-    float pdf = 0;   // solid angle density; 1 for delta lights
+    Color Li;       // radiance arriving at the reference point (before visibility)
+    Vec3 wi;        // unit direction towards the light
+    Vec3 p;         // point on the light (finite lights)
+    Vec3 pError;    // absolute error bound of p
+    float pdf = 0;  // solid angle density; 1 for delta lights
     bool delta = false;
     bool infinite = false;  // shadow ray has no end point
 };
@@ -32,7 +32,7 @@ struct EnvironmentMap {
 };
 
 class LightSet {
-public:
+  public:
     explicit LightSet(const Scene& scene);
     size_t size() const { return lights_.size(); }
     const Light& light(size_t i) const { return *lights_[i].light; }
@@ -42,21 +42,29 @@ public:
     float selectPmf(size_t i) const { return power_.pmf(i); }
 
     bool sample(size_t i, const Vec3& ref, float u1, float u2, LightSample& out) const;
-    // Solid-angle density of sampling direction wi from ref towards light i, given the point hit on it.
-    float pdf(size_t i, const Vec3& ref, const Vec3& wi, const Vec3& pointOnLight, const Vec3& lightNormal) const;
-    // Radiance leaving an emitting surface point towards `towards` (meshes bound to lights and materials).
-    Color emitted(size_t i, const Vec3& pointOnLight, const Vec3& lightNormal, const Vec3& towards) const;
+    // Solid-angle density of sampling direction wi from ref towards light i, given the point hit on
+    // it.
+    float pdf(size_t i, const Vec3& ref, const Vec3& wi, const Vec3& pointOnLight,
+              const Vec3& lightNormal) const;
+    // Radiance leaving an emitting surface point towards `towards` (meshes bound to lights and
+    // materials).
+    Color emitted(size_t i, const Vec3& pointOnLight, const Vec3& lightNormal,
+                  const Vec3& towards) const;
 
-    // Whether rays can hit the light (emissive geometry, lights at infinity); NEE alone sees the others.
+    // Whether rays can hit the light (emissive geometry, lights at infinity); NEE alone sees the
+    // others.
     bool hittable(size_t i) const;
     // Light bound to a mesh (-1 if none): hits on it are emission MIS can weigh.
-    int lightOfMesh(uint32_t mesh) const { return mesh < meshLight_.size() ? meshLight_[mesh] : -1; }
-    // Lights at infinity (environment, ambient) and the radiance each sends along a ray leaving the scene.
+    int lightOfMesh(uint32_t mesh) const {
+        return mesh < meshLight_.size() ? meshLight_[mesh] : -1;
+    }
+    // Lights at infinity (environment, ambient) and the radiance each sends along a ray leaving the
+    // scene.
     const std::vector<size_t>& infiniteLights() const { return infinite_; }
     Color escaped(size_t i, const Vec3& dir, bool cameraRay) const;
     bool allDelta() const;
 
-private:
+  private:
     struct Entry {
         const Light* light;
         // Area lights (rectangle) and mesh emitters: triangles with an area distribution.

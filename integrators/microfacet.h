@@ -18,7 +18,8 @@ struct Microfacet {
         float cos2 = h.z * h.z;
         if (cos2 <= 0) return 0;
         float tan2 = (1 - cos2) / cos2, a2 = alpha * alpha;
-        if (model == MicrofacetModel::Beckmann) return std::exp(-tan2 / a2) / (kPi * a2 * cos2 * cos2);
+        if (model == MicrofacetModel::Beckmann)
+            return std::exp(-tan2 / a2) / (kPi * a2 * cos2 * cos2);
         float d = a2 + tan2;
         return a2 / (kPi * cos2 * cos2 * d * d);
     }
@@ -27,7 +28,8 @@ struct Microfacet {
         if (cos2 <= 0) return 0;
         float tan = std::sqrt(std::max(0.0f, 1 - cos2) / cos2);
         if (tan == 0) return 0;
-        if (model == MicrofacetModel::GGX) return 0.5f * (std::sqrt(1 + alpha * alpha * tan * tan) - 1);
+        if (model == MicrofacetModel::GGX)
+            return 0.5f * (std::sqrt(1 + alpha * alpha * tan * tan) - 1);
         // Beckmann: Walter et al.'s rational approximation of Lambda.
         float a = 1 / (alpha * tan);
         if (a >= 1.6f) return 0;
@@ -38,8 +40,10 @@ struct Microfacet {
     // h with density D(h) |cos theta_h| over solid angle.
     Vec3 sampleH(float u1, float u2) const {
         float tan2;
-        if (model == MicrofacetModel::Beckmann) tan2 = -alpha * alpha * std::log(std::max(1e-12f, 1 - u1));
-        else tan2 = alpha * alpha * u1 / std::max(1e-12f, 1 - u1);
+        if (model == MicrofacetModel::Beckmann)
+            tan2 = -alpha * alpha * std::log(std::max(1e-12f, 1 - u1));
+        else
+            tan2 = alpha * alpha * u1 / std::max(1e-12f, 1 - u1);
         float cosT = 1 / std::sqrt(1 + tan2), sinT = std::sqrt(std::max(0.0f, 1 - cosT * cosT));
         float phi = 2 * kPi * u2;
         return {sinT * std::cos(phi), sinT * std::sin(phi), cosT};

@@ -6,10 +6,11 @@
 namespace kiln {
 
 class NormalsIntegrator final : public Integrator {
-public:
+  public:
     using Integrator::Integrator;
     using Integrator::Li;
-    void Li(const Ray& ray, Sampler& sampler, RayCounter& counter, SampleRecord& record) const override;
+    void Li(const Ray& ray, Sampler& sampler, RayCounter& counter,
+            SampleRecord& record) const override;
     const char* name() const override { return "normals"; }
 };
 

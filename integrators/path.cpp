@@ -6,10 +6,12 @@
 
 namespace kiln {
 
-PathIntegrator::PathIntegrator(const Scene& scene, const Accelerator& accel, const PathOptions& options)
+PathIntegrator::PathIntegrator(const Scene& scene, const Accelerator& accel,
+                               const PathOptions& options)
     : Integrator(scene, accel), opt_(options), lights_(scene) {
     opt_.lightSamples = std::max(1, opt_.lightSamples);
-    trace_ = &PathIntegrator::trace<false, true, false, true>;  // general until a plan says otherwise
+    trace_ =
+        &PathIntegrator::trace<false, true, false, true>;  // general until a plan says otherwise
 }
 
 void PathIntegrator::usePlan(const RenderPlan& plan) {
@@ -22,23 +24,33 @@ void PathIntegrator::usePlan(const RenderPlan& plan) {
     bool split = plan.aovs.splitsLight();
     // Chosen once per render: each combination is its own instantiation.
     static constexpr TraceFn kTable[2][2][2][2] = {
-        {{{&PathIntegrator::trace<false, false, false, false>, &PathIntegrator::trace<false, false, false, true>},
-          {&PathIntegrator::trace<false, false, true, false>, &PathIntegrator::trace<false, false, true, true>}},
-         {{&PathIntegrator::trace<false, true, false, false>, &PathIntegrator::trace<false, true, false, true>},
-          {&PathIntegrator::trace<false, true, true, false>, &PathIntegrator::trace<false, true, true, true>}}},
-        {{{&PathIntegrator::trace<true, false, false, false>, &PathIntegrator::trace<true, false, false, true>},
-          {&PathIntegrator::trace<true, false, true, false>, &PathIntegrator::trace<true, false, true, true>}},
-         {{&PathIntegrator::trace<true, true, false, false>, &PathIntegrator::trace<true, true, false, true>},
-          {&PathIntegrator::trace<true, true, true, false>, &PathIntegrator::trace<true, true, true, true>}}}};
+        {{{&PathIntegrator::trace<false, false, false, false>,
+           &PathIntegrator::trace<false, false, false, true>},
+          {&PathIntegrator::trace<false, false, true, false>,
+           &PathIntegrator::trace<false, false, true, true>}},
+         {{&PathIntegrator::trace<false, true, false, false>,
+           &PathIntegrator::trace<false, true, false, true>},
+          {&PathIntegrator::trace<false, true, true, false>,
+           &PathIntegrator::trace<false, true, true, true>}}},
+        {{{&PathIntegrator::trace<true, false, false, false>,
+           &PathIntegrator::trace<true, false, false, true>},
+          {&PathIntegrator::trace<true, false, true, false>,
+           &PathIntegrator::trace<true, false, true, true>}},
+         {{&PathIntegrator::trace<true, true, false, false>,
+           &PathIntegrator::trace<true, true, false, true>},
+          {&PathIntegrator::trace<true, true, true, false>,
+           &PathIntegrator::trace<true, true, true, true>}}}};
     trace_ = kTable[diffuse][infinite][deltaOnly][split];
 }
 
-void PathIntegrator::Li(const Ray& ray, Sampler& sampler, RayCounter& counter, SampleRecord& record) const {
+void PathIntegrator::Li(const Ray& ray, Sampler& sampler, RayCounter& counter,
+                        SampleRecord& record) const {
     (this->*trace_)(ray, sampler, counter, record);
 }
 
 float PathIntegrator::misWeight(float nf, float fPdf, float ng, float gPdf) const {
-    return opt_.powerHeuristic ? powerHeuristic(nf, fPdf, ng, gPdf) : balanceHeuristic(nf, fPdf, ng, gPdf);
+    return opt_.powerHeuristic ? powerHeuristic(nf, fPdf, ng, gPdf)
+                               : balanceHeuristic(nf, fPdf, ng, gPdf);
 }
 
 namespace {
@@ -48,15 +60,21 @@ Lobe lobeOf(MaterialKind kind, bool transmission) {
     return kind == MaterialKind::Lambertian ? Lobe::Diffuse : Lobe::Specular;
 }
 
-// The BSDF of a diffuse-only scene: Lambert or black (emitters), no Fresnel or specular code at all.
+// The BSDF of a diffuse-only scene: Lambert or black (emitters), no Fresnel or specular code at
+// all.
 class LambertBsdf {
-public:
-    LambertBsdf(const Material& m, MicrofacetModel) : albedo_(m.albedo), black_(m.kind == MaterialKind::Emission) {}
+  public:
+    LambertBsdf(const Material& m, MicrofacetModel)
+        : albedo_(m.albedo), black_(m.kind == MaterialKind::Emission) {}
     bool isDelta() const { return false; }
     bool isBlack() const { return black_; }
     bool hasTransmission() const { return false; }
-    Color eval(const Vec3& wo, const Vec3& wi) const { return wo.z * wi.z > 0 ? albedo_ * kInvPi : Color(0.0f); }
-    float pdf(const Vec3& wo, const Vec3& wi) const { return wo.z * wi.z > 0 ? std::abs(wi.z) * kInvPi : 0.0f; }
+    Color eval(const Vec3& wo, const Vec3& wi) const {
+        return wo.z * wi.z > 0 ? albedo_ * kInvPi : Color(0.0f);
+    }
+    float pdf(const Vec3& wo, const Vec3& wi) const {
+        return wo.z * wi.z > 0 ? std::abs(wi.z) * kInvPi : 0.0f;
+    }
     bool sample(const Vec3& wo, float, float u1, float u2, BsdfSample& out) const {
         out = BsdfSample{};
         out.wi = cosineHemisphere(u1, u2);
@@ -66,7 +84,7 @@ public:
         return out.pdf > 0;
     }
 
-private:
+  private:
     Color albedo_;
     bool black_;
 };
@@ -74,34 +92,42 @@ private:
 }  // namespace
 
 template <bool DiffuseOnly, bool Infinite, bool DeltaLightsOnly, bool SplitLight>
-void PathIntegrator::trace(const Ray& cameraRay, Sampler& sampler, RayCounter& counter, SampleRecord& rec) const {
+void PathIntegrator::trace(const Ray& cameraRay, Sampler& sampler, RayCounter& counter,
+                           SampleRecord& rec) const {
     Color& L = rec.L;
     Color beta(1.0f);
     const bool splitLight = SplitLight && aovs_.splitsLight();
     Lobe firstLobe = Lobe::Diffuse;  // how the path left its first vertex (for the lobe AOVs)
     // Light that bounced `bounce` times; with accumulation off only the maxDepth-th bounce is kept.
-    // Every contribution lands in exactly one of emission / direct / indirect, so they sum to the beauty.
+    // Every contribution lands in exactly one of emission / direct / indirect, so they sum to the
+    // beauty.
     auto add = [&](int bounce, const Color& c, Lobe lobe) {
         if (!opt_.accumulateBounces && bounce != opt_.maxDepth) return;
         L += c;
         if constexpr (!SplitLight) return;
         if (!splitLight) return;
-        if (bounce == 0) rec.emission += c;
-        else if (bounce == 1) rec.direct += c;
-        else rec.indirect += c;
+        if (bounce == 0)
+            rec.emission += c;
+        else if (bounce == 1)
+            rec.direct += c;
+        else
+            rec.indirect += c;
         if (bounce >= 1) rec.lobes[bounce == 1 ? 0 : 1][int(lobe)] += c;
         if (bounce >= 1 && bounce <= aovs_.bounceLayers) rec.bounces[bounce - 1] += c;
     };
     const float nLight = float(opt_.lightSamples);
     const bool useNee = opt_.sampling != DirectSampling::Hemisphere && lights_.size() > 0;
     Ray ray = cameraRay;
-    bool specular = true;  // the previous vertex was the camera or a delta lobe: nothing else could see the light
+    bool specular = true;  // the previous vertex was the camera or a delta lobe: nothing else could
+                           // see the light
     float prevPdf = 0;
     Vec3 prevP = ray.origin;
 
-    // Weight of emission found by following the BSDF-sampled ray, against NEE having sampled light li.
+    // Weight of emission found by following the BSDF-sampled ray, against NEE having sampled light
+    // li.
     auto emissionWeight = [&](int li, const Vec3& dir, const Vec3& x, const Vec3& n) {
-        if constexpr (DeltaLightsOnly) return 1.0f;  // no light can be hit: emission here is unweighted
+        if constexpr (DeltaLightsOnly)
+            return 1.0f;  // no light can be hit: emission here is unweighted
         if (specular || li < 0 || !useNee) return 1.0f;
         if (opt_.sampling == DirectSampling::Light) return 0.0f;
         float pl = lights_.selectPmf(size_t(li)) * lights_.pdf(size_t(li), prevP, dir, x, n);
@@ -117,7 +143,8 @@ void PathIntegrator::trace(const Ray& cameraRay, Sampler& sampler, RayCounter& c
                 for (size_t i : lights_.infiniteLights()) {
                     Color Le = lights_.escaped(i, dir, bounce == 0);
                     if (maxComponent(Le) > 0)
-                        add(bounce, beta * Le * emissionWeight(int(i), dir, Vec3(0.0f), Vec3(0.0f)), firstLobe);
+                        add(bounce, beta * Le * emissionWeight(int(i), dir, Vec3(0.0f), Vec3(0.0f)),
+                            firstLobe);
                 }
             }
             break;
@@ -126,15 +153,19 @@ void PathIntegrator::trace(const Ray& cameraRay, Sampler& sampler, RayCounter& c
         const Material& mat = scene_.materials[si.material];
         if (bounce == 0) recordSurface(ray, hit, si, rec);
         if (maxComponent(mat.emission) > 0) {
-            int li = (hit.shape != kSphereShape && hit.instance == kInvalidId) ? lights_.lightOfMesh(hit.shape) : -1;
-            Color Le = li >= 0 ? lights_.emitted(size_t(li), si.p, si.ng, ray.origin) : mat.emission;
+            int li = (hit.shape != kSphereShape && hit.instance == kInvalidId)
+                         ? lights_.lightOfMesh(hit.shape)
+                         : -1;
+            Color Le =
+                li >= 0 ? lights_.emitted(size_t(li), si.p, si.ng, ray.origin) : mat.emission;
             add(bounce, beta * Le * emissionWeight(li, normalize(ray.dir), si.p, si.ng), firstLobe);
         }
         if (bounce >= opt_.maxDepth) break;
         std::conditional_t<DiffuseOnly, LambertBsdf, Bsdf> bsdf(mat, opt_.microfacet);
         if (bsdf.isBlack()) break;
-        // A shading normal bent so far that the viewer is below its tangent plane would make the surface
-        // black: shade such a vertex with the geometric normal instead (on the stored normal's side).
+        // A shading normal bent so far that the viewer is below its tangent plane would make the
+        // surface black: shade such a vertex with the geometric normal instead (on the stored
+        // normal's side).
         Vec3 woWorld = -normalize(ray.dir);
         Vec3 shadingN = si.nsStored;
         if (dot(woWorld, si.ns) <= 0) shadingN = dot(si.ns, si.nsStored) >= 0 ? si.ng : -si.ng;
@@ -151,8 +182,10 @@ void PathIntegrator::trace(const Ray& cameraRay, Sampler& sampler, RayCounter& c
                 if (!lights_.sample(li, si.p, u1, u2, ls) || pmf == 0) continue;
                 Vec3 wi = frame.toLocal(ls.wi);
                 Color f = bsdf.eval(wo, wi) * std::abs(wi.z);
-                // Geometric side check: no light from behind the actual surface through a bent normal.
-                if (maxComponent(f) <= 0 || (dot(ls.wi, si.ng) <= 0 && !bsdf.hasTransmission())) continue;
+                // Geometric side check: no light from behind the actual surface through a bent
+                // normal.
+                if (maxComponent(f) <= 0 || (dot(ls.wi, si.ng) <= 0 && !bsdf.hasTransmission()))
+                    continue;
                 Ray shadow = ls.infinite ? spawnRay(si, ls.wi) : spawnRayTo(si, ls.p, ls.pError);
                 ++counter.rays;
                 if (accel_.occluded(shadow)) continue;
@@ -161,12 +194,13 @@ void PathIntegrator::trace(const Ray& cameraRay, Sampler& sampler, RayCounter& c
                 if constexpr (!DeltaLightsOnly)
                     if (!ls.delta && opt_.sampling != DirectSampling::Light && lights_.hittable(li))
                         w = misWeight(nLight, pl, 1, bsdf.pdf(wo, wi));
-                add(bounce + 1, beta * f * ls.Li * (w / (pl * nLight)), bounce == 0 ? lobeOf(mat.kind, false) : firstLobe);
+                add(bounce + 1, beta * f * ls.Li * (w / (pl * nLight)),
+                    bounce == 0 ? lobeOf(mat.kind, false) : firstLobe);
             }
         }
 
-        // Continue the path. With only delta lights and no emitters, a ray after the last bounce could find
-        // nothing: not traced.
+        // Continue the path. With only delta lights and no emitters, a ray after the last bounce
+        // could find nothing: not traced.
         if constexpr (DeltaLightsOnly)
             if (bounce + 1 >= opt_.maxDepth) break;
         BsdfSample bs;
@@ -182,8 +216,8 @@ void PathIntegrator::trace(const Ray& cameraRay, Sampler& sampler, RayCounter& c
             if (!bsdf.sample(wo, uc, u1, u2, bs)) break;
         }
         if (bs.pdf <= 0 || maxComponent(bs.f) <= 0) break;
-        // The shading frame may send a reflection below the real surface, or a refraction back out of it:
-        // following either would leak light through thin walls.
+        // The shading frame may send a reflection below the real surface, or a refraction back out
+        // of it: following either would leak light through thin walls.
         Vec3 wiWorld = frame.toWorld(bs.wi);
         if ((dot(wiWorld, si.ng) > 0) == bs.transmission) break;
         if (bounce == 0) firstLobe = lobeOf(mat.kind, bs.transmission);

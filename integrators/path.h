@@ -1,5 +1,6 @@
-// Path tracing with next-event estimation at every vertex, MIS against BSDF sampling, Russian roulette and
-// CS184 depth semantics (-m 0: emission only, 1: direct lighting, >= 2: global illumination).
+// Path tracing with next-event estimation at every vertex, MIS against BSDF sampling, Russian
+// roulette and CS184 depth semantics (-m 0: emission only, 1: direct lighting, >= 2: global
+// illumination).
 #pragma once
 
 #include "integrators/bsdf.h"
@@ -25,20 +26,23 @@ struct PathOptions {
 };
 
 class PathIntegrator final : public Integrator {
-public:
+  public:
     PathIntegrator(const Scene& scene, const Accelerator& accel, const PathOptions& options);
     using Integrator::Li;
-    void Li(const Ray& ray, Sampler& sampler, RayCounter& counter, SampleRecord& record) const override;
+    void Li(const Ray& ray, Sampler& sampler, RayCounter& counter,
+            SampleRecord& record) const override;
     const char* name() const override { return "path"; }
     const PathOptions& options() const { return opt_; }
     const LightSet& lights() const { return lights_; }
-    // Chooses the path specialised for the plan (the general one until called, or with plan.general).
+    // Chooses the path specialised for the plan (the general one until called, or with
+    // plan.general).
     void usePlan(const RenderPlan& plan);
 
-private:
+  private:
     template <bool DiffuseOnly, bool Infinite, bool DeltaLightsOnly, bool SplitLight>
     void trace(const Ray& ray, Sampler& sampler, RayCounter& counter, SampleRecord& record) const;
-    using TraceFn = void (PathIntegrator::*)(const Ray&, Sampler&, RayCounter&, SampleRecord&) const;
+    using TraceFn = void (PathIntegrator::*)(const Ray&, Sampler&, RayCounter&,
+                                             SampleRecord&) const;
     TraceFn trace_;
     float misWeight(float nf, float fPdf, float ng, float gPdf) const;
     PathOptions opt_;

@@ -31,18 +31,21 @@ float escapeFraction(const Scene& scene, const Accelerator& accel) {
 
 }  // namespace
 
-RenderPlan planFor(const Scene& scene, const Accelerator& accel, const AovRequest& aovs, bool general) {
+RenderPlan planFor(const Scene& scene, const Accelerator& accel, const AovRequest& aovs,
+                   bool general) {
     RenderPlan p;
     p.general = general;
     p.aovs = aovs;
     std::set<uint32_t> used;
-    for (const TriangleMesh& m : scene.meshes) used.insert(m.materialIds.begin(), m.materialIds.end());
+    for (const TriangleMesh& m : scene.meshes)
+        used.insert(m.materialIds.begin(), m.materialIds.end());
     for (const Sphere& s : scene.spheres) used.insert(s.material);
     bool anyDiffuse = false;
     p.diffuseOnly = true;
     for (uint32_t id : used) {
         MaterialKind k = scene.materials[id].kind;
-        p.deltaSpecular |= k == MaterialKind::Mirror || k == MaterialKind::Glass || k == MaterialKind::Refraction;
+        p.deltaSpecular |=
+            k == MaterialKind::Mirror || k == MaterialKind::Glass || k == MaterialKind::Refraction;
         p.transmission |= k == MaterialKind::Glass || k == MaterialKind::Refraction;
         p.roughConductor |= k == MaterialKind::Microfacet;
         p.glossy |= k == MaterialKind::Glossy;
@@ -52,7 +55,8 @@ RenderPlan planFor(const Scene& scene, const Accelerator& accel, const AovReques
     }
     p.deltaLightsOnly = !scene.lights.empty();
     for (const Light& l : scene.lights) {
-        bool delta = l.kind == LightKind::Point || l.kind == LightKind::Spot || l.kind == LightKind::Directional;
+        bool delta = l.kind == LightKind::Point || l.kind == LightKind::Spot ||
+                     l.kind == LightKind::Directional;
         p.deltaLightsOnly &= delta;
         p.areaLights |= l.kind == LightKind::Area || l.kind == LightKind::MeshEmitter;
         p.infiniteLights |= l.kind == LightKind::Environment || l.kind == LightKind::Ambient;
@@ -64,29 +68,46 @@ RenderPlan planFor(const Scene& scene, const Accelerator& accel, const AovReques
     p.escapeFraction = escapeFraction(scene, accel);
     p.closed = p.escapeFraction < 0.01f;
 
-    auto say = [&](const std::string& decision, const std::string& reason) { p.decisions.push_back(decision + ": " + reason); };
+    auto say = [&](const std::string& decision, const std::string& reason) {
+        p.decisions.push_back(decision + ": " + reason);
+    };
     if (general) say("general path", "--plan general: every feature on, as a baseline");
-    say(p.diffuseOnly && !general ? "Lambert-only shading (no Fresnel, no specular code)" : "full BSDF set",
-        p.diffuseOnly ? "every surface is Lambertian or an emitter" : "the scene has non-Lambertian surfaces");
+    say(p.diffuseOnly && !general ? "Lambert-only shading (no Fresnel, no specular code)"
+                                  : "full BSDF set",
+        p.diffuseOnly ? "every surface is Lambertian or an emitter"
+                      : "the scene has non-Lambertian surfaces");
     if (p.deltaLightsOnly && !p.emitters)
-        say(general ? "MIS code kept" : "direct light by light sampling only, no MIS; no continuation ray after the last bounce",
-            "only point/spot/directional lights and no emitting surface: BSDF-sampled rays can never find light");
+        say(general ? "MIS code kept"
+                    : "direct light by light sampling only, no MIS; no continuation ray after the "
+                      "last bounce",
+            "only point/spot/directional lights and no emitting surface: BSDF-sampled rays can "
+            "never find light");
     else
-        say("light sampling with MIS against BSDF sampling", "the scene has lights that rays can hit");
-    say(p.infiniteLights || general ? "environment lookup on escape" : "no environment lookup on escape",
-        p.infiniteLights ? "environment or ambient light present" : "no environment or ambient light");
+        say("light sampling with MIS against BSDF sampling",
+            "the scene has lights that rays can hit");
+    say(p.infiniteLights || general ? "environment lookup on escape"
+                                    : "no environment lookup on escape",
+        p.infiniteLights ? "environment or ambient light present"
+                         : "no environment or ambient light");
     say(p.spheres ? "sphere geometry registered" : "no sphere geometry registered",
-        p.spheres ? std::to_string(scene.spheres.size()) + " analytic spheres" : "no analytic spheres");
-    if (p.instances) say("two-level traversal", std::to_string(scene.instances.size()) + " instances");
+        p.spheres ? std::to_string(scene.spheres.size()) + " analytic spheres"
+                  : "no analytic spheres");
+    if (p.instances)
+        say("two-level traversal", std::to_string(scene.instances.size()) + " instances");
     if (p.caustics)
-        say("caustics reachable only by BSDF sampling", "specular (mirror/glass) surfaces and diffuse receivers: "
-                                                         "expect noise there, more samples clear it");
-    say(p.thinLens ? "thin-lens camera sampling" : "pinhole camera", p.thinLens ? "aperture > 0" : "no aperture");
+        say("caustics reachable only by BSDF sampling",
+            "specular (mirror/glass) surfaces and diffuse receivers: "
+            "expect noise there, more samples clear it");
+    say(p.thinLens ? "thin-lens camera sampling" : "pinhole camera",
+        p.thinLens ? "aperture > 0" : "no aperture");
     say(p.aovs.splitsLight() || general ? "light AOVs accumulated" : "no light AOVs accumulated",
         p.aovs.splitsLight() ? "requested with --aov" : "none requested");
     char escape[96];
-    std::snprintf(escape, sizeof escape, "%.1f %% of probe rays from visible surfaces escape", 100.0 * p.escapeFraction);
-    say(p.closed ? "closed scene: roulette, not escape, ends paths" : "open scene: paths mostly end by escaping", escape);
+    std::snprintf(escape, sizeof escape, "%.1f %% of probe rays from visible surfaces escape",
+                  100.0 * p.escapeFraction);
+    say(p.closed ? "closed scene: roulette, not escape, ends paths"
+                 : "open scene: paths mostly end by escaping",
+        escape);
     return p;
 }
 

@@ -1,5 +1,5 @@
-// The render plan: what a scene calls for, derived at load, with the reason for each decision. The path
-// tracer is instantiated for it (templates chosen once per render, not per-sample branches).
+// The render plan: what a scene calls for, derived at load, with the reason for each decision. The
+// path tracer is instantiated for it (templates chosen once per render, not per-sample branches).
 #pragma once
 
 #include <string>
@@ -13,22 +13,23 @@ namespace kiln {
 
 struct RenderPlan {
     // What the scene holds.
-    bool diffuseOnly = false;       // every surface Lambertian (or a pure emitter)
-    bool deltaSpecular = false;     // mirror / glass / refraction
-    bool transmission = false;      // glass / refraction
-    bool roughConductor = false;    // microfacet
+    bool diffuseOnly = false;     // every surface Lambertian (or a pure emitter)
+    bool deltaSpecular = false;   // mirror / glass / refraction
+    bool transmission = false;    // glass / refraction
+    bool roughConductor = false;  // microfacet
     bool glossy = false;
-    bool deltaLightsOnly = false;   // point / spot / directional only: nothing for BSDF sampling to find
-    bool areaLights = false;        // area lights and emissive meshes
-    bool infiniteLights = false;    // environment / ambient: rays leaving the scene carry light
-    bool emitters = false;          // surfaces with emission
+    bool deltaLightsOnly =
+        false;                // point / spot / directional only: nothing for BSDF sampling to find
+    bool areaLights = false;  // area lights and emissive meshes
+    bool infiniteLights = false;  // environment / ambient: rays leaving the scene carry light
+    bool emitters = false;        // surfaces with emission
     bool spheres = false, instances = false;
-    bool caustics = false;          // light can reach a diffuse surface through a specular chain
+    bool caustics = false;  // light can reach a diffuse surface through a specular chain
     bool thinLens = false;
-    bool closed = false;            // probe rays from visible surfaces almost never escape
+    bool closed = false;  // probe rays from visible surfaces almost never escape
     float escapeFraction = 0;
     AovRequest aovs;
-    bool general = false;           // --plan general: every feature on, whatever the scene holds
+    bool general = false;  // --plan general: every feature on, whatever the scene holds
     std::vector<std::string> decisions;  // "decision: reason", for kiln info and the EXR header
 
     std::string text() const;     // one decision a line
@@ -36,6 +37,7 @@ struct RenderPlan {
 };
 
 // Scene analysis; accel is used to probe whether the scene is closed.
-RenderPlan planFor(const Scene& scene, const Accelerator& accel, const AovRequest& aovs, bool general = false);
+RenderPlan planFor(const Scene& scene, const Accelerator& accel, const AovRequest& aovs,
+                   bool general = false);
 
 }  // namespace kiln

@@ -1,4 +1,5 @@
-// Command-line options that choose and configure an accelerator, shared by render, crosscheck and bench.
+// Command-line options that choose and configure an accelerator, shared by render, crosscheck and
+// bench.
 #pragma once
 
 #include <memory>

@@ -1,4 +1,5 @@
-// One traversal interface for both accelerators: closest hit and occlusion, single rays and batches.
+// One traversal interface for both accelerators: closest hit and occlusion, single rays and
+// batches.
 #pragma once
 
 #include <memory>
@@ -17,7 +18,7 @@ struct AcceleratorStats {
 };
 
 class Accelerator {
-public:
+  public:
     virtual ~Accelerator() = default;
     // Closest hit in [ray.tMin, ray.tMax]; false (and hit untouched) when nothing is hit.
     virtual bool intersect(const Ray& ray, Hit& hit) const = 0;
@@ -39,9 +40,10 @@ enum class AcceleratorKind { Embree, Reference };
 
 struct EmbreeOptions {
     enum class Quality { Low, Medium, High } quality = Quality::Medium;
-    bool robust = true;   // RTC_SCENE_FLAG_ROBUST: watertight shared edges (see docs/accelerators.md)
-    bool compact = false; // RTC_SCENE_FLAG_COMPACT: smaller BVH, a little slower
-    int threads = 0;      // 0 = all
+    bool robust =
+        true;  // RTC_SCENE_FLAG_ROBUST: watertight shared edges (see docs/accelerators.md)
+    bool compact = false;  // RTC_SCENE_FLAG_COMPACT: smaller BVH, a little slower
+    int threads = 0;       // 0 = all
 };
 
 enum class BvhSplit { Sah, MeanCentroid, Midpoint };
@@ -51,7 +53,9 @@ struct ReferenceBvhOptions {
     int maxLeafSize = 4;
 };
 
-std::unique_ptr<Accelerator> makeEmbreeAccelerator(const Scene& scene, const EmbreeOptions& options = {});
-std::unique_ptr<Accelerator> makeReferenceAccelerator(const Scene& scene, const ReferenceBvhOptions& options = {});
+std::unique_ptr<Accelerator> makeEmbreeAccelerator(const Scene& scene,
+                                                   const EmbreeOptions& options = {});
+std::unique_ptr<Accelerator> makeReferenceAccelerator(const Scene& scene,
+                                                      const ReferenceBvhOptions& options = {});
 
 }  // namespace kiln

@@ -1,5 +1,5 @@
-// Error-versus-time measurement: image error statistics against a reference, the log-log slope fit, and
-// the efficiency figure of merit of the rendering literature, 1 / (relMSE x time).
+// Error-versus-time measurement: image error statistics against a reference, the log-log slope fit,
+// and the efficiency figure of merit of the rendering literature, 1 / (relMSE x time).
 #pragma once
 
 #include <string>
@@ -9,11 +9,13 @@
 
 namespace kiln {
 
-// A beauty image (luminance is what the statistics use) with optional per-pixel variance of its mean.
+// A beauty image (luminance is what the statistics use) with optional per-pixel variance of its
+// mean.
 struct Image {
     int width = 0, height = 0;
     std::vector<Color> pixels;
-    std::vector<double> variance;  // estimator variance of each pixel's luminance mean; empty if unknown
+    std::vector<double>
+        variance;  // estimator variance of each pixel's luminance mean; empty if unknown
     // Colour AOV layers ("direct", "indirect", ...), pixel for pixel.
     std::vector<std::string> layerNames;
     std::vector<std::vector<Color>> layers;
@@ -28,24 +30,29 @@ struct ErrorStats {
     double referenceMean = 0;  // mean luminance of the reference, to state the bias as a fraction
 };
 
-// Error of `test` against `reference`. The reference's own variance (when known) is subtracted from the
-// squared errors, so a finite-sample reference does not set a floor under the measured error.
+// Error of `test` against `reference`. The reference's own variance (when known) is subtracted from
+// the squared errors, so a finite-sample reference does not set a floor under the measured error.
 ErrorStats compareImages(const Image& test, const Image& reference);
-// The same statistics for one colour AOV layer present in both (no reference variance is known for AOVs).
+// The same statistics for one colour AOV layer present in both (no reference variance is known for
+// AOVs).
 ErrorStats compareLayer(const Image& test, const Image& reference, const std::string& layer);
 
-// Least-squares slope of log(y) against log(x) (e.g. relMSE against spp: -1 for an unbiased estimator).
+// Least-squares slope of log(y) against log(x) (e.g. relMSE against spp: -1 for an unbiased
+// estimator).
 double logLogSlope(const std::vector<double>& x, const std::vector<double>& y);
 
-inline double efficiency(double relMse, double seconds) { return relMse > 0 && seconds > 0 ? 1.0 / (relMse * seconds) : 0.0; }
+inline double efficiency(double relMse, double seconds) {
+    return relMse > 0 && seconds > 0 ? 1.0 / (relMse * seconds) : 0.0;
+}
 
 // A log-log line plot as SVG: one polyline per series, optional reference line of slope -1.
 struct PlotSeries {
     std::string name;
     std::vector<double> x, y;
 };
-std::string svgLogLogPlot(const std::string& title, const std::string& xLabel, const std::string& yLabel,
-                          const std::vector<PlotSeries>& series, bool slopeMinusOne);
+std::string svgLogLogPlot(const std::string& title, const std::string& xLabel,
+                          const std::string& yLabel, const std::vector<PlotSeries>& series,
+                          bool slopeMinusOne);
 
 }  // namespace kiln
 
@@ -53,8 +60,8 @@ namespace kiln {
 
 // One measured setting of `kiln bench accuracy`.
 struct AccuracyRun {
-    std::string group;    // spp, strategy, light_samples, depth, adaptive, accel
-    std::string label;    // e.g. "mis", "m=3 rr", "tol=0.05"
+    std::string group;  // spp, strategy, light_samples, depth, adaptive, accel
+    std::string label;  // e.g. "mis", "m=3 rr", "tol=0.05"
     int spp = 0, lightSamples = 1, maxDepth = 100;
     std::string sampling = "mis", roulette = "throughput", accel = "embree";
     float adaptiveTolerance = 0;
@@ -82,8 +89,8 @@ struct AccuracyResult {
     bool caustics = false;  // from the render plan: explains a shallow slope
 };
 
-// Renders (or reuses, cached by scene + settings) the references, sweeps the settings within the budget,
-// and writes OUT/accuracy.csv, OUT/error_vs_time.svg, OUT/spp.svg and OUT/summary.md.
+// Renders (or reuses, cached by scene + settings) the references, sweeps the settings within the
+// budget, and writes OUT/accuracy.csv, OUT/error_vs_time.svg, OUT/spp.svg and OUT/summary.md.
 AccuracyResult runAccuracy(const AccuracyOptions& options);
 
 }  // namespace kiln

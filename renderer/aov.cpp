@@ -33,33 +33,43 @@ constexpr NamedAov kNames[] = {
 
 // Flattened field numbering used by gather(): colours take 3 consecutive fields.
 enum Field {
-    kEmission = 0, kDirect = 3, kIndirect = 6, kLobes = 9,           // 2 x 3 lobes x 3 = 18 fields
-    kBounces = 27,                                                   // kMaxBounceLayers x 3
-    kAlbedo = kBounces + 3 * kMaxBounceLayers, kNormal = kAlbedo + 3, kPosition = kNormal + 3,
-    kDepth = kPosition + 3, kPrimId = kDepth + 1, kObjectId = kPrimId + 1
+    kEmission = 0,
+    kDirect = 3,
+    kIndirect = 6,
+    kLobes = 9,     // 2 x 3 lobes x 3 = 18 fields
+    kBounces = 27,  // kMaxBounceLayers x 3
+    kAlbedo = kBounces + 3 * kMaxBounceLayers,
+    kNormal = kAlbedo + 3,
+    kPosition = kNormal + 3,
+    kDepth = kPosition + 3,
+    kPrimId = kDepth + 1,
+    kObjectId = kPrimId + 1
 };
 
 }  // namespace
 
 bool AovRequest::splitsLight() const {
-    for (AovKind k : {AovKind::Emission, AovKind::Direct, AovKind::Indirect, AovKind::DirectDiffuse,
-                      AovKind::DirectSpecular, AovKind::DirectTransmission, AovKind::IndirectDiffuse,
-                      AovKind::IndirectSpecular, AovKind::IndirectTransmission, AovKind::Bounces})
+    for (AovKind k :
+         {AovKind::Emission, AovKind::Direct, AovKind::Indirect, AovKind::DirectDiffuse,
+          AovKind::DirectSpecular, AovKind::DirectTransmission, AovKind::IndirectDiffuse,
+          AovKind::IndirectSpecular, AovKind::IndirectTransmission, AovKind::Bounces})
         if (has(k)) return true;
     return false;
 }
 
 AovRequest AovRequest::defaults() {
     AovRequest r;
-    for (AovKind k : {AovKind::Emission, AovKind::Direct, AovKind::Indirect, AovKind::Albedo, AovKind::Normal,
-                      AovKind::Depth, AovKind::Samples, AovKind::Variance})
+    for (AovKind k : {AovKind::Emission, AovKind::Direct, AovKind::Indirect, AovKind::Albedo,
+                      AovKind::Normal, AovKind::Depth, AovKind::Samples, AovKind::Variance})
         r.add(k);
     return r;
 }
 
 const char* AovRequest::names() {
-    return "emission, direct, indirect, direct_diffuse, direct_specular, direct_transmission, indirect_diffuse, "
-           "indirect_specular, indirect_transmission, bounces, albedo, N, P, Z, samples, variance, primid, "
+    return "emission, direct, indirect, direct_diffuse, direct_specular, direct_transmission, "
+           "indirect_diffuse, "
+           "indirect_specular, indirect_transmission, bounces, albedo, N, P, Z, samples, variance, "
+           "primid, "
            "objectid; or all, none, default";
 }
 
@@ -81,7 +91,8 @@ AovRequest AovRequest::parse(const std::string& list, int maxDepth) {
         bool found = false;
         for (const NamedAov& n : kNames)
             if (item == n.name) r.add(n.kind), found = true;
-        if (!found) throw std::invalid_argument("unknown AOV '" + item + "' (known: " + names() + ")");
+        if (!found)
+            throw std::invalid_argument("unknown AOV '" + item + "' (known: " + names() + ")");
     }
     if (r.has(AovKind::Bounces)) r.bounceLayers = std::clamp(maxDepth, 1, kMaxBounceLayers);
     return r;
@@ -90,7 +101,8 @@ AovRequest AovRequest::parse(const std::string& list, int maxDepth) {
 AovLayout::AovLayout(const AovRequest& request) : request_(request) {
     auto colour = [&](const std::string& layer, int field, const char* suffix = "RGB") {
         for (int c = 0; c < 3; ++c)
-            channels_.push_back({layer + "." + std::string(1, suffix[c]), suffix[0] == 'R', false, field + c});
+            channels_.push_back(
+                {layer + "." + std::string(1, suffix[c]), suffix[0] == 'R', false, field + c});
     };
     if (request.has(AovKind::Emission)) colour("emission", kEmission);
     if (request.has(AovKind::Direct)) colour("direct", kDirect);
@@ -99,9 +111,12 @@ AovLayout::AovLayout(const AovRequest& request) : request_(request) {
     for (int d = 0; d < 2; ++d)
         for (int l = 0; l < 3; ++l) {
             AovKind k = AovKind(uint32_t(AovKind::DirectDiffuse) + uint32_t(3 * d + l));
-            if (request.has(k)) colour(std::string(d == 0 ? "direct_" : "indirect_") + lobeNames[l], kLobes + 3 * (3 * d + l));
+            if (request.has(k))
+                colour(std::string(d == 0 ? "direct_" : "indirect_") + lobeNames[l],
+                       kLobes + 3 * (3 * d + l));
         }
-    for (int b = 0; b < request.bounceLayers; ++b) colour("bounce" + std::to_string(b + 1), kBounces + 3 * b);
+    for (int b = 0; b < request.bounceLayers; ++b)
+        colour("bounce" + std::to_string(b + 1), kBounces + 3 * b);
     if (request.has(AovKind::Albedo)) colour("albedo", kAlbedo);
     if (request.has(AovKind::Normal)) colour("N", kNormal, "XYZ");
     if (request.has(AovKind::Position)) colour("P", kPosition, "XYZ");

@@ -1,5 +1,5 @@
-// Arbitrary output variables: what the user may request, what one camera sample records, and how the
-// film lays the requested ones out as EXR channels ("layer.channel").
+// Arbitrary output variables: what the user may request, what one camera sample records, and how
+// the film lays the requested ones out as EXR channels ("layer.channel").
 #pragma once
 
 #include <cstdint>
@@ -11,15 +11,24 @@
 namespace kiln {
 
 enum class AovKind : uint32_t {
-    Emission,              // light seen directly (zero bounce)
-    Direct,                // light after one bounce
-    Indirect,              // light after two or more bounces
-    DirectDiffuse, DirectSpecular, DirectTransmission,        // direct, split by the first vertex's lobe
-    IndirectDiffuse, IndirectSpecular, IndirectTransmission,  // indirect, likewise
+    Emission,  // light seen directly (zero bounce)
+    Direct,    // light after one bounce
+    Indirect,  // light after two or more bounces
+    DirectDiffuse,
+    DirectSpecular,
+    DirectTransmission,  // direct, split by the first vertex's lobe
+    IndirectDiffuse,
+    IndirectSpecular,
+    IndirectTransmission,  // indirect, likewise
     Bounces,               // bounce1, bounce2, ...: light after exactly k bounces
-    Albedo, Normal, Position, Depth,  // first visible surface
-    Samples, Variance,     // per pixel: sample count, estimator variance of the luminance mean
-    PrimId, ObjectId,
+    Albedo,
+    Normal,
+    Position,
+    Depth,  // first visible surface
+    Samples,
+    Variance,  // per pixel: sample count, estimator variance of the luminance mean
+    PrimId,
+    ObjectId,
     Count
 };
 
@@ -32,7 +41,8 @@ struct AovRequest {
     void add(AovKind k) { mask |= 1u << uint32_t(k); }
     // Any of the light-path AOVs (the integrator must classify its contributions).
     bool splitsLight() const;
-    // "emission,direct,..." or "all", "none", "default". Throws std::invalid_argument naming the bad entry.
+    // "emission,direct,..." or "all", "none", "default". Throws std::invalid_argument naming the
+    // bad entry.
     static AovRequest parse(const std::string& list, int maxDepth);
     static AovRequest defaults();  // beauty plus what compositing and denoising usually want
     static const char* names();    // for --help
@@ -61,21 +71,21 @@ struct SampleRecord {
 
 // One EXR channel fed from a SampleRecord field.
 struct AovChannel {
-    std::string name;       // "direct.R", "N.X", "Z", ...
-    bool colour = true;     // may be written as half
+    std::string name;          // "direct.R", "N.X", "Z", ...
+    bool colour = true;        // may be written as half
     bool firstSample = false;  // ids: the first sample's value, never averaged
-    int field = 0;          // index into the record's flattened values (see AovLayout::gather)
+    int field = 0;             // index into the record's flattened values (see AovLayout::gather)
 };
 
 class AovLayout {
-public:
+  public:
     explicit AovLayout(const AovRequest& request);
     const std::vector<AovChannel>& channels() const { return channels_; }
     const AovRequest& request() const { return request_; }
     // Writes the record's requested values, in channel order.
     void gather(const SampleRecord& r, double* out) const;
 
-private:
+  private:
     AovRequest request_;
     std::vector<AovChannel> channels_;
 };

@@ -7,7 +7,8 @@ namespace kiln {
 namespace {
 
 constexpr int kBins = 16;
-constexpr uint32_t kForceMedianDepth = 64;  // keeps the traversal stack bounded on adversarial input
+constexpr uint32_t kForceMedianDepth =
+    64;  // keeps the traversal stack bounded on adversarial input
 
 }  // namespace
 
@@ -23,8 +24,9 @@ void Bvh::build(const std::vector<Bounds3>& primBounds, const ReferenceBvhOption
     nodes_.shrink_to_fit();
 }
 
-uint32_t Bvh::buildRecursive(const std::vector<Bounds3>& boxes, std::vector<Vec3>& centroids, uint32_t begin,
-                             uint32_t end, const ReferenceBvhOptions& options, uint32_t depth) {
+uint32_t Bvh::buildRecursive(const std::vector<Bounds3>& boxes, std::vector<Vec3>& centroids,
+                             uint32_t begin, uint32_t end, const ReferenceBvhOptions& options,
+                             uint32_t depth) {
     uint32_t index = uint32_t(nodes_.size());
     nodes_.emplace_back();
     Bounds3 box, centroidBox;
@@ -49,7 +51,8 @@ uint32_t Bvh::buildRecursive(const std::vector<Bounds3>& boxes, std::vector<Vec3
 
     if (extent[axis] > 0 && depth < kForceMedianDepth) {
         if (options.split == BvhSplit::Sah) {
-            // Binned SAH: pick the bin boundary with the lowest cost, or make a leaf if that is cheaper.
+            // Binned SAH: pick the bin boundary with the lowest cost, or make a leaf if that is
+            // cheaper.
             Bounds3 binBox[kBins];
             uint32_t binCount[kBins] = {};
             float lo = centroidBox.lo[axis], scale = kBins / extent[axis];
@@ -81,7 +84,8 @@ uint32_t Bvh::buildRecursive(const std::vector<Bounds3>& boxes, std::vector<Vec3
             float splitCost = 1.0f + (area > 0 ? costs[best] / area : 0.0f);
             if (count <= maxLeaf && splitCost >= float(count)) return makeLeaf();
             mid = uint32_t(std::partition(order_.begin() + begin, order_.begin() + end,
-                                          [&](uint32_t p) { return binOf(p) <= best; }) - order_.begin());
+                                          [&](uint32_t p) { return binOf(p) <= best; }) -
+                           order_.begin());
         } else {
             float split;
             if (options.split == BvhSplit::Midpoint) {
@@ -92,11 +96,13 @@ uint32_t Bvh::buildRecursive(const std::vector<Bounds3>& boxes, std::vector<Vec3
                 split = float(sum / count);
             }
             mid = uint32_t(std::partition(order_.begin() + begin, order_.begin() + end,
-                                          [&](uint32_t p) { return centroidOf(p) < split; }) - order_.begin());
+                                          [&](uint32_t p) { return centroidOf(p) < split; }) -
+                           order_.begin());
         }
     }
     if (mid == begin || mid == end) {
-        // Every centroid on one side (or all equal): split the list in half instead of recursing forever.
+        // Every centroid on one side (or all equal): split the list in half instead of recursing
+        // forever.
         if (count <= maxLeaf) return makeLeaf();
         mid = begin + count / 2;
         std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,

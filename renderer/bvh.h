@@ -31,27 +31,31 @@ struct TraversalCounters {
 };
 
 class Bvh {
-public:
+  public:
     void build(const std::vector<Bounds3>& primBounds, const ReferenceBvhOptions& options);
     BvhStatistics statistics() const;
     const Bounds3& bounds() const { return nodes_.empty() ? empty_ : nodes_[0].box; }
-    uint64_t memoryBytes() const { return nodes_.size() * sizeof(BvhNode) + order_.size() * sizeof(uint32_t); }
+    uint64_t memoryBytes() const {
+        return nodes_.size() * sizeof(BvhNode) + order_.size() * sizeof(uint32_t);
+    }
 
     // testPrim(primIndex, ray) returns true on a hit and shortens ray.tMax itself.
     template <bool AnyHit, typename TestPrim>
     bool traverse(Ray& ray, TestPrim&& testPrim, TraversalCounters* counters = nullptr) const;
 
-private:
-    uint32_t buildRecursive(const std::vector<Bounds3>& boxes, std::vector<Vec3>& centroids, uint32_t begin,
-                            uint32_t end, const ReferenceBvhOptions& options, uint32_t depth);
+  private:
+    uint32_t buildRecursive(const std::vector<Bounds3>& boxes, std::vector<Vec3>& centroids,
+                            uint32_t begin, uint32_t end, const ReferenceBvhOptions& options,
+                            uint32_t depth);
     std::vector<BvhNode> nodes_;
     std::vector<uint32_t> order_;
     Bounds3 empty_;
 };
 
-// Slab test; tMax is inflated by 1 + 2*gamma(3) so rounding never culls a box the ray touches (pbrt).
-inline bool rayBoxTest(const Bounds3& b, const Vec3& org, const Vec3& invDir, const int dirNeg[3], float tMin,
-                       float tMax) {
+// Slab test; tMax is inflated by 1 + 2*gamma(3) so rounding never culls a box the ray touches
+// (pbrt).
+inline bool rayBoxTest(const Bounds3& b, const Vec3& org, const Vec3& invDir, const int dirNeg[3],
+                       float tMin, float tMax) {
     constexpr float kInflate = 1.0f + 2.0f * gamma(3);
     float tx0 = ((dirNeg[0] ? b.hi.x : b.lo.x) - org.x) * invDir.x;
     float tx1 = ((dirNeg[0] ? b.lo.x : b.hi.x) - org.x) * invDir.x * kInflate;
@@ -59,9 +63,12 @@ inline bool rayBoxTest(const Bounds3& b, const Vec3& org, const Vec3& invDir, co
     float ty1 = ((dirNeg[1] ? b.lo.y : b.hi.y) - org.y) * invDir.y * kInflate;
     float tz0 = ((dirNeg[2] ? b.hi.z : b.lo.z) - org.z) * invDir.z;
     float tz1 = ((dirNeg[2] ? b.lo.z : b.hi.z) - org.z) * invDir.z * kInflate;
-    // NaN from 0 * inf (ray origin on a slab plane, direction parallel) must not reject: max/min skip it.
-    float t0 = std::max(std::max(tx0 == tx0 ? tx0 : tMin, ty0 == ty0 ? ty0 : tMin), std::max(tz0 == tz0 ? tz0 : tMin, tMin));
-    float t1 = std::min(std::min(tx1 == tx1 ? tx1 : tMax, ty1 == ty1 ? ty1 : tMax), std::min(tz1 == tz1 ? tz1 : tMax, tMax));
+    // NaN from 0 * inf (ray origin on a slab plane, direction parallel) must not reject: max/min
+    // skip it.
+    float t0 = std::max(std::max(tx0 == tx0 ? tx0 : tMin, ty0 == ty0 ? ty0 : tMin),
+                        std::max(tz0 == tz0 ? tz0 : tMin, tMin));
+    float t1 = std::min(std::min(tx1 == tx1 ? tx1 : tMax, ty1 == ty1 ? ty1 : tMax),
+                        std::min(tz1 == tz1 ? tz1 : tMax, tMax));
     return t0 <= t1;
 }
 
@@ -85,7 +92,8 @@ bool Bvh::traverse(Ray& ray, TestPrim&& testPrim, TraversalCounters* counters) c
                     if (testPrim(order_[node.offset + i], ray)) {
                         hit = true;
                         if constexpr (AnyHit) {
-                            if (counters) counters->boxTests += boxTests, counters->primTests += primTests;
+                            if (counters)
+                                counters->boxTests += boxTests, counters->primTests += primTests;
                             return true;
                         }
                     }

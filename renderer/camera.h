@@ -7,15 +7,16 @@
 namespace kiln {
 
 class CameraModel {
-public:
+  public:
     // Fits the field of view to the image aspect by widening one angle (the course's rule).
     CameraModel(const Camera& camera, int width, int height);
-    // (px, py): continuous raster position, y down; lens: two uniform numbers for thin-lens sampling.
+    // (px, py): continuous raster position, y down; lens: two uniform numbers for thin-lens
+    // sampling.
     Ray generateRay(float px, float py, float lensU = 0.5f, float lensV = 0.5f) const;
     float hFovDeg() const { return hFov_; }
     float vFovDeg() const { return vFov_; }
 
-private:
+  private:
     Camera cam_;
     int width_, height_;
     float hFov_, vFov_, tanX_, tanY_;

@@ -12,17 +12,19 @@ void ArgParser::option(const std::string& longName, const std::string& shortName
     options_.push_back({longName, shortName, metavar, help, nargs, std::move(handler)});
 }
 
-void ArgParser::flag(const std::string& longName, const std::string& shortName, const std::string& help,
-                     bool& target) {
-    option(longName, shortName, 0, "", help, [&target](const std::vector<std::string>&) { target = true; });
+void ArgParser::flag(const std::string& longName, const std::string& shortName,
+                     const std::string& help, bool& target) {
+    option(longName, shortName, 0, "", help,
+           [&target](const std::vector<std::string>&) { target = true; });
 }
 
-void ArgParser::intOption(const std::string& longName, const std::string& shortName, const std::string& help,
-                          int& target, int minValue, int maxValue) {
+void ArgParser::intOption(const std::string& longName, const std::string& shortName,
+                          const std::string& help, int& target, int minValue, int maxValue) {
     std::string name = longName;
-    option(longName, shortName, 1, "N", help, [&target, name, minValue, maxValue](const std::vector<std::string>& v) {
-        target = toInt(name, v[0], minValue, maxValue);
-    });
+    option(longName, shortName, 1, "N", help,
+           [&target, name, minValue, maxValue](const std::vector<std::string>& v) {
+               target = toInt(name, v[0], minValue, maxValue);
+           });
 }
 
 int ArgParser::toInt(const std::string& option, const std::string& text, int lo, int hi) {
@@ -61,12 +63,15 @@ std::vector<std::string> ArgParser::parse(const std::vector<std::string>& args) 
         bool hasInline = false;
         if (a.rfind("--", 0) == 0) {
             size_t eq = a.find('=');
-            if (eq != std::string::npos) name = a.substr(0, eq), inlineValue = a.substr(eq + 1), hasInline = true;
+            if (eq != std::string::npos)
+                name = a.substr(0, eq), inlineValue = a.substr(eq + 1), hasInline = true;
         }
         const Option* opt = nullptr;
         for (const Option& o : options_)
-            if (name == "--" + o.longName || (!o.shortName.empty() && name == "-" + o.shortName)) opt = &o;
-        if (!opt) throw UsageError("unknown option '" + a + "' (see 'kiln " + command_ + " --help')");
+            if (name == "--" + o.longName || (!o.shortName.empty() && name == "-" + o.shortName))
+                opt = &o;
+        if (!opt)
+            throw UsageError("unknown option '" + a + "' (see 'kiln " + command_ + " --help')");
         std::vector<std::string> values;
         if (hasInline) {
             if (opt->nargs != 1) throw UsageError("option " + name + " does not take '=value'");
@@ -74,7 +79,8 @@ std::vector<std::string> ArgParser::parse(const std::vector<std::string>& args) 
         } else {
             for (int k = 0; k < opt->nargs; ++k) {
                 if (i + 1 >= args.size())
-                    throw UsageError("option " + name + " needs " + std::to_string(opt->nargs) + " value(s): " + opt->metavar);
+                    throw UsageError("option " + name + " needs " + std::to_string(opt->nargs) +
+                                     " value(s): " + opt->metavar);
                 values.push_back(args[++i]);
             }
         }
@@ -87,11 +93,14 @@ std::string ArgParser::helpText() const {
     std::ostringstream os;
     os << "usage: kiln " << command_ << " " << synopsis_ << "\n\noptions:\n";
     for (const Option& o : options_) {
-        std::string names = (o.shortName.empty() ? "    " : "-" + o.shortName + ", ") + "--" + o.longName;
+        std::string names =
+            (o.shortName.empty() ? "    " : "-" + o.shortName + ", ") + "--" + o.longName;
         if (!o.metavar.empty()) names += " " + o.metavar;
         os << "  " << names;
-        if (names.size() < 30) os << std::string(30 - names.size(), ' ');
-        else os << "\n  " << std::string(30, ' ');
+        if (names.size() < 30)
+            os << std::string(30 - names.size(), ' ');
+        else
+            os << "\n  " << std::string(30, ' ');
         os << o.help << "\n";
     }
     os << "  -h, --help                    show this help\n";

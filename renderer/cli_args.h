@@ -10,21 +10,23 @@
 namespace kiln {
 
 class UsageError : public std::runtime_error {
-public:
+  public:
     using std::runtime_error::runtime_error;
 };
 
 class ArgParser {
-public:
-    ArgParser(std::string command, std::string synopsis) : command_(std::move(command)), synopsis_(std::move(synopsis)) {}
+  public:
+    ArgParser(std::string command, std::string synopsis)
+        : command_(std::move(command)), synopsis_(std::move(synopsis)) {}
 
     using Handler = std::function<void(const std::vector<std::string>&)>;
     // shortName may be empty; metavar names the arguments in help ("" for a switch).
-    void option(const std::string& longName, const std::string& shortName, int nargs, const std::string& metavar,
-                const std::string& help, Handler handler);
-    void flag(const std::string& longName, const std::string& shortName, const std::string& help, bool& target);
-    void intOption(const std::string& longName, const std::string& shortName, const std::string& help, int& target,
-                   int minValue, int maxValue);
+    void option(const std::string& longName, const std::string& shortName, int nargs,
+                const std::string& metavar, const std::string& help, Handler handler);
+    void flag(const std::string& longName, const std::string& shortName, const std::string& help,
+              bool& target);
+    void intOption(const std::string& longName, const std::string& shortName,
+                   const std::string& help, int& target, int minValue, int maxValue);
     // Returns positional arguments. Throws UsageError; sets helpRequested() on -h/--help.
     std::vector<std::string> parse(const std::vector<std::string>& args);
     bool helpRequested() const { return help_; }
@@ -33,7 +35,7 @@ public:
     static int toInt(const std::string& option, const std::string& text, int lo, int hi);
     static double toDouble(const std::string& option, const std::string& text);
 
-private:
+  private:
     struct Option {
         std::string longName, shortName, metavar, help;
         int nargs;

@@ -1,12 +1,12 @@
 // kiln bench accuracy: what accuracy costs in time on one scene.
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <algorithm>
 #include <map>
 
 #include "color/image_output.h"
@@ -38,16 +38,18 @@ struct Rendered {
     uint64_t rays = 0;
 };
 
-Rendered render(const Scene& scene, const Accelerator& accel, const Setting& s, int w, int h, uint64_t seed,
-                const AovRequest& aovs) {
+Rendered render(const Scene& scene, const Accelerator& accel, const Setting& s, int w, int h,
+                uint64_t seed, const AovRequest& aovs) {
     PathIntegrator integrator(scene, accel, s.path);
     integrator.setAovs(aovs);
     RenderSettings settings;
-    settings.width = w, settings.height = h, settings.spp = s.spp, settings.seed = seed, settings.progress = false;
+    settings.width = w, settings.height = h, settings.spp = s.spp, settings.seed = seed,
+    settings.progress = false;
     settings.adaptiveBatch = s.adaptiveBatch, settings.adaptiveTolerance = s.adaptiveTolerance;
     Film film(w, h, aovs);
     RenderStats stats = renderImage(scene, integrator, settings, film);
-    return {Image::fromFilm(film), stats.seconds, double(stats.samples) / (double(w) * h), stats.rays};
+    return {Image::fromFilm(film), stats.seconds, double(stats.samples) / (double(w) * h),
+            stats.rays};
 }
 
 uint64_t fnv(const std::string& s, uint64_t h = 1469598103934665603ull) {
@@ -56,15 +58,17 @@ uint64_t fnv(const std::string& s, uint64_t h = 1469598103934665603ull) {
 }
 
 // The reference for a depth, from the cache when its key matches, else rendered and cached as EXR.
-Image reference(const Scene& scene, const Accelerator& accel, const AccuracyOptions& o, int depth, double& seconds,
-                bool& cached) {
+Image reference(const Scene& scene, const Accelerator& accel, const AccuracyOptions& o, int depth,
+                double& seconds, bool& cached) {
     std::error_code ec;
     std::string key = o.scene + "|" + std::to_string(fs::file_size(o.scene, ec)) + "|" +
-                      std::to_string(fs::last_write_time(o.scene, ec).time_since_epoch().count()) + "|" +
-                      std::to_string(o.width) + "x" + std::to_string(o.height) + "|" + std::to_string(o.referenceSpp) +
-                      "|m" + std::to_string(depth) + "|" + KILN_VERSION + "|aovs:" + o.aovs;
+                      std::to_string(fs::last_write_time(o.scene, ec).time_since_epoch().count()) +
+                      "|" + std::to_string(o.width) + "x" + std::to_string(o.height) + "|" +
+                      std::to_string(o.referenceSpp) + "|m" + std::to_string(depth) + "|" +
+                      KILN_VERSION + "|aovs:" + o.aovs;
     char name[64];
-    std::snprintf(name, sizeof name, "reference-m%d-%016llx.exr", depth, (unsigned long long)fnv(key));
+    std::snprintf(name, sizeof name, "reference-m%d-%016llx.exr", depth,
+                  (unsigned long long)fnv(key));
     std::string path = (fs::path(o.outDir) / name).string();
     if (auto in = OIIO::ImageInput::open(path)) {
         const OIIO::ImageSpec& spec = in->spec();
@@ -80,10 +84,12 @@ Image reference(const Scene& scene, const Accelerator& accel, const AccuracyOpti
                 img.pixels.emplace_back(p[0], p[1], p[2]);
                 img.variance.push_back(p[v]);
             }
-            for (const AovChannel& c : AovLayout(AovRequest::parse(o.aovs, depth)).channels()) {
+            AovLayout layout(AovRequest::parse(o.aovs, depth));  // kept alive for the loop
+            for (const AovChannel& c : layout.channels()) {
                 if (c.name.size() < 3 || c.name.compare(c.name.size() - 2, 2, ".R") != 0) continue;
                 std::string layer = c.name.substr(0, c.name.size() - 2);
-                int r = spec.channelindex(layer + ".R"), g = spec.channelindex(layer + ".G"), b = spec.channelindex(layer + ".B");
+                int r = spec.channelindex(layer + ".R"), g = spec.channelindex(layer + ".G"),
+                    b = spec.channelindex(layer + ".B");
                 if (r < 0 || g < 0 || b < 0) continue;
                 img.layerNames.push_back(layer);
                 img.layers.emplace_back();
@@ -108,8 +114,11 @@ Image reference(const Scene& scene, const Accelerator& accel, const AccuracyOpti
     Film film(o.width, o.height, aovs);
     RenderStats stats = renderImage(scene, integrator, settings, film);
     seconds += stats.seconds;
-    writeExr(path, film, {{"scene", o.scene}, {"spp", std::to_string(s.spp)}, {"max_depth", std::to_string(depth)},
-                          {"cache_key", key}});
+    writeExr(path, film,
+             {{"scene", o.scene},
+              {"spp", std::to_string(s.spp)},
+              {"max_depth", std::to_string(depth)},
+              {"cache_key", key}});
     return Image::fromFilm(film);
 }
 
@@ -119,18 +128,21 @@ std::string fmt(double v) {
     return b;
 }
 
-// Time at which the uniform series reaches a given relMSE: log-log interpolation between the bracketing
-// points, or extrapolation along the last two points' slope below the smallest measured error
+// Time at which the uniform series reaches a given relMSE: log-log interpolation between the
+// bracketing points, or extrapolation along the last two points' slope below the smallest measured
+// error
 // (`extrapolated` set). 0 when it cannot be told.
 double timeAtError(const std::vector<AccuracyRun>& uniform, double relMse, bool& extrapolated) {
     extrapolated = false;
     auto along = [&](const AccuracyRun& a, const AccuracyRun& b) {
-        if (a.error.relMse <= 0 || b.error.relMse <= 0 || a.error.relMse == b.error.relMse) return 0.0;
+        if (a.error.relMse <= 0 || b.error.relMse <= 0 || a.error.relMse == b.error.relMse)
+            return 0.0;
         double f = std::log(relMse / a.error.relMse) / std::log(b.error.relMse / a.error.relMse);
         return std::exp(std::log(a.seconds) + f * (std::log(b.seconds) - std::log(a.seconds)));
     };
     for (size_t i = 1; i < uniform.size(); ++i)
-        if (uniform[i - 1].error.relMse >= relMse && uniform[i].error.relMse <= relMse) return along(uniform[i - 1], uniform[i]);
+        if (uniform[i - 1].error.relMse >= relMse && uniform[i].error.relMse <= relMse)
+            return along(uniform[i - 1], uniform[i]);
     if (uniform.size() >= 2 && relMse < uniform.back().error.relMse) {
         extrapolated = true;
         return along(uniform[uniform.size() - 2], uniform.back());
@@ -140,25 +152,30 @@ double timeAtError(const std::vector<AccuracyRun>& uniform, double relMse, bool&
 
 void writeOutputs(const AccuracyOptions& o, const AccuracyResult& r) {
     std::ofstream csv(fs::path(o.outDir) / "accuracy.csv");
-    csv << "group,label,spp,mean_spp,light_samples,sampling,max_depth,roulette,adaptive_tolerance,accel,seconds,rays,"
+    csv << "group,label,spp,mean_spp,light_samples,sampling,max_depth,roulette,adaptive_tolerance,"
+           "accel,seconds,rays,"
            "rmse,rel_mse,bias,efficiency";
     std::vector<std::string> layers;
     if (!r.runs.empty())
-        for (const auto& [name, e] : r.runs.front().aovErrors) layers.push_back(name), csv << ",rel_mse_" << name;
+        for (const auto& [name, e] : r.runs.front().aovErrors)
+            layers.push_back(name), csv << ",rel_mse_" << name;
     csv << "\n";
     for (const AccuracyRun& a : r.runs) {
-        csv << a.group << "," << a.label << "," << a.spp << "," << a.meanSpp << "," << a.lightSamples << "," << a.sampling
-            << "," << a.maxDepth << "," << a.roulette << "," << a.adaptiveTolerance << "," << a.accel << "," << a.seconds
-            << "," << a.rays << "," << a.error.rmse << "," << a.error.relMse << "," << a.error.bias << ","
-            << a.efficiency;
-        for (size_t k = 0; k < layers.size(); ++k) csv << "," << (k < a.aovErrors.size() ? a.aovErrors[k].second.relMse : 0.0);
+        csv << a.group << "," << a.label << "," << a.spp << "," << a.meanSpp << ","
+            << a.lightSamples << "," << a.sampling << "," << a.maxDepth << "," << a.roulette << ","
+            << a.adaptiveTolerance << "," << a.accel << "," << a.seconds << "," << a.rays << ","
+            << a.error.rmse << "," << a.error.relMse << "," << a.error.bias << "," << a.efficiency;
+        for (size_t k = 0; k < layers.size(); ++k)
+            csv << "," << (k < a.aovErrors.size() ? a.aovErrors[k].second.relMse : 0.0);
         csv << "\n";
     }
 
     std::map<std::string, PlotSeries> byTime, bySpp;
     std::vector<AccuracyRun> uniform;
     for (const AccuracyRun& a : r.runs) {
-        std::string series = a.group == "spp" ? "path (GI)" : a.group == "strategy" ? "direct: " + a.sampling : "";
+        std::string series = a.group == "spp"        ? "path (GI)"
+                             : a.group == "strategy" ? "direct: " + a.sampling
+                                                     : "";
         if (a.group == "adaptive") series = "adaptive (GI)";
         if (series.empty()) continue;
         byTime[series].name = series;
@@ -177,70 +194,95 @@ void writeOutputs(const AccuracyOptions& o, const AccuracyResult& r) {
         return v;
     };
     std::string title = fs::path(o.scene).filename().string();
-    std::ofstream(fs::path(o.outDir) / "error_vs_time.svg")
-        << svgLogLogPlot(title + ": error against time", "render time (s)", "relative MSE", values(byTime), true);
+    std::ofstream(fs::path(o.outDir) / "error_vs_time.svg") << svgLogLogPlot(
+        title + ": error against time", "render time (s)", "relative MSE", values(byTime), true);
     std::ofstream(fs::path(o.outDir) / "spp.svg")
-        << svgLogLogPlot(title + ": error against samples per pixel", "samples per pixel", "relative MSE", values(bySpp), true);
+        << svgLogLogPlot(title + ": error against samples per pixel", "samples per pixel",
+                         "relative MSE", values(bySpp), true);
 
     // Plain-words summary.
     std::ofstream md(fs::path(o.outDir) / "summary.md");
     md << "### " << title << "\n\n";
     md << o.width << "x" << o.height << ", references at " << o.referenceSpp << " spp ("
-       << (r.referenceCached ? "cached" : fmt(r.referenceSeconds) + " s") << "); errors are luminance relMSE "
+       << (r.referenceCached ? "cached" : fmt(r.referenceSeconds) + " s")
+       << "); errors are luminance relMSE "
        << "(x - r)^2 / (r^2 + 0.01) with the reference's own variance removed.\n\n";
     std::vector<double> spp, rel, secs, rmse;
-    for (const AccuracyRun& a : uniform) spp.push_back(a.spp), rel.push_back(a.error.relMse), secs.push_back(a.seconds), rmse.push_back(a.error.rmse);
+    for (const AccuracyRun& a : uniform)
+        spp.push_back(a.spp), rel.push_back(a.error.relMse), secs.push_back(a.seconds),
+            rmse.push_back(a.error.rmse);
     double slopeSpp = logLogSlope(spp, rel), slopeTime = logLogSlope(secs, rmse);
     md << "- **Variance falls as 1/spp**: relMSE against spp has log-log slope **" << fmt(slopeSpp)
-       << "** (expected -1; " << (std::abs(slopeSpp + 1) <= 0.15 ? "within" : "OUTSIDE") << " the +-0.15 tolerance) over " << spp.size() << " spp counts (" << (spp.empty() ? 0 : spp.front()) << " to "
-       << (spp.empty() ? 0 : spp.back()) << ").";
+       << "** (expected -1; " << (std::abs(slopeSpp + 1) <= 0.15 ? "within" : "OUTSIDE")
+       << " the +-0.15 tolerance) over " << spp.size() << " spp counts ("
+       << (spp.empty() ? 0 : spp.front()) << " to " << (spp.empty() ? 0 : spp.back()) << ").";
     if (std::abs(slopeSpp + 1) > 0.15 && r.caustics)
-        md << " The render plan finds caustics here: light through glass or mirrors onto diffuse surfaces, found only "
-              "by rare BSDF-sampled paths. Their contribution is heavy-tailed: low sample counts usually miss it, so their "
-              "measured error looks small, and the reference itself still carries caustic noise that its variance "
-              "estimate underrates, a floor under the high counts. Both flatten the measured slope; it is the "
+        md << " The render plan finds caustics here: light through glass or mirrors onto diffuse "
+              "surfaces, found only "
+              "by rare BSDF-sampled paths. Their contribution is heavy-tailed: low sample counts "
+              "usually miss it, so their "
+              "measured error looks small, and the reference itself still carries caustic noise "
+              "that its variance "
+              "estimate underrates, a floor under the high counts. Both flatten the measured "
+              "slope; it is the "
               "caustics, not the estimator, that converge slowly here.";
     md << "\n";
     if (slopeTime < 0)
-        md << "- **To halve the error** (RMSE) of the path tracer on this scene, spend **" << fmt(std::pow(2.0, -1.0 / slopeTime))
-           << "x the time** (measured RMSE-time slope " << fmt(slopeTime) << ").\n";
+        md << "- **To halve the error** (RMSE) of the path tracer on this scene, spend **"
+           << fmt(std::pow(2.0, -1.0 / slopeTime)) << "x the time** (measured RMSE-time slope "
+           << fmt(slopeTime) << ").\n";
     // MIS against hemisphere sampling at equal spp (direct lighting).
     std::map<int, double> hemi, mis, light;
     for (const AccuracyRun& a : r.runs)
         if (a.group == "strategy")
-            (a.sampling == "hemisphere" ? hemi : a.sampling == "mis" ? mis : light)[a.spp] = a.efficiency;
+            (a.sampling == "hemisphere" ? hemi
+             : a.sampling == "mis"      ? mis
+                                        : light)[a.spp] = a.efficiency;
     std::vector<double> ratios;
     for (const auto& [n, e] : mis)
         if (hemi.count(n) && hemi[n] > 0) ratios.push_back(e / hemi[n]);
     if (!ratios.empty()) {
         std::sort(ratios.begin(), ratios.end());
-        md << "- **MIS against uniform hemisphere sampling** (direct lighting, equal spp): MIS is **"
+        md << "- **MIS against uniform hemisphere sampling** (direct lighting, equal spp): MIS is "
+              "**"
            << fmt(ratios[ratios.size() / 2]) << "x more efficient** (median of " << ratios.size()
            << " spp counts; efficiency = 1 / (relMSE x time)).\n";
     }
     auto has = [&](const char* g) {
-        return std::any_of(r.runs.begin(), r.runs.end(), [&](const AccuracyRun& a) { return a.group == g; });
+        return std::any_of(r.runs.begin(), r.runs.end(),
+                           [&](const AccuracyRun& a) { return a.group == g; });
     };
-    if (has("depth")) md << "- **Depth truncation** (64 spp against the full-depth reference; bias is the error more samples cannot "
-          "remove):\n\n  | setting | bias (mean luminance) | bias / image mean | relMSE | time (s) |\n  |---|---:|---:|---:|---:|\n";
+    if (has("depth"))
+        md << "- **Depth truncation** (64 spp against the full-depth reference; bias is the error "
+              "more samples cannot "
+              "remove):\n\n  | setting | bias (mean luminance) | bias / image mean | relMSE | time "
+              "(s) |\n  |---|---:|---:|---:|---:|\n";
     for (const AccuracyRun& a : r.runs)
         if (a.group == "depth")
             md << "  | " << a.label << " | " << fmt(a.error.bias) << " | "
-               << (a.error.referenceMean > 0 ? fmt(100 * a.error.bias / a.error.referenceMean) + " %" : "-") << " | "
-               << fmt(a.error.relMse) << " | " << fmt(a.seconds) << " |\n";
-    if (has("adaptive")) md << "\n- **Adaptive sampling** (CS184 rule, batch 32, up to " << o.maxSpp << " spp) against uniform spp at equal error:\n\n"
-       << "  | tolerance | mean spp | relMSE | time (s) | uniform time at that error | saved |\n  |---|---:|---:|---:|---:|---:|\n";
+               << (a.error.referenceMean > 0
+                       ? fmt(100 * a.error.bias / a.error.referenceMean) + " %"
+                       : "-")
+               << " | " << fmt(a.error.relMse) << " | " << fmt(a.seconds) << " |\n";
+    if (has("adaptive"))
+        md << "\n- **Adaptive sampling** (CS184 rule, batch 32, up to " << o.maxSpp
+           << " spp) against uniform spp at equal error:\n\n"
+           << "  | tolerance | mean spp | relMSE | time (s) | uniform time at that error | saved "
+              "|\n  |---|---:|---:|---:|---:|---:|\n";
     for (const AccuracyRun& a : r.runs)
         if (a.group == "adaptive") {
             bool extrapolated;
             double t = timeAtError(uniform, a.error.relMse, extrapolated);
-            md << "  | " << a.adaptiveTolerance << " | " << fmt(a.meanSpp) << " | " << fmt(a.error.relMse) << " | "
-               << fmt(a.seconds) << " | " << (t > 0 ? fmt(t) + (extrapolated ? " (extrapolated)" : "") : "out of range")
+            md << "  | " << a.adaptiveTolerance << " | " << fmt(a.meanSpp) << " | "
+               << fmt(a.error.relMse) << " | " << fmt(a.seconds) << " | "
+               << (t > 0 ? fmt(t) + (extrapolated ? " (extrapolated)" : "") : "out of range")
                << " | " << (t > 0 ? fmt(t / a.seconds) + "x" : "-") << " |\n";
         }
     if (has("light_samples")) md << "\n- **Light samples** (direct lighting, 16 spp): ";
     for (const AccuracyRun& a : r.runs)
-        if (a.group == "light_samples") md << "-l " << a.lightSamples << ": relMSE " << fmt(a.error.relMse) << " in " << fmt(a.seconds) << " s; ";
+        if (a.group == "light_samples")
+            md << "-l " << a.lightSamples << ": relMSE " << fmt(a.error.relMse) << " in "
+               << fmt(a.seconds) << " s; ";
     if (!uniform.empty() && !uniform.back().aovErrors.empty()) {
         md << "\n- **AOV errors** (relMSE of each requested layer, spp sweep: ";
         for (const AccuracyRun& a : {uniform.front(), uniform.back()}) {
@@ -252,16 +294,21 @@ void writeOutputs(const AccuracyOptions& o, const AccuracyResult& r) {
     }
     if (has("accel")) md << "\n- **Accelerators** (16 spp): ";
     for (const AccuracyRun& a : r.runs)
-        if (a.group == "accel") md << a.accel << " " << fmt(a.seconds) << " s (relMSE " << fmt(a.error.relMse) << "); ";
+        if (a.group == "accel")
+            md << a.accel << " " << fmt(a.seconds) << " s (relMSE " << fmt(a.error.relMse) << "); ";
     std::vector<AccuracyRun> ranked = r.runs;
-    std::sort(ranked.begin(), ranked.end(), [](const AccuracyRun& a, const AccuracyRun& b) { return a.efficiency > b.efficiency; });
-    md << "\n\n- Most efficient settings (unbiased ones only: depth-truncated settings converge to something else):\n\n"
+    std::sort(ranked.begin(), ranked.end(), [](const AccuracyRun& a, const AccuracyRun& b) {
+        return a.efficiency > b.efficiency;
+    });
+    md << "\n\n- Most efficient settings (unbiased ones only: depth-truncated settings converge to "
+          "something else):\n\n"
           "  | rank | setting | relMSE | time (s) | efficiency |\n  |---:|---|---:|---:|---:|\n";
     int rank = 0;
     for (const AccuracyRun& a : ranked) {
-        if (a.group == "depth" || a.group == "strategy" || a.group == "light_samples" || rank >= 5) continue;
-        md << "  | " << ++rank << " | " << a.group << " " << a.label << " | " << fmt(a.error.relMse) << " | " << fmt(a.seconds)
-           << " | " << fmt(a.efficiency) << " |\n";
+        if (a.group == "depth" || a.group == "strategy" || a.group == "light_samples" || rank >= 5)
+            continue;
+        md << "  | " << ++rank << " | " << a.group << " " << a.label << " | " << fmt(a.error.relMse)
+           << " | " << fmt(a.seconds) << " | " << fmt(a.efficiency) << " |\n";
     }
     for (const std::string& s : r.skipped) md << "\n- skipped (over the time budget): " << s;
     md << "\n\nPlots: `error_vs_time.svg`, `spp.svg`; every run: `accuracy.csv`.\n";
@@ -275,7 +322,9 @@ AccuracyResult runAccuracy(const AccuracyOptions& o) {
     Scene scene = loadScene(o.scene);
     auto embree = makeEmbreeAccelerator(scene);
     auto start = std::chrono::steady_clock::now();
-    auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+    auto elapsed = [&] {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    };
     bool cachedGi = false, cachedDirect = false;
     Image giRef = reference(scene, *embree, o, 100, result.referenceSeconds, cachedGi);
     Image directRef = reference(scene, *embree, o, 1, result.referenceSeconds, cachedDirect);
@@ -284,10 +333,13 @@ AccuracyResult runAccuracy(const AccuracyOptions& o) {
     double budgetStart = elapsed();
     AovRequest aovs = AovRequest::parse(o.aovs, 100);
 
-    auto run = [&](const std::string& group, const std::string& label, const Setting& s, const Image& ref) {
-        // Skip a setting whose predicted time (from its spp and the time per spp so far) would break the budget.
+    auto run = [&](const std::string& group, const std::string& label, const Setting& s,
+                   const Image& ref) {
+        // Skip a setting whose predicted time (from its spp and the time per spp so far) would
+        // break the budget.
         double perSpp = 0;
-        for (const AccuracyRun& a : result.runs) perSpp = std::max(perSpp, a.seconds / std::max(1.0, a.meanSpp));
+        for (const AccuracyRun& a : result.runs)
+            perSpp = std::max(perSpp, a.seconds / std::max(1.0, a.meanSpp));
         double predicted = perSpp * s.spp;
         if (elapsed() - budgetStart + predicted > o.budgetSeconds) {
             result.skipped.push_back(group + " " + label);
@@ -295,19 +347,27 @@ AccuracyResult runAccuracy(const AccuracyOptions& o) {
         }
         std::unique_ptr<Accelerator> refAccel;
         if (s.referenceAccel) refAccel = makeReferenceAccelerator(scene);
-        Rendered r = render(scene, s.referenceAccel ? *refAccel : *embree, s, o.width, o.height, 7, aovs);
+        Rendered r =
+            render(scene, s.referenceAccel ? *refAccel : *embree, s, o.width, o.height, 7, aovs);
         AccuracyRun a;
-        a.group = group, a.label = label, a.spp = s.spp, a.lightSamples = s.path.lightSamples, a.maxDepth = s.path.maxDepth;
-        a.sampling = s.path.sampling == DirectSampling::Mis ? "mis" : s.path.sampling == DirectSampling::Light ? "light" : "hemisphere";
-        a.roulette = s.path.roulette == Roulette::Off ? "off" : s.path.roulette == Roulette::Fixed ? "fixed" : "throughput";
+        a.group = group, a.label = label, a.spp = s.spp, a.lightSamples = s.path.lightSamples,
+        a.maxDepth = s.path.maxDepth;
+        a.sampling = s.path.sampling == DirectSampling::Mis     ? "mis"
+                     : s.path.sampling == DirectSampling::Light ? "light"
+                                                                : "hemisphere";
+        a.roulette = s.path.roulette == Roulette::Off     ? "off"
+                     : s.path.roulette == Roulette::Fixed ? "fixed"
+                                                          : "throughput";
         a.accel = s.referenceAccel ? "reference" : "embree";
         a.adaptiveTolerance = s.adaptiveTolerance;
         a.seconds = r.seconds, a.meanSpp = r.meanSpp, a.rays = r.rays;
         a.error = compareImages(r.image, ref);
-        for (const std::string& layer : ref.layerNames) a.aovErrors.emplace_back(layer, compareLayer(r.image, ref, layer));
+        for (const std::string& layer : ref.layerNames)
+            a.aovErrors.emplace_back(layer, compareLayer(r.image, ref, layer));
         a.efficiency = efficiency(a.error.relMse, a.seconds);
         result.runs.push_back(a);
-        std::fprintf(stderr, "  %-14s %-16s %8.3f s  relMSE %.4g\n", group.c_str(), label.c_str(), a.seconds, a.error.relMse);
+        std::fprintf(stderr, "  %-14s %-16s %8.3f s  relMSE %.4g\n", group.c_str(), label.c_str(),
+                     a.seconds, a.error.relMse);
     };
 
     int maxSpp = o.quick ? std::min(o.maxSpp, 16) : o.maxSpp;
@@ -316,13 +376,16 @@ AccuracyResult runAccuracy(const AccuracyOptions& o) {
         s.spp = spp;
         run("spp", std::to_string(spp) + " spp", s, giRef);
     }
-    for (DirectSampling d : {DirectSampling::Hemisphere, DirectSampling::Light, DirectSampling::Mis})
+    for (DirectSampling d :
+         {DirectSampling::Hemisphere, DirectSampling::Light, DirectSampling::Mis})
         for (int spp = 1; spp <= maxSpp; spp *= (o.quick ? 4 : 2)) {
             Setting s;
             s.spp = spp;
             s.path.maxDepth = 1;
             s.path.sampling = d;
-            const char* n = d == DirectSampling::Mis ? "mis" : d == DirectSampling::Light ? "light" : "hemisphere";
+            const char* n = d == DirectSampling::Mis     ? "mis"
+                            : d == DirectSampling::Light ? "light"
+                                                         : "hemisphere";
             run("strategy", std::string(n) + " " + std::to_string(spp), s, directRef);
         }
     if (o.quick) {
@@ -362,19 +425,25 @@ AccuracyResult runAccuracy(const AccuracyOptions& o) {
 }
 
 int runAccuracyCommand(const std::vector<std::string>& args) {
-    ArgParser parser("bench accuracy", "SCENE [--budget SECONDS] [--out DIR] [-r W H] [--max-spp N] [--ref-spp N]");
+    ArgParser parser("bench accuracy",
+                     "SCENE [--budget SECONDS] [--out DIR] [-r W H] [--max-spp N] [--ref-spp N]");
     AccuracyOptions o;
     int budget = 300;
-    parser.option("out", "o", 1, "DIR", "output folder (default accuracy/)", [&](const std::vector<std::string>& v) { o.outDir = v[0]; });
-    parser.intOption("budget", "", "seconds for the sweep, references excluded (default 300)", budget, 1, 1 << 24);
-    parser.intOption("max-spp", "", "largest spp of the sweeps (default 1024)", o.maxSpp, 1, 1 << 16);
+    parser.option("out", "o", 1, "DIR", "output folder (default accuracy/)",
+                  [&](const std::vector<std::string>& v) { o.outDir = v[0]; });
+    parser.intOption("budget", "", "seconds for the sweep, references excluded (default 300)",
+                     budget, 1, 1 << 24);
+    parser.intOption("max-spp", "", "largest spp of the sweeps (default 1024)", o.maxSpp, 1,
+                     1 << 16);
     parser.intOption("ref-spp", "", "reference spp (default 4096)", o.referenceSpp, 1, 1 << 24);
-    parser.option("resolution", "r", 2, "W H", "image size (default 128 96)", [&](const std::vector<std::string>& v) {
-        o.width = ArgParser::toInt("-r", v[0], 1, 8192);
-        o.height = ArgParser::toInt("-r", v[1], 1, 8192);
-    });
+    parser.option("resolution", "r", 2, "W H", "image size (default 128 96)",
+                  [&](const std::vector<std::string>& v) {
+                      o.width = ArgParser::toInt("-r", v[0], 1, 8192);
+                      o.height = ArgParser::toInt("-r", v[1], 1, 8192);
+                  });
     parser.flag("quick", "", "a handful of settings (smoke test)", o.quick);
-    parser.option("aov", "", 1, "LIST", "also measure the error of these colour AOV layers (e.g. direct,indirect)",
+    parser.option("aov", "", 1, "LIST",
+                  "also measure the error of these colour AOV layers (e.g. direct,indirect)",
                   [&](const std::vector<std::string>& v) { o.aovs = v[0]; });
     std::vector<std::string> pos = parser.parse(args);
     if (parser.helpRequested()) {

@@ -1,5 +1,6 @@
-// kiln bench accel: build time and rays/s of both accelerators, 1 and all threads, with ratios measured
-// in the same run (the machine is shared and noisy; absolute figures drift, ratios much less).
+// kiln bench accel: build time and rays/s of both accelerators, 1 and all threads, with ratios
+// measured in the same run (the machine is shared and noisy; absolute figures drift, ratios much
+// less).
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
@@ -10,40 +11,48 @@
 #include "integrators/path.h"
 #include "integrators/render_plan.h"
 #include "renderer/accel_options.h"
-#include "renderer/render_loop.h"
 #include "renderer/commands.h"
 #include "renderer/ray_sets.h"
 #include "renderer/reference_bvh.h"
+#include "renderer/render_loop.h"
 #include "scene/scene_loader.h"
 
 namespace kiln {
 namespace {
 
-double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+double now() {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+        .count();
+}
 
 enum class Mode { Single, Packets, Shadow };
 
 // Median of `repeats` timed passes; returns Mrays/s.
-double measure(const Accelerator& accel, const std::vector<Ray>& rays, Mode mode, int threads, int repeats) {
+double measure(const Accelerator& accel, const std::vector<Ray>& rays, Mode mode, int threads,
+               int repeats) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
     std::vector<double> rates;
     for (int r = 0; r < repeats; ++r) {
         std::atomic<uint64_t> sink{0};
         double t0 = now();
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), 1024), [&](const tbb::blocked_range<size_t>& range) {
-            uint64_t hits = 0;
-            if (mode == Mode::Packets) {
-                std::vector<Hit> out(range.size());
-                accel.intersect(std::span<const Ray>(rays.data() + range.begin(), range.size()), std::span<Hit>(out));
-                for (const Hit& h : out) hits += h.valid();
-            } else {
-                for (size_t i = range.begin(); i != range.end(); ++i) {
-                    Hit h;
-                    hits += mode == Mode::Shadow ? accel.occluded(rays[i]) : accel.intersect(rays[i], h);
+        tbb::parallel_for(
+            tbb::blocked_range<size_t>(0, rays.size(), 1024),
+            [&](const tbb::blocked_range<size_t>& range) {
+                uint64_t hits = 0;
+                if (mode == Mode::Packets) {
+                    std::vector<Hit> out(range.size());
+                    accel.intersect(std::span<const Ray>(rays.data() + range.begin(), range.size()),
+                                    std::span<Hit>(out));
+                    for (const Hit& h : out) hits += h.valid();
+                } else {
+                    for (size_t i = range.begin(); i != range.end(); ++i) {
+                        Hit h;
+                        hits += mode == Mode::Shadow ? accel.occluded(rays[i])
+                                                     : accel.intersect(rays[i], h);
+                    }
                 }
-            }
-            sink += hits;
-        });
+                sink += hits;
+            });
         rates.push_back(double(rays.size()) / (now() - t0) * 1e-6);
     }
     std::sort(rates.begin(), rates.end());
@@ -66,26 +75,31 @@ int benchPlan(const std::vector<std::string>& args) {
     int spp = 16, depth = 5, repeats = 3, width = 240, height = 180;
     parser.intOption("spp", "s", "samples per pixel (default 16)", spp, 1, 1 << 16);
     parser.intOption("max-depth", "m", "CS184 depth (default 5)", depth, 0, 1000);
-    parser.intOption("repeats", "", "timed renders of each path, median reported (default 3)", repeats, 1, 50);
-    parser.option("resolution", "r", 2, "W H", "image size (default 240 180)", [&](const std::vector<std::string>& v) {
-        width = ArgParser::toInt("-r", v[0], 1, 8192);
-        height = ArgParser::toInt("-r", v[1], 1, 8192);
-    });
+    parser.intOption("repeats", "", "timed renders of each path, median reported (default 3)",
+                     repeats, 1, 50);
+    parser.option("resolution", "r", 2, "W H", "image size (default 240 180)",
+                  [&](const std::vector<std::string>& v) {
+                      width = ArgParser::toInt("-r", v[0], 1, 8192);
+                      height = ArgParser::toInt("-r", v[1], 1, 8192);
+                  });
     std::vector<std::string> pos = parser.parse(args);
     if (parser.helpRequested()) {
         std::fputs(parser.helpText().c_str(), stdout);
         return 0;
     }
     if (pos.empty()) throw UsageError("needs at least one scene file");
-    std::printf("%-32s %-44s %10s %10s %8s\n", "scene", "plan", "special s", "general s", "speed-up");
+    std::printf("%-32s %-44s %10s %10s %8s\n", "scene", "plan", "special s", "general s",
+                "speed-up");
     for (const std::string& path : pos) {
         Scene scene = loadScene(path);
         auto accel = makeEmbreeAccelerator(scene);
         PathOptions opt;
         opt.maxDepth = depth;
-        RenderPlan plans[2] = {planFor(scene, *accel, AovRequest{}), planFor(scene, *accel, AovRequest{}, true)};
+        RenderPlan plans[2] = {planFor(scene, *accel, AovRequest{}),
+                               planFor(scene, *accel, AovRequest{}, true)};
         RenderSettings settings;
-        settings.width = width, settings.height = height, settings.spp = spp, settings.progress = false;
+        settings.width = width, settings.height = height, settings.spp = spp,
+        settings.progress = false;
         std::vector<double> times[2];
         for (int r = 0; r < repeats; ++r)
             for (int k = 0; k < 2; ++k) {
@@ -97,29 +111,36 @@ int benchPlan(const std::vector<std::string>& args) {
         for (auto& t : times) std::sort(t.begin(), t.end());
         double special = times[0][times[0].size() / 2], general = times[1][times[1].size() / 2];
         std::string name = path.substr(path.find_last_of('/') + 1);
-        std::printf("%-32s %-44s %10.3f %10.3f %7.2fx\n", name.c_str(), plans[0].compact().c_str(), special, general,
-                    general / special);
+        std::printf("%-32s %-44s %10.3f %10.3f %7.2fx\n", name.c_str(), plans[0].compact().c_str(),
+                    special, general, general / special);
         std::fflush(stdout);
     }
-    std::printf("\n%dx%d, %d spp, -m %d, median of %d alternating renders per path; speed-up = general / special\n",
-                width, height, spp, depth, repeats);
+    std::printf(
+        "\n%dx%d, %d spp, -m %d, median of %d alternating renders per path; speed-up = general / "
+        "special\n",
+        width, height, spp, depth, repeats);
     return 0;
 }
 
 int runBench(const std::vector<std::string>& args) {
-    if (!args.empty() && args[0] == "plan") return benchPlan(std::vector<std::string>(args.begin() + 1, args.end()));
+    if (!args.empty() && args[0] == "plan")
+        return benchPlan(std::vector<std::string>(args.begin() + 1, args.end()));
     if (!args.empty() && args[0] == "accuracy")
         return runAccuracyCommand(std::vector<std::string>(args.begin() + 1, args.end()));
     if (args.empty() || (args[0] != "accel" && args[0] != "-h" && args[0] != "--help"))
-        throw UsageError("usage: kiln bench accel|plan|accuracy SCENE... (see 'kiln bench accel --help', 'kiln bench plan --help')");
+        throw UsageError(
+            "usage: kiln bench accel|plan|accuracy SCENE... (see 'kiln bench accel --help', 'kiln "
+            "bench plan --help')");
     ArgParser parser("bench accel", "SCENE... [--rays N] [--repeats N] [--threads N]");
     int rays = 200000, repeats = 3, threads = int(std::thread::hardware_concurrency());
     AcceleratorChoice choice;
     parser.intOption("rays", "", "rays per measurement (default 200000)", rays, 1000, 1 << 28);
     parser.intOption("repeats", "", "timed passes, median reported (default 3)", repeats, 1, 100);
-    parser.intOption("threads", "t", "the 'all threads' column (default: all cores)", threads, 1, 4096);
+    parser.intOption("threads", "t", "the 'all threads' column (default: all cores)", threads, 1,
+                     4096);
     choice.addOptions(parser, false);
-    std::vector<std::string> pos = parser.parse(std::vector<std::string>(args.begin() + (args[0] == "accel"), args.end()));
+    std::vector<std::string> pos =
+        parser.parse(std::vector<std::string>(args.begin() + (args[0] == "accel"), args.end()));
     if (parser.helpRequested()) {
         std::fputs(parser.helpText().c_str(), stdout);
         return 0;
@@ -127,8 +148,9 @@ int runBench(const std::vector<std::string>& args) {
     if (pos.empty()) throw UsageError("needs at least one scene file");
 
     std::string statsTable;
-    std::printf("%-26s %9s %-9s %8s %8s %8s %8s %8s %8s %8s %8s\n", "scene", "tris", "accel", "build s", "prim 1t",
-                "prim Nt", "pkt Nt", "incoh Nt", "shdw Nt", "emb/ref", "vs CS184");
+    std::printf("%-26s %9s %-9s %8s %8s %8s %8s %8s %8s %8s %8s\n", "scene", "tris", "accel",
+                "build s", "prim 1t", "prim Nt", "pkt Nt", "incoh Nt", "shdw Nt", "emb/ref",
+                "vs CS184");
     for (const std::string& path : pos) {
         Scene scene = loadScene(path);
         auto embree = makeEmbreeAccelerator(scene, choice.embree);
@@ -136,7 +158,8 @@ int runBench(const std::vector<std::string>& args) {
         const ReferenceAccelerator& ref = *referenceBvh;
         std::unique_ptr<Accelerator> reference = std::move(referenceBvh);
         std::vector<Ray> primary = makeCoherentCameraRays(scene, 800, 600, size_t(rays));
-        std::vector<Ray> incoherent = makeRaySet(RaySetKind::Random, scene, *embree, size_t(rays), 7);
+        std::vector<Ray> incoherent =
+            makeRaySet(RaySetKind::Random, scene, *embree, size_t(rays), 7);
         std::vector<Ray> shadow = makeRaySet(RaySetKind::Shadow, scene, *embree, size_t(rays), 7);
         double rate[2][5];
         const Accelerator* accels[2] = {embree.get(), reference.get()};
@@ -162,31 +185,40 @@ int runBench(const std::vector<std::string>& args) {
             perRay[k][1] = double(counters.primTests) / double(sets[k]->size());
         }
         char line[256];
-        std::snprintf(line, sizeof line, "%-26s %9llu %6llu %6llu %8.2f %8.1f %8.1f %8.1f %8.1f\n", name.c_str(),
-                      (unsigned long long)bs.nodes, (unsigned long long)bs.leaves, (unsigned long long)bs.maxDepth,
-                      bs.sahCost, perRay[0][0], perRay[0][1], perRay[1][0], perRay[1][1]);
+        std::snprintf(line, sizeof line, "%-26s %9llu %6llu %6llu %8.2f %8.1f %8.1f %8.1f %8.1f\n",
+                      name.c_str(), (unsigned long long)bs.nodes, (unsigned long long)bs.leaves,
+                      (unsigned long long)bs.maxDepth, bs.sahCost, perRay[0][0], perRay[0][1],
+                      perRay[1][0], perRay[1][1]);
         statsTable += line;
         double base = cs184Baseline(path);
         for (int a = 0; a < 2; ++a) {
             char ratio[32] = "", vs[32] = "";
             if (a == 0) std::snprintf(ratio, sizeof ratio, "%.2fx", rate[0][1] / rate[1][1]);
-            if (base > 0 && a == 0) std::snprintf(vs, sizeof vs, "%.1fx", std::max(rate[0][1], rate[0][2]) / base);
-            std::printf("%-26s %9llu %-9s %8.3f %8.2f %8.2f %8.2f %8.2f %8.2f %8s %8s\n", a == 0 ? name.c_str() : "",
-                        (unsigned long long)scene.instancedTriangles(), a == 0 ? "embree" : "reference",
-                        accels[a]->stats().buildSeconds, rate[a][0], rate[a][1], rate[a][2], rate[a][3], rate[a][4],
-                        ratio, vs);
+            if (base > 0 && a == 0)
+                std::snprintf(vs, sizeof vs, "%.1fx", std::max(rate[0][1], rate[0][2]) / base);
+            std::printf("%-26s %9llu %-9s %8.3f %8.2f %8.2f %8.2f %8.2f %8.2f %8s %8s\n",
+                        a == 0 ? name.c_str() : "", (unsigned long long)scene.instancedTriangles(),
+                        a == 0 ? "embree" : "reference", accels[a]->stats().buildSeconds,
+                        rate[a][0], rate[a][1], rate[a][2], rate[a][3], rate[a][4], ratio, vs);
         }
         std::fflush(stdout);
     }
-    std::printf("\nreference BVH (%s): structure and work per ray\n%-26s %9s %6s %6s %8s %8s %8s %8s %8s\n%s",
-                ReferenceAccelerator(Scene{}, choice.reference).stats().description.c_str(), "scene", "nodes",
-                "leaves", "depth", "SAH", "box/prim", "tri/prim", "box/inc", "tri/inc", statsTable.c_str());
-    std::printf("\nrates in Mrays/s (median of %d); Nt = %d threads; prim = camera rays in 4x4 blocks at 800x600, one\n"
-                "at a time; pkt = the same rays as 16-wide packets (reference: a loop); incoh = random rays through\n"
-                "the bounds; shdw = shadow rays from surface points to lights; emb/ref = Embree over reference,\n"
-                "single primary rays Nt; vs CS184 = Embree's best primary rate over the CS184 baseline\n"
-                "(maxplanck 3.6, CBbunny 5.7 Mrays/s at 2 threads)\n",
-                repeats, threads);
+    std::printf(
+        "\nreference BVH (%s): structure and work per ray\n%-26s %9s %6s %6s %8s %8s %8s %8s "
+        "%8s\n%s",
+        ReferenceAccelerator(Scene{}, choice.reference).stats().description.c_str(), "scene",
+        "nodes", "leaves", "depth", "SAH", "box/prim", "tri/prim", "box/inc", "tri/inc",
+        statsTable.c_str());
+    std::printf(
+        "\nrates in Mrays/s (median of %d); Nt = %d threads; prim = camera rays in 4x4 blocks at "
+        "800x600, one\n"
+        "at a time; pkt = the same rays as 16-wide packets (reference: a loop); incoh = random "
+        "rays through\n"
+        "the bounds; shdw = shadow rays from surface points to lights; emb/ref = Embree over "
+        "reference,\n"
+        "single primary rays Nt; vs CS184 = Embree's best primary rate over the CS184 baseline\n"
+        "(maxplanck 3.6, CBbunny 5.7 Mrays/s at 2 threads)\n",
+        repeats, threads);
     return 0;
 }
 

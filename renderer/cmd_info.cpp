@@ -1,8 +1,8 @@
 #include <cstdio>
 
+#include "integrators/render_plan.h"
 #include "renderer/cli_args.h"
 #include "renderer/commands.h"
-#include "integrators/render_plan.h"
 #include "scene/scene_info.h"
 #include "scene/scene_loader.h"
 
@@ -13,14 +13,17 @@ int runInfo(const std::vector<std::string>& args) {
     bool json = false;
     LoadOptions load;
     parser.flag("json", "", "print the stable JSON form (keys in docs/info-json.md)", json);
-    parser.option("camera", "", 1, "file|framed", "the file's camera as written, or the CS184 course framing (default: course framing for Z-up COLLADA)",
+    parser.option("camera", "", 1, "file|framed",
+                  "the file's camera as written, or the CS184 course framing (default: course "
+                  "framing for Z-up COLLADA)",
                   [&](const std::vector<std::string>& v) {
-                      if (v[0] != "file" && v[0] != "framed") throw UsageError("--camera takes 'file' or 'framed', got '" + v[0] + "'");
-                      load.cameraRule = v[0] == "file" ? LoadOptions::CameraRule::File : LoadOptions::CameraRule::Framed;
+                      if (v[0] != "file" && v[0] != "framed")
+                          throw UsageError("--camera takes 'file' or 'framed', got '" + v[0] + "'");
+                      load.cameraRule = v[0] == "file" ? LoadOptions::CameraRule::File
+                                                       : LoadOptions::CameraRule::Framed;
                   });
-    parser.option("env", "", 1, "MAP.exr", "add a lat-long environment light", [&](const std::vector<std::string>& v) {
-        load.environmentMap = v[0];
-    });
+    parser.option("env", "", 1, "MAP.exr", "add a lat-long environment light",
+                  [&](const std::vector<std::string>& v) { load.environmentMap = v[0]; });
     std::vector<std::string> pos = parser.parse(args);
     if (parser.helpRequested()) {
         std::fputs(parser.helpText().c_str(), stdout);

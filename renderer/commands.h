@@ -1,4 +1,5 @@
-// The kiln subcommands; each returns the process exit code (0 ok, 1 failure found, 2 bad input/usage).
+// The kiln subcommands; each returns the process exit code (0 ok, 1 failure found, 2 bad
+// input/usage).
 #pragma once
 
 #include <string>

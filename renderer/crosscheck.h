@@ -10,10 +10,12 @@
 namespace kiln {
 
 // Thresholds (documented in docs/accelerators.md):
-//  - edge: the hit that one side found lies within kEdgeTolerance (barycentric) of an edge or vertex of
-//    its triangle, or grazes a sphere's silhouette; there the two watertight-in-their-own-way tests may
-//    legitimately choose different neighbours or miss/hit.
-//  - coplanar: both hit different primitives at the same distance (|dt|/t <= kTieTolerance): duplicate
+//  - edge: the hit that one side found lies within kEdgeTolerance (barycentric) of an edge or
+//  vertex of
+//    its triangle, or grazes a sphere's silhouette; there the two watertight-in-their-own-way tests
+//    may legitimately choose different neighbours or miss/hit.
+//  - coplanar: both hit different primitives at the same distance (|dt|/t <= kTieTolerance):
+//  duplicate
 //    or touching coplanar surfaces, where the winner is arbitrary.
 //  - genuine: anything else, including a same-primitive hit whose distances differ by more than
 //    kDistanceTolerance relative plus kUlpAllowance float ulps of the coordinates (absolute).
@@ -51,11 +53,11 @@ struct CrosscheckReport {
     }
 };
 
-RayComparison compareRay(const Scene& scene, const Accelerator& a, const Accelerator& b, const Ray& ray,
-                         bool shadowRay);
+RayComparison compareRay(const Scene& scene, const Accelerator& a, const Accelerator& b,
+                         const Ray& ray, bool shadowRay);
 
-CrosscheckReport crosscheck(const Scene& scene, const Accelerator& a, const Accelerator& b, size_t raysPerCategory,
-                            uint64_t seed, size_t worstToKeep = 5);
+CrosscheckReport crosscheck(const Scene& scene, const Accelerator& a, const Accelerator& b,
+                            size_t raysPerCategory, uint64_t seed, size_t worstToKeep = 5);
 
 std::string formatRay(const Ray& ray);  // exact (hex-float) form, accepted by --replay
 bool parseRay(const std::string& text, Ray& ray);

@@ -21,7 +21,8 @@ std::atomic<int64_t> gEmbreeBytes{0};
 void embreeError(void* userPtr, RTCError code, const char* message) {
     auto* last = static_cast<std::string*>(userPtr);
     if (last->empty())
-        *last = "Embree error " + std::to_string(int(code)) + ": " + (message ? message : "(no message)");
+        *last = "Embree error " + std::to_string(int(code)) + ": " +
+                (message ? message : "(no message)");
 }
 
 bool embreeMemory(void*, ssize_t bytes, bool) {
@@ -34,7 +35,8 @@ struct SphereData {
 };
 
 void sphereBounds(const RTCBoundsFunctionArguments* args) {
-    const Sphere& s = (*static_cast<const SphereData*>(args->geometryUserPtr)->spheres)[args->primID];
+    const Sphere& s =
+        (*static_cast<const SphereData*>(args->geometryUserPtr)->spheres)[args->primID];
     // Padded by a relative ulp so Embree's float box never clips the exact sphere.
     float pad = s.radius * 1e-6f + 1e-30f;
     args->bounds_o->lower_x = s.center.x - s.radius - pad;
@@ -47,12 +49,15 @@ void sphereBounds(const RTCBoundsFunctionArguments* args) {
 
 // Sphere callbacks for any packet width N (rtcIntersect1 calls with N = 1, rtcIntersect16 with 16).
 Ray lane(RTCRayN* r, unsigned N, unsigned i) {
-    return Ray{Vec3(RTCRayN_org_x(r, N, i), RTCRayN_org_y(r, N, i), RTCRayN_org_z(r, N, i)), RTCRayN_tnear(r, N, i),
-               Vec3(RTCRayN_dir_x(r, N, i), RTCRayN_dir_y(r, N, i), RTCRayN_dir_z(r, N, i)), RTCRayN_tfar(r, N, i)};
+    return Ray{Vec3(RTCRayN_org_x(r, N, i), RTCRayN_org_y(r, N, i), RTCRayN_org_z(r, N, i)),
+               RTCRayN_tnear(r, N, i),
+               Vec3(RTCRayN_dir_x(r, N, i), RTCRayN_dir_y(r, N, i), RTCRayN_dir_z(r, N, i)),
+               RTCRayN_tfar(r, N, i)};
 }
 
 void sphereIntersect(const RTCIntersectFunctionNArguments* args) {
-    const Sphere& s = (*static_cast<const SphereData*>(args->geometryUserPtr)->spheres)[args->primID];
+    const Sphere& s =
+        (*static_cast<const SphereData*>(args->geometryUserPtr)->spheres)[args->primID];
     RTCRayN* rays = RTCRayHitN_RayN(args->rayhit, args->N);
     RTCHitN* hits = RTCRayHitN_HitN(args->rayhit, args->N);
     for (unsigned i = 0; i < args->N; ++i) {
@@ -74,7 +79,8 @@ void sphereIntersect(const RTCIntersectFunctionNArguments* args) {
 }
 
 void sphereOccluded(const RTCOccludedFunctionNArguments* args) {
-    const Sphere& s = (*static_cast<const SphereData*>(args->geometryUserPtr)->spheres)[args->primID];
+    const Sphere& s =
+        (*static_cast<const SphereData*>(args->geometryUserPtr)->spheres)[args->primID];
     for (unsigned i = 0; i < args->N; ++i) {
         if (!args->valid[i]) continue;
         float t;
@@ -83,20 +89,23 @@ void sphereOccluded(const RTCOccludedFunctionNArguments* args) {
     }
 }
 
-// Exact duplicate triangles (the same surface twice) are hit at the same t; the lowest (mesh, triangle)
-// wins, as in the reference BVH, so the image does not depend on which one a BVH visits first. Embree
-// gives the filter the candidate and, in the RayHitN layout, the hit it would replace. Only installed on
-// scenes that have duplicates (Scene::duplicateTriangles): it costs a callback per candidate hit.
+// Exact duplicate triangles (the same surface twice) are hit at the same t; the lowest (mesh,
+// triangle) wins, as in the reference BVH, so the image does not depend on which one a BVH visits
+// first. Embree gives the filter the candidate and, in the RayHitN layout, the hit it would
+// replace. Only installed on scenes that have duplicates (Scene::duplicateTriangles): it costs a
+// callback per candidate hit.
 struct DuplicateFilterData {
     const Scene* scene;
 };
 
-bool sameTriangle(const Scene& scene, unsigned geomA, unsigned primA, unsigned geomB, unsigned primB) {
+bool sameTriangle(const Scene& scene, unsigned geomA, unsigned primA, unsigned geomB,
+                  unsigned primB) {
     if (geomA >= scene.meshes.size() || geomB >= scene.meshes.size()) return false;
     const TriangleMesh& ma = scene.meshes[geomA];
     const TriangleMesh& mb = scene.meshes[geomB];
     Vec3 a[3], b[3];
-    for (int k = 0; k < 3; ++k) a[k] = ma.vertex(ma.indices[3 * primA + k]), b[k] = mb.vertex(mb.indices[3 * primB + k]);
+    for (int k = 0; k < 3; ++k)
+        a[k] = ma.vertex(ma.indices[3 * primA + k]), b[k] = mb.vertex(mb.indices[3 * primB + k]);
     for (int k = 0; k < 3; ++k)
         if (!(a[k] == b[0] || a[k] == b[1] || a[k] == b[2])) return false;
     return true;
@@ -107,9 +116,12 @@ void lowestIdWinsFilter(const RTCFilterFunctionNArguments* args) {
     RTCHitN* current = RTCRayHitN_HitN(reinterpret_cast<RTCRayHitN*>(args->ray), args->N);
     for (unsigned i = 0; i < args->N; ++i) {
         if (!args->valid[i]) continue;
-        unsigned curGeom = RTCHitN_geomID(current, args->N, i), curPrim = RTCHitN_primID(current, args->N, i);
-        unsigned newGeom = RTCHitN_geomID(args->hit, args->N, i), newPrim = RTCHitN_primID(args->hit, args->N, i);
-        if (curGeom == RTC_INVALID_GEOMETRY_ID || RTCHitN_instID(current, args->N, i, 0) != RTC_INVALID_GEOMETRY_ID)
+        unsigned curGeom = RTCHitN_geomID(current, args->N, i),
+                 curPrim = RTCHitN_primID(current, args->N, i);
+        unsigned newGeom = RTCHitN_geomID(args->hit, args->N, i),
+                 newPrim = RTCHitN_primID(args->hit, args->N, i);
+        if (curGeom == RTC_INVALID_GEOMETRY_ID ||
+            RTCHitN_instID(current, args->N, i, 0) != RTC_INVALID_GEOMETRY_ID)
             continue;
         if (std::make_pair(newGeom, newPrim) > std::make_pair(curGeom, curPrim) &&
             sameTriangle(scene, curGeom, curPrim, newGeom, newPrim))
@@ -119,20 +131,26 @@ void lowestIdWinsFilter(const RTCFilterFunctionNArguments* args) {
 
 RTCBuildQuality toEmbree(EmbreeOptions::Quality q) {
     switch (q) {
-        case EmbreeOptions::Quality::Low: return RTC_BUILD_QUALITY_LOW;
-        case EmbreeOptions::Quality::High: return RTC_BUILD_QUALITY_HIGH;
-        default: return RTC_BUILD_QUALITY_MEDIUM;
+        case EmbreeOptions::Quality::Low:
+            return RTC_BUILD_QUALITY_LOW;
+        case EmbreeOptions::Quality::High:
+            return RTC_BUILD_QUALITY_HIGH;
+        default:
+            return RTC_BUILD_QUALITY_MEDIUM;
     }
 }
 
 class EmbreeAccelerator final : public Accelerator {
-public:
+  public:
     EmbreeAccelerator(const Scene& scene, const EmbreeOptions& options) : scene_(scene) {
         auto start = std::chrono::steady_clock::now();
         int64_t bytesBefore = gEmbreeBytes.load();
-        std::string config = options.threads > 0 ? "threads=" + std::to_string(options.threads) : "";
+        std::string config =
+            options.threads > 0 ? "threads=" + std::to_string(options.threads) : "";
         device_ = rtcNewDevice(config.c_str());
-        if (!device_) throw std::runtime_error("Embree: cannot create device (error " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
+        if (!device_)
+            throw std::runtime_error("Embree: cannot create device (error " +
+                                     std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
         rtcSetDeviceErrorFunction(device_, embreeError, &lastError_);
         rtcSetDeviceMemoryMonitorFunction(device_, embreeMemory, nullptr);
 
@@ -190,11 +208,13 @@ public:
         }
         rtcCommitScene(top_);
         if (!lastError_.empty()) throw std::runtime_error(lastError_);
-        stats_.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        stats_.buildSeconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         stats_.memoryBytes = uint64_t(std::max<int64_t>(0, gEmbreeBytes.load() - bytesBefore));
         stats_.description = std::string("embree ") + (options.robust ? "robust " : "") +
-                             (options.quality == EmbreeOptions::Quality::High ? "high" :
-                              options.quality == EmbreeOptions::Quality::Low ? "low" : "medium");
+                             (options.quality == EmbreeOptions::Quality::High  ? "high"
+                              : options.quality == EmbreeOptions::Quality::Low ? "low"
+                                                                               : "medium");
     }
 
     ~EmbreeAccelerator() override {
@@ -212,7 +232,8 @@ public:
         rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
         rtcIntersect1(top_, &ctx, &rh);
         if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-        fillHit(hit, rh.ray.tfar, rh.hit.u, rh.hit.v, rh.hit.primID, rh.hit.geomID, rh.hit.instID[0]);
+        fillHit(hit, rh.ray.tfar, rh.hit.u, rh.hit.v, rh.hit.primID, rh.hit.geomID,
+                rh.hit.instID[0]);
         return true;
     }
 
@@ -243,8 +264,8 @@ public:
                 Hit& hit = hits[base + i];
                 hit = Hit{};
                 if (rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) continue;
-                fillHit(hit, rh.ray.tfar[i], rh.hit.u[i], rh.hit.v[i], rh.hit.primID[i], rh.hit.geomID[i],
-                        rh.hit.instID[0][i]);
+                fillHit(hit, rh.ray.tfar[i], rh.hit.u[i], rh.hit.v[i], rh.hit.primID[i],
+                        rh.hit.geomID[i], rh.hit.instID[0][i]);
             }
         }
     }
@@ -263,10 +284,11 @@ public:
 
     const AcceleratorStats& stats() const override { return stats_; }
 
-private:
+  private:
     // Embree's ids -> ours: meshes keep their index, spheres are one user geometry after them, and
     // instances follow (instance j has id numMeshes + 1 + j).
-    void fillHit(Hit& hit, float t, float u, float v, unsigned prim, unsigned geom, unsigned inst) const {
+    void fillHit(Hit& hit, float t, float u, float v, unsigned prim, unsigned geom,
+                 unsigned inst) const {
         hit.t = t, hit.u = u, hit.v = v, hit.prim = prim;
         if (inst != RTC_INVALID_GEOMETRY_ID) {
             hit.instance = inst - numMeshes_ - 1;
@@ -277,7 +299,8 @@ private:
         }
     }
 
-    // Rays [base, base + 16) into a packet; lanes past the end repeat the last ray and are masked off.
+    // Rays [base, base + 16) into a packet; lanes past the end repeat the last ray and are masked
+    // off.
     static size_t fillPacket(std::span<const Ray> rays, size_t base, int* valid, RTCRay16& r) {
         size_t n = std::min<size_t>(16, rays.size() - base);
         for (size_t i = 0; i < 16; ++i) {
@@ -314,10 +337,11 @@ private:
 
     RTCGeometry meshGeometry(const TriangleMesh& mesh, EmbreeOptions::Quality q) {
         RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-        rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, mesh.positions.data(), 0,
-                                   3 * sizeof(float), mesh.vertexCount());
-        rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, mesh.indices.data(), 0,
-                                   3 * sizeof(uint32_t), mesh.triangleCount());
+        rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                   mesh.positions.data(), 0, 3 * sizeof(float), mesh.vertexCount());
+        rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                   mesh.indices.data(), 0, 3 * sizeof(uint32_t),
+                                   mesh.triangleCount());
         rtcSetGeometryBuildQuality(g, toEmbree(q));
         rtcCommitGeometry(g);
         return g;
@@ -336,7 +360,8 @@ private:
 
 }  // namespace
 
-std::unique_ptr<Accelerator> makeEmbreeAccelerator(const Scene& scene, const EmbreeOptions& options) {
+std::unique_ptr<Accelerator> makeEmbreeAccelerator(const Scene& scene,
+                                                   const EmbreeOptions& options) {
     return std::make_unique<EmbreeAccelerator>(scene, options);
 }
 

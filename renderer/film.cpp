@@ -5,8 +5,14 @@
 namespace kiln {
 
 Film::Film(int width, int height, const AovRequest& aovs)
-    : width_(width), height_(height), layout_(aovs), sum_(size_t(width) * size_t(height)), lum_(sum_.size()),
-      lumSq_(sum_.size()), count_(sum_.size()), aov_(sum_.size() * layout_.channels().size()) {}
+    : width_(width),
+      height_(height),
+      layout_(aovs),
+      sum_(size_t(width) * size_t(height)),
+      lum_(sum_.size()),
+      lumSq_(sum_.size()),
+      count_(sum_.size()),
+      aov_(sum_.size() * layout_.channels().size()) {}
 
 bool Film::add(int x, int y, const SampleRecord& r) {
     size_t i = index(x, y);

@@ -11,7 +11,7 @@
 namespace kiln {
 
 class Film {
-public:
+  public:
     Film(int width, int height, const AovRequest& aovs = {});
     int width() const { return width_; }
     int height() const { return height_; }
@@ -40,7 +40,7 @@ public:
     double luminanceVariance(int x, int y) const;
     uint64_t totalSamples() const;
 
-private:
+  private:
     size_t index(int x, int y) const { return size_t(y) * size_t(width_) + size_t(x); }
     int width_, height_;
     AovLayout layout_;

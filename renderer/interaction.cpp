@@ -49,19 +49,22 @@ SurfaceInteraction makeInteraction(const Scene& scene, const Ray& ray, const Hit
     }
     if (!mesh.uvs.empty()) {
         si.u = mesh.uvs[2 * idx[0]] * b0 + mesh.uvs[2 * idx[1]] * b1 + mesh.uvs[2 * idx[2]] * b2;
-        si.v = mesh.uvs[2 * idx[0] + 1] * b0 + mesh.uvs[2 * idx[1] + 1] * b1 + mesh.uvs[2 * idx[2] + 1] * b2;
+        si.v = mesh.uvs[2 * idx[0] + 1] * b0 + mesh.uvs[2 * idx[1] + 1] * b1 +
+               mesh.uvs[2 * idx[2] + 1] * b2;
     } else {
         si.u = b1, si.v = b2;
     }
     if (hit.instance != kInvalidId) {
         const Mat4& xf = scene.instances[hit.instance].objectToWorld;
         Vec3 pw = xf.point(p);
-        // Transforming adds its own rounding: bound it from the matrix magnitudes (pbrt's Transform).
+        // Transforming adds its own rounding: bound it from the matrix magnitudes (pbrt's
+        // Transform).
         Vec3 absP = abs(p), terr;
         for (int r = 0; r < 3; ++r) {
             double absRow = std::abs(xf.m[r][0]) * absP.x + std::abs(xf.m[r][1]) * absP.y +
                             std::abs(xf.m[r][2]) * absP.z + std::abs(xf.m[r][3]);
-            double errRow = std::abs(xf.m[r][0]) * err.x + std::abs(xf.m[r][1]) * err.y + std::abs(xf.m[r][2]) * err.z;
+            double errRow = std::abs(xf.m[r][0]) * err.x + std::abs(xf.m[r][1]) * err.y +
+                            std::abs(xf.m[r][2]) * err.z;
             terr[r] = float((gamma(3) + 1) * errRow + gamma(3) * absRow);
         }
         err = terr;
@@ -83,13 +86,15 @@ SurfaceInteraction makeInteraction(const Scene& scene, const Ray& ray, const Hit
 
 namespace {
 
-// The error bound of a point alone is not enough for Embree: its float intersection test reports t with
-// an error of a few ulps of the coordinates involved (a point exactly on the plane y = 0 has a zero
-// bound, yet Embree finds t = 0 there). So offsets never fall below kTraversalUlps ulps of the largest
-// coordinate; docs/accelerators.md shows the crosscheck that found it.
+// The error bound of a point alone is not enough for Embree: its float intersection test reports t
+// with an error of a few ulps of the coordinates involved (a point exactly on the plane y = 0 has a
+// zero bound, yet Embree finds t = 0 there). So offsets never fall below kTraversalUlps ulps of the
+// largest coordinate; docs/accelerators.md shows the crosscheck that found it.
 constexpr float kTraversalUlps = 32.0f;
 
-float traversalError(const Vec3& p) { return kTraversalUlps * std::numeric_limits<float>::epsilon() * maxComponent(abs(p)); }
+float traversalError(const Vec3& p) {
+    return kTraversalUlps * std::numeric_limits<float>::epsilon() * maxComponent(abs(p));
+}
 
 }  // namespace
 
@@ -100,8 +105,10 @@ Vec3 offsetRayOrigin(const SurfaceInteraction& si, const Vec3& dir) {
     Vec3 po = si.p + offset;
     // Round away from p so the offset survives the addition.
     for (int i = 0; i < 3; ++i) {
-        if (offset[i] > 0) po[i] = nextFloatUp(po[i]);
-        else if (offset[i] < 0) po[i] = nextFloatDown(po[i]);
+        if (offset[i] > 0)
+            po[i] = nextFloatUp(po[i]);
+        else if (offset[i] < 0)
+            po[i] = nextFloatDown(po[i]);
     }
     return po;
 }
@@ -115,9 +122,9 @@ Ray spawnRayTo(const SurfaceInteraction& si, const Vec3& target, const Vec3& tar
     Vec3 d = target - o;
     float len2 = dot(d, d);
     if (len2 == 0) return Ray{o, 0.0f, d, 0.0f};
-    // Stop short of the target by its own error bound along the ray (and Embree's distance error), so the
-    // surface the target lies on cannot occlude it: a bound, not a guess. In units of t (|d| = len):
-    // (dot(|d|, err) / len + traversal) / len.
+    // Stop short of the target by its own error bound along the ray (and Embree's distance error),
+    // so the surface the target lies on cannot occlude it: a bound, not a guess. In units of t (|d|
+    // = len): (dot(|d|, err) / len + traversal) / len.
     float invLen = 1.0f / std::sqrt(len2);
     float shortBy = dot(abs(d), targetError) * invLen + traversalError(target);
     return Ray{o, 0.0f, d, std::max(0.0f, 1.0f - 2 * shortBy * invLen)};

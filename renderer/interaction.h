@@ -8,11 +8,11 @@
 namespace kiln {
 
 struct SurfaceInteraction {
-    Vec3 p;          // hit point, rebuilt from barycentrics (triangles) or reprojected (spheres)
-    Vec3 pError;     // conservative absolute error bound of p per axis
-    Vec3 ng;         // geometric normal, unit, facing the side the ray came from
-    Vec3 ns;         // shading normal, unit, same hemisphere as ng
-    Vec3 nsStored;   // shading normal as the file orients it (normal-shading views show this one)
+    Vec3 p;         // hit point, rebuilt from barycentrics (triangles) or reprojected (spheres)
+    Vec3 pError;    // conservative absolute error bound of p per axis
+    Vec3 ng;        // geometric normal, unit, facing the side the ray came from
+    Vec3 ns;        // shading normal, unit, same hemisphere as ng
+    Vec3 nsStored;  // shading normal as the file orients it (normal-shading views show this one)
     float u = 0, v = 0;  // texture coordinates (or barycentrics when the mesh has none)
     float t = 0;
     uint32_t material = 0;
@@ -25,8 +25,9 @@ SurfaceInteraction makeInteraction(const Scene& scene, const Ray& ray, const Hit
 // Origin pushed off the surface by the error bound along the normal, on the side of dir.
 Vec3 offsetRayOrigin(const SurfaceInteraction& si, const Vec3& dir);
 Ray spawnRay(const SurfaceInteraction& si, const Vec3& dir);
-// A ray to a point (shadow rays): stops short of the target by the target's error bound (and Embree's
-// distance error), so the surface the target lies on does not occlude it.
-Ray spawnRayTo(const SurfaceInteraction& si, const Vec3& target, const Vec3& targetError = Vec3(0.0f));
+// A ray to a point (shadow rays): stops short of the target by the target's error bound (and
+// Embree's distance error), so the surface the target lies on does not occlude it.
+Ray spawnRayTo(const SurfaceInteraction& si, const Vec3& target,
+               const Vec3& targetError = Vec3(0.0f));
 
 }  // namespace kiln

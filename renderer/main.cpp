@@ -1,4 +1,5 @@
-// kiln: a batch path tracer. This file only dispatches subcommands and turns errors into exit codes.
+// kiln: a batch path tracer. This file only dispatches subcommands and turns errors into exit
+// codes.
 #include <cstdio>
 #include <exception>
 #include <string>

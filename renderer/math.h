@@ -42,19 +42,29 @@ using Vec3d = Vec3T<double>;
 using Color = Vec3;  // linear RGB in the scene-linear working space (Rec.709 primaries)
 
 template <typename T>
-constexpr Vec3T<T> operator*(T s, const Vec3T<T>& v) { return v * s; }
+constexpr Vec3T<T> operator*(T s, const Vec3T<T>& v) {
+    return v * s;
+}
 template <typename T>
-constexpr T dot(const Vec3T<T>& a, const Vec3T<T>& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+constexpr T dot(const Vec3T<T>& a, const Vec3T<T>& b) {
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 template <typename T>
 constexpr Vec3T<T> cross(const Vec3T<T>& a, const Vec3T<T>& b) {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 template <typename T>
-inline T length(const Vec3T<T>& v) { return std::sqrt(dot(v, v)); }
+inline T length(const Vec3T<T>& v) {
+    return std::sqrt(dot(v, v));
+}
 template <typename T>
-inline Vec3T<T> normalize(const Vec3T<T>& v) { return v / length(v); }
+inline Vec3T<T> normalize(const Vec3T<T>& v) {
+    return v / length(v);
+}
 template <typename T>
-constexpr Vec3T<T> abs(const Vec3T<T>& v) { return {std::abs(v.x), std::abs(v.y), std::abs(v.z)}; }
+constexpr Vec3T<T> abs(const Vec3T<T>& v) {
+    return {std::abs(v.x), std::abs(v.y), std::abs(v.z)};
+}
 template <typename T>
 constexpr Vec3T<T> min(const Vec3T<T>& a, const Vec3T<T>& b) {
     return {std::min(a.x, b.x), std::min(a.y, b.y), std::min(a.z, b.z)};
@@ -64,7 +74,9 @@ constexpr Vec3T<T> max(const Vec3T<T>& a, const Vec3T<T>& b) {
     return {std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)};
 }
 template <typename T>
-constexpr T maxComponent(const Vec3T<T>& v) { return std::max(v.x, std::max(v.y, v.z)); }
+constexpr T maxComponent(const Vec3T<T>& v) {
+    return std::max(v.x, std::max(v.y, v.z));
+}
 template <typename T>
 constexpr int maxDimension(const Vec3T<T>& v) {
     return (v.x > v.y) ? (v.x > v.z ? 0 : 2) : (v.y > v.z ? 1 : 2);
@@ -103,8 +115,8 @@ struct Bounds3T {
 };
 using Bounds3 = Bounds3T<float>;
 
-// Row-major 4x4 affine transform in double precision: import composes node matrices with it, and the
-// precision keeps world positions faithful when files nest transforms.
+// Row-major 4x4 affine transform in double precision: import composes node matrices with it, and
+// the precision keeps world positions faithful when files nest transforms.
 struct Mat4 {
     double m[4][4] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}};
 
@@ -183,13 +195,15 @@ inline Vec3 transformNormal(const Mat4& inv, const Vec3& n) {
 }
 inline Vec3 Mat4::normal(const Vec3& n) const { return transformNormal(inverse(), n); }
 
-// pbrt's gamma(n) = n u / (1 - n u), u = eps / 2: bounds the relative error of n chained float operations.
+// pbrt's gamma(n) = n u / (1 - n u), u = eps / 2: bounds the relative error of n chained float
+// operations.
 constexpr float gamma(int n) {
     constexpr float u = std::numeric_limits<float>::epsilon() * 0.5f;
     return (float(n) * u) / (1 - float(n) * u);
 }
 
-// The next representable float towards +infinity / -infinity (pbrt's NextFloatUp/Down), without libm.
+// The next representable float towards +infinity / -infinity (pbrt's NextFloatUp/Down), without
+// libm.
 inline float nextFloatUp(float v) {
     if (std::isinf(v) && v > 0) return v;
     if (v == -0.0f) v = 0.0f;

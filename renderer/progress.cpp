@@ -8,7 +8,10 @@
 namespace kiln {
 
 Progress::Progress(std::string title, uint64_t totalWork, bool enabled)
-    : title_(std::move(title)), total_(totalWork ? totalWork : 1), enabled_(enabled), tty_(isatty(2)),
+    : title_(std::move(title)),
+      total_(totalWork ? totalWork : 1),
+      enabled_(enabled),
+      tty_(isatty(2)),
       start_(std::chrono::steady_clock::now()) {
     if (!enabled_) return;
     thread_ = std::thread([this] {
@@ -43,12 +46,13 @@ void Progress::print(bool final) {
     if (tty_) {
         constexpr int kWidth = 30;
         int filled = int(frac * kWidth);
-        std::fprintf(stderr, "\r%s [%.*s%*s] %5.1f%%  %.2f Mrays/s  %.1fs elapsed  ETA %.1fs ", title_.c_str(),
-                     filled, "##############################", kWidth - filled, "", 100 * frac, mrays, t, eta);
+        std::fprintf(stderr, "\r%s [%.*s%*s] %5.1f%%  %.2f Mrays/s  %.1fs elapsed  ETA %.1fs ",
+                     title_.c_str(), filled, "##############################", kWidth - filled, "",
+                     100 * frac, mrays, t, eta);
         if (final) std::fputc('\n', stderr);
     } else {
-        std::fprintf(stderr, "%s: %.1f%%  %.2f Mrays/s  %.1fs elapsed  ETA %.1fs\n", title_.c_str(), 100 * frac,
-                     mrays, t, eta);
+        std::fprintf(stderr, "%s: %.1f%%  %.2f Mrays/s  %.1fs elapsed  ETA %.1fs\n", title_.c_str(),
+                     100 * frac, mrays, t, eta);
     }
     std::fflush(stderr);
 }

@@ -1,4 +1,5 @@
-// Progress on stderr: a bar with percentage, rays/s and ETA on a terminal; plain periodic lines otherwise.
+// Progress on stderr: a bar with percentage, rays/s and ETA on a terminal; plain periodic lines
+// otherwise.
 #pragma once
 
 #include <atomic>
@@ -11,7 +12,7 @@
 namespace kiln {
 
 class Progress {
-public:
+  public:
     Progress(std::string title, uint64_t totalWork, bool enabled);
     ~Progress();
     void add(uint64_t work, uint64_t rays) {
@@ -22,7 +23,7 @@ public:
     double elapsedSeconds() const;
     uint64_t rays() const { return rays_.load(); }
 
-private:
+  private:
     void print(bool final);
     std::string title_;
     uint64_t total_;

@@ -15,10 +15,11 @@ struct Ray {
 };
 
 constexpr uint32_t kInvalidId = 0xffffffffu;
-constexpr uint32_t kSphereShape = 0xfffffffeu;  // Hit::shape for analytic spheres (prim = sphere index)
+constexpr uint32_t kSphereShape =
+    0xfffffffeu;  // Hit::shape for analytic spheres (prim = sphere index)
 
-// Only what traversal knows. shape is a mesh index or kSphereShape; instance indexes Scene::instances
-// or is kInvalidId for geometry placed directly in world space.
+// Only what traversal knows. shape is a mesh index or kSphereShape; instance indexes
+// Scene::instances or is kInvalidId for geometry placed directly in world space.
 struct Hit {
     float t = kInfinity;
     float u = 0, v = 0;  // barycentrics of vertices 1 and 2 (triangles)

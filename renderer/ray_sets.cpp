@@ -17,7 +17,8 @@ Vec3 uniformSphere(float u, float v) {
 // A point on some light, or a random point in the bounds when the light has no position.
 Vec3 lightPoint(const Scene& scene, Sampler& s, const Bounds3& b) {
     if (!scene.lights.empty()) {
-        const Light& l = scene.lights[std::min(scene.lights.size() - 1, size_t(s.next1D() * scene.lights.size()))];
+        const Light& l = scene.lights[std::min(scene.lights.size() - 1,
+                                               size_t(s.next1D() * scene.lights.size()))];
         float u = s.next1D() - 0.5f, v = s.next1D() - 0.5f;
         if (l.kind == LightKind::Area) return l.position + l.dimX * u + l.dimY * v;
         if (l.kind == LightKind::Point || l.kind == LightKind::Spot) return l.position;
@@ -38,10 +39,14 @@ Vec3 lightPoint(const Scene& scene, Sampler& s, const Bounds3& b) {
 
 const char* toString(RaySetKind kind) {
     switch (kind) {
-        case RaySetKind::Camera: return "camera";
-        case RaySetKind::Random: return "random";
-        case RaySetKind::Secondary: return "secondary";
-        case RaySetKind::Shadow: return "shadow";
+        case RaySetKind::Camera:
+            return "camera";
+        case RaySetKind::Random:
+            return "random";
+        case RaySetKind::Secondary:
+            return "secondary";
+        case RaySetKind::Shadow:
+            return "shadow";
     }
     return "?";
 }
@@ -50,7 +55,8 @@ std::vector<Ray> makeCoherentCameraRays(const Scene& scene, int width, int heigh
     CameraModel camera(scene.camera, width, height);
     int blocksX = (width + 3) / 4, blocksY = (height + 3) / 4;
     size_t blocks = size_t(blocksX) * size_t(blocksY);
-    // Spread the blocks evenly over the whole image whatever the count, so empty rows do not skew rates.
+    // Spread the blocks evenly over the whole image whatever the count, so empty rows do not skew
+    // rates.
     size_t wanted = std::max<size_t>(1, (count + 15) / 16);
     double stride = double(blocks) / double(wanted);
     std::vector<Ray> rays;
@@ -66,8 +72,8 @@ std::vector<Ray> makeCoherentCameraRays(const Scene& scene, int width, int heigh
     return rays;
 }
 
-std::vector<Ray> makeRaySet(RaySetKind kind, const Scene& scene, const Accelerator& finder, size_t count,
-                            uint64_t seed) {
+std::vector<Ray> makeRaySet(RaySetKind kind, const Scene& scene, const Accelerator& finder,
+                            size_t count, uint64_t seed) {
     std::vector<Ray> rays;
     rays.reserve(count);
     Bounds3 b = scene.worldBounds();
@@ -88,8 +94,8 @@ std::vector<Ray> makeRaySet(RaySetKind kind, const Scene& scene, const Accelerat
             rays.push_back(Ray{o, 0.0f, uniformSphere(s.next1D(), s.next1D()), kInfinity});
             continue;
         }
-        // Start from a visible surface point, then bounce once more half of the time so the set also
-        // holds points the camera cannot see (the distribution a path tracer makes).
+        // Start from a visible surface point, then bounce once more half of the time so the set
+        // also holds points the camera cannot see (the distribution a path tracer makes).
         Ray primary = camera.generateRay(s.next1D() * 800, s.next1D() * 600);
         Hit hit;
         if (!finder.intersect(primary, hit)) continue;
@@ -103,7 +109,8 @@ std::vector<Ray> makeRaySet(RaySetKind kind, const Scene& scene, const Accelerat
         }
         if (kind == RaySetKind::Secondary) {
             Vec3 dir = uniformSphere(s.next1D(), s.next1D());
-            if (dot(dir, si.ng) < 0 && s.next1D() < 0.8f) dir = -dir;  // mostly reflection, some transmission
+            if (dot(dir, si.ng) < 0 && s.next1D() < 0.8f)
+                dir = -dir;  // mostly reflection, some transmission
             rays.push_back(spawnRay(si, dir));
         } else {
             rays.push_back(spawnRayTo(si, lightPoint(scene, s, b)));

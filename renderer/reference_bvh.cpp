@@ -53,24 +53,33 @@ ReferenceAccelerator::ReferenceAccelerator(const Scene& scene, const ReferenceBv
         if (local.empty()) continue;
         Bounds3 b;
         for (int c = 0; c < 8; ++c)
-            b.extend(inst.objectToWorld.point(Vec3((c & 1) ? local.hi.x : local.lo.x, (c & 2) ? local.hi.y : local.lo.y,
+            b.extend(inst.objectToWorld.point(Vec3((c & 1) ? local.hi.x : local.lo.x,
+                                                   (c & 2) ? local.hi.y : local.lo.y,
                                                    (c & 4) ? local.hi.z : local.lo.z)));
         items_.push_back({ItemKind::Instance, j, 0});
         boxes.push_back(b);
     }
     top_.build(boxes, options);
-    stats_.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    stats_.buildSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     stats_.memoryBytes = top_.memoryBytes() + items_.size() * sizeof(Item);
     for (const Bvh& b : prototypeBvh_) stats_.memoryBytes += b.memoryBytes();
-    const char* split = options.split == BvhSplit::Sah ? "sah" : options.split == BvhSplit::Midpoint ? "midpoint" : "mean";
-    stats_.description = std::string("reference bvh ") + split + " leaf " + std::to_string(options.maxLeafSize);
+    const char* split = options.split == BvhSplit::Sah        ? "sah"
+                        : options.split == BvhSplit::Midpoint ? "midpoint"
+                                                              : "mean";
+    stats_.description =
+        std::string("reference bvh ") + split + " leaf " + std::to_string(options.maxLeafSize);
 }
 
-bool ReferenceAccelerator::testTriangle(const TriangleMesh& mesh, uint32_t tri, Ray& ray, Hit* hit) const {
+bool ReferenceAccelerator::testTriangle(const TriangleMesh& mesh, uint32_t tri, Ray& ray,
+                                        Hit* hit) const {
     const uint32_t* idx = &mesh.indices[3 * tri];
     float t, u, v;
-    if (!intersectTriangle(ray, mesh.vertex(idx[0]), mesh.vertex(idx[1]), mesh.vertex(idx[2]), t, u, v)) return false;
-    // A tie with the current hit (duplicate surfaces): the lowest (mesh, triangle) wins, as in Embree.
+    if (!intersectTriangle(ray, mesh.vertex(idx[0]), mesh.vertex(idx[1]), mesh.vertex(idx[2]), t, u,
+                           v))
+        return false;
+    // A tie with the current hit (duplicate surfaces): the lowest (mesh, triangle) wins, as in
+    // Embree.
     uint32_t shape = uint32_t(&mesh - scene_.meshes.data());
     if (hit && t == ray.tMax && hit->shape != kInvalidId && hit->instance == kInvalidId &&
         std::make_pair(shape, tri) > std::make_pair(hit->shape, hit->prim))
@@ -106,7 +115,9 @@ bool ReferenceAccelerator::trace(Ray& ray, Hit* hit, TraversalCounters* counters
                     Ray local{w2o.point(r.origin), r.tMin, w2o.vector(r.dir), r.tMax};
                     bool any = prototypeBvh_[mesh].traverse<AnyHit>(
                         local,
-                        [&](uint32_t tri, Ray& lr) { return testTriangle(scene_.meshes[mesh], tri, lr, hit); },
+                        [&](uint32_t tri, Ray& lr) {
+                            return testTriangle(scene_.meshes[mesh], tri, lr, hit);
+                        },
                         counters);
                     if (!any) return false;
                     r.tMax = local.tMax;
@@ -140,7 +151,8 @@ bool ReferenceAccelerator::occluded(const Ray& ray) const {
     return trace<true>(r, nullptr, nullptr);
 }
 
-std::unique_ptr<Accelerator> makeReferenceAccelerator(const Scene& scene, const ReferenceBvhOptions& options) {
+std::unique_ptr<Accelerator> makeReferenceAccelerator(const Scene& scene,
+                                                      const ReferenceBvhOptions& options) {
     return std::make_unique<ReferenceAccelerator>(scene, options);
 }
 

@@ -7,7 +7,7 @@
 namespace kiln {
 
 class ReferenceAccelerator final : public Accelerator {
-public:
+  public:
     ReferenceAccelerator(const Scene& scene, const ReferenceBvhOptions& options);
     bool intersect(const Ray& ray, Hit& hit) const override;
     bool occluded(const Ray& ray) const override;
@@ -17,7 +17,7 @@ public:
     bool intersect(const Ray& ray, Hit& hit, TraversalCounters& counters) const;
     BvhStatistics topLevelStatistics() const { return top_.statistics(); }
 
-private:
+  private:
     // Top-level items: world-space triangles, spheres and instances in one BVH.
     enum class ItemKind : uint32_t { Triangle, Sphere, Instance };
     struct Item {

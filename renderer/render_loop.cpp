@@ -4,8 +4,8 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include <chrono>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <mutex>
 #include <tuple>
@@ -22,8 +22,8 @@ std::atomic<bool>& renderCancelFlag() {
 
 namespace {
 
-SampleRecord trace(const CameraModel& camera, const Integrator& integrator, const AovRequest& aovs, uint64_t seed,
-                   int width, int x, int y, int s, RayCounter& counter) {
+SampleRecord trace(const CameraModel& camera, const Integrator& integrator, const AovRequest& aovs,
+                   uint64_t seed, int width, int x, int y, int s, RayCounter& counter) {
     Sampler sampler(seed, uint64_t(y) * uint64_t(width) + uint64_t(x), uint64_t(s));
     float jx = sampler.next1D(), jy = sampler.next1D();
     float lu = sampler.next1D(), lv = sampler.next1D();
@@ -36,14 +36,16 @@ SampleRecord trace(const CameraModel& camera, const Integrator& integrator, cons
 
 }  // namespace
 
-SampleRecord traceSample(const Scene& scene, const Integrator& integrator, const RenderSettings& settings, int x, int y,
-                         int sample, RayCounter& counter) {
+SampleRecord traceSample(const Scene& scene, const Integrator& integrator,
+                         const RenderSettings& settings, int x, int y, int sample,
+                         RayCounter& counter) {
     CameraModel camera(scene.camera, settings.width, settings.height);
     AovRequest all = AovRequest::parse("all", kMaxBounceLayers);
     return trace(camera, integrator, all, settings.seed, settings.width, x, y, sample, counter);
 }
 
-RenderStats renderImage(const Scene& scene, const Integrator& integrator, const RenderSettings& settings, Film& film) {
+RenderStats renderImage(const Scene& scene, const Integrator& integrator,
+                        const RenderSettings& settings, Film& film) {
     RenderStats stats;
     CameraModel camera(scene.camera, settings.width, settings.height);
     int tile = std::max(1, settings.tileSize);
@@ -78,8 +80,8 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator, const 
                     continue;
                 }
                 for (int s = firstSample; s < firstSample + sampleCount; ++s) {
-                    SampleRecord record =
-                        trace(camera, integrator, film.layout().request(), settings.seed, settings.width, x, y, s, counter);
+                    SampleRecord record = trace(camera, integrator, film.layout().request(),
+                                                settings.seed, settings.width, x, y, s, counter);
                     if (film.add(x, y, record)) continue;
                     // Non-finite: dropped from the image, counted, and kept for replay.
                     ++badCount;
@@ -95,14 +97,16 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator, const 
 
     tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
     arena.execute([&] {
-        // Waves of 1, 1, 2, 4, ... samples: an interrupted render has nearly even counts everywhere.
-        // Adaptive renders go in waves of one batch, the granularity of the convergence test.
+        // Waves of 1, 1, 2, 4, ... samples: an interrupted render has nearly even counts
+        // everywhere. Adaptive renders go in waves of one batch, the granularity of the convergence
+        // test.
         int done = 0, wave = settings.adaptiveBatch > 0 ? settings.adaptiveBatch : 1;
         while (done < settings.spp && !cancel.load()) {
             int n = std::min(wave, settings.spp - done);
-            tbb::parallel_for(tbb::blocked_range<int>(0, tilesX * tilesY, 1), [&](const tbb::blocked_range<int>& r) {
-                for (int t = r.begin(); t != r.end(); ++t) renderTile(t, done, n);
-            });
+            tbb::parallel_for(tbb::blocked_range<int>(0, tilesX * tilesY, 1),
+                              [&](const tbb::blocked_range<int>& r) {
+                                  for (int t = r.begin(); t != r.end(); ++t) renderTile(t, done, n);
+                              });
             done += n;
             if (done > 1 && settings.adaptiveBatch <= 0) wave *= 2;
         }

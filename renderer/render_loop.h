@@ -1,4 +1,5 @@
-// The TBB tile loop: sample waves over tiles, deterministic sampling, cancellation with true counts.
+// The TBB tile loop: sample waves over tiles, deterministic sampling, cancellation with true
+// counts.
 #pragma once
 
 #include <atomic>
@@ -38,13 +39,16 @@ struct RenderStats {
     bool interrupted = false;
 };
 
-// Replays one camera sample exactly as the render loop traces it (same sampler state): for debugging.
-SampleRecord traceSample(const Scene& scene, const Integrator& integrator, const RenderSettings& settings, int x, int y,
-                         int sample, RayCounter& counter);
+// Replays one camera sample exactly as the render loop traces it (same sampler state): for
+// debugging.
+SampleRecord traceSample(const Scene& scene, const Integrator& integrator,
+                         const RenderSettings& settings, int x, int y, int sample,
+                         RayCounter& counter);
 
 // Set by the SIGINT handler; the loop stops at the next pixel and keeps what it has.
 std::atomic<bool>& renderCancelFlag();
 
-RenderStats renderImage(const Scene& scene, const Integrator& integrator, const RenderSettings& settings, Film& film);
+RenderStats renderImage(const Scene& scene, const Integrator& integrator,
+                        const RenderSettings& settings, Film& film);
 
 }  // namespace kiln

@@ -14,7 +14,7 @@ constexpr uint64_t mix64(uint64_t z) {
 }
 
 class Sampler {
-public:
+  public:
     Sampler(uint64_t seed, uint64_t pixelIndex, uint64_t sampleIndex)
         : key_(mix64(mix64(mix64(seed) ^ pixelIndex) ^ sampleIndex)) {}
     float next1D() {
@@ -23,7 +23,7 @@ public:
     }
     uint32_t dimension() const { return dimension_; }
 
-private:
+  private:
     uint64_t key_;
     uint32_t dimension_ = 0;
 };

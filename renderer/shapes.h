@@ -1,5 +1,5 @@
-// Ray-primitive tests shared by both accelerators (spheres are user geometry in Embree too, so the two
-// agree on them exactly) and by the reference BVH (triangles).
+// Ray-primitive tests shared by both accelerators (spheres are user geometry in Embree too, so the
+// two agree on them exactly) and by the reference BVH (triangles).
 #pragma once
 
 #include <algorithm>
@@ -9,11 +9,12 @@
 
 namespace kiln {
 
-// Analytic sphere with the numerically stable quadratic (Ray Tracing Gems ch. 7): the discriminant is
-// formed from the distance of the centre to the ray line and the near root from c / q, so neither cancels
-// for far-away or tiny spheres. Float suffices: on the cases of Spheres.AccurateForTinyHugeAndFarAwaySpheres
-// this form is within 4 ulps of the exact distance everywhere, where the textbook quadratic fails 6 of 15
-// (measured, docs/robustness.md). Returns the nearest root in (tMin, tMax].
+// Analytic sphere with the numerically stable quadratic (Ray Tracing Gems ch. 7): the discriminant
+// is formed from the distance of the centre to the ray line and the near root from c / q, so
+// neither cancels for far-away or tiny spheres. Float suffices: on the cases of
+// Spheres.AccurateForTinyHugeAndFarAwaySpheres this form is within 4 ulps of the exact distance
+// everywhere, where the textbook quadratic fails 6 of 15 (measured, docs/robustness.md). Returns
+// the nearest root in (tMin, tMax].
 inline bool intersectSphere(const Ray& ray, const Vec3& center, float radius, float& tHit) {
     Vec3 d = ray.dir, f = ray.origin - center;
     float a = dot(d, d);
@@ -32,15 +33,16 @@ inline bool intersectSphere(const Ray& ray, const Vec3& center, float radius, fl
     return true;
 }
 
-// Moller-Trumbore in double precision. Exact arithmetic would be watertight with inclusive edges, but the
-// rounding of each triangle's own edge tests leaves cracks at shared vertices (measured: a ray through a
-// vertex saw -8e-17 .. -1e-14 on all five neighbours). Double rounding on float inputs stays below about
-// 1e-12 in barycentric units, so each triangle is grown by kBarycentricSlack = 1e-9: every crack closes,
-// and silhouettes move by a billionth of a triangle, far below the float precision of the vertices.
-// u, v are the barycentrics of p1 and p2 (clamped back onto the triangle).
+// Moller-Trumbore in double precision. Exact arithmetic would be watertight with inclusive edges,
+// but the rounding of each triangle's own edge tests leaves cracks at shared vertices (measured: a
+// ray through a vertex saw -8e-17 .. -1e-14 on all five neighbours). Double rounding on float
+// inputs stays below about 1e-12 in barycentric units, so each triangle is grown by
+// kBarycentricSlack = 1e-9: every crack closes, and silhouettes move by a billionth of a triangle,
+// far below the float precision of the vertices. u, v are the barycentrics of p1 and p2 (clamped
+// back onto the triangle).
 constexpr double kBarycentricSlack = 1e-9;
-inline bool intersectTriangle(const Ray& ray, const Vec3& p0, const Vec3& p1, const Vec3& p2, float& tHit,
-                              float& uHit, float& vHit) {
+inline bool intersectTriangle(const Ray& ray, const Vec3& p0, const Vec3& p1, const Vec3& p2,
+                              float& tHit, float& uHit, float& vHit) {
     Vec3d o(ray.origin), d(ray.dir), v0(p0);
     Vec3d e1 = Vec3d(p1) - v0, e2 = Vec3d(p2) - v0;
     Vec3d pv = cross(d, e2);

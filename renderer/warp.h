@@ -29,8 +29,10 @@ inline void concentricDisk(float u1, float u2, float& x, float& y) {
         return;
     }
     float r, phi;
-    if (std::abs(a) > std::abs(b)) r = a, phi = (kPi / 4) * (b / a);
-    else r = b, phi = kPi / 2 - (kPi / 4) * (a / b);
+    if (std::abs(a) > std::abs(b))
+        r = a, phi = (kPi / 4) * (b / a);
+    else
+        r = b, phi = kPi / 2 - (kPi / 4) * (a / b);
     x = r * std::cos(phi), y = r * std::sin(phi);
 }
 

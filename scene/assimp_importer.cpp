@@ -24,7 +24,8 @@ Material materialFromAssimp(const aiMaterial* am) {
     aiColor3D diffuse(0.5f, 0.5f, 0.5f), emissive(0, 0, 0);
     am->Get(AI_MATKEY_COLOR_DIFFUSE, diffuse);
     m.albedo = Color(diffuse.r, diffuse.g, diffuse.b);
-    if (am->Get(AI_MATKEY_COLOR_EMISSIVE, emissive) == AI_SUCCESS && (emissive.r > 0 || emissive.g > 0 || emissive.b > 0)) {
+    if (am->Get(AI_MATKEY_COLOR_EMISSIVE, emissive) == AI_SUCCESS &&
+        (emissive.r > 0 || emissive.g > 0 || emissive.b > 0)) {
         m.kind = MaterialKind::Emission;
         m.emission = Color(emissive.r, emissive.g, emissive.b);
     }
@@ -41,15 +42,18 @@ struct NodeVisit {
 void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scene& scene) {
     Assimp::Importer importer;
     importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
-    importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-    unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
-                     aiProcess_ValidateDataStructure;
+    importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
+                                aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+    unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                     aiProcess_SortByPType | aiProcess_ValidateDataStructure;
     const aiScene* as = nullptr;
     if (extras && extras->patchedXml)
-        as = importer.ReadFileFromMemory(extras->patchedXml->data(), extras->patchedXml->size(), flags, "dae");
+        as = importer.ReadFileFromMemory(extras->patchedXml->data(), extras->patchedXml->size(),
+                                         flags, "dae");
     else
         as = importer.ReadFile(path, flags);
-    if (!as || !as->mRootNode) throw SceneError(path, std::string("cannot import: ") + importer.GetErrorString());
+    if (!as || !as->mRootNode)
+        throw SceneError(path, std::string("cannot import: ") + importer.GetErrorString());
     if (as->mFlags & AI_SCENE_FLAGS_INCOMPLETE)
         throw SceneError(path, "cannot import: the file is incomplete");
 
@@ -61,7 +65,8 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
             auto byId = extras->materialsById.find(m.name);
             if (byId == extras->materialsById.end()) {
                 auto idOf = extras->materialIdByName.find(m.name);
-                if (idOf != extras->materialIdByName.end()) byId = extras->materialsById.find(idOf->second);
+                if (idOf != extras->materialIdByName.end())
+                    byId = extras->materialsById.find(idOf->second);
             }
             if (byId != extras->materialsById.end()) m = byId->second;
         }
@@ -69,7 +74,8 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
     }
     if (scene.materials.size() == materialBase) scene.materials.push_back(Material{"default"});
 
-    // Count references so a mesh placed once is baked into world space and a shared one is instanced.
+    // Count references so a mesh placed once is baked into world space and a shared one is
+    // instanced.
     std::vector<std::vector<Mat4>> placements(as->mNumMeshes);
     Mat4 rootFix = extras ? extras->upAxisFix : Mat4::identity();
     std::vector<NodeVisit> stack{{as->mRootNode, rootFix * toMat4(as->mRootNode->mTransformation)}};
@@ -78,9 +84,11 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
         NodeVisit v = stack.back();
         stack.pop_back();
         nodeWorld[v.node->mName.C_Str()] = v.world;
-        for (unsigned i = 0; i < v.node->mNumMeshes; ++i) placements[v.node->mMeshes[i]].push_back(v.world);
+        for (unsigned i = 0; i < v.node->mNumMeshes; ++i)
+            placements[v.node->mMeshes[i]].push_back(v.world);
         for (unsigned c = 0; c < v.node->mNumChildren; ++c)
-            stack.push_back({v.node->mChildren[c], v.world * toMat4(v.node->mChildren[c]->mTransformation)});
+            stack.push_back(
+                {v.node->mChildren[c], v.world * toMat4(v.node->mChildren[c]->mTransformation)});
     }
 
     for (unsigned mi = 0; mi < as->mNumMeshes; ++mi) {
@@ -88,7 +96,8 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
         if (!(am->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) || placements[mi].empty()) continue;
         bool bake = placements[mi].size() == 1;
         const Mat4& xf = placements[mi][0];
-        bool flip = bake && xf.determinant3() < 0;  // keep winding consistent with the geometric normal
+        bool flip =
+            bake && xf.determinant3() < 0;  // keep winding consistent with the geometric normal
         TriangleMesh mesh;
         mesh.name = am->mName.C_Str();
         mesh.positions.reserve(3 * am->mNumVertices + 1);
@@ -110,23 +119,27 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
         if (am->HasTextureCoords(0)) {
             mesh.uvs.reserve(2 * am->mNumVertices);
             for (unsigned v = 0; v < am->mNumVertices; ++v)
-                mesh.uvs.insert(mesh.uvs.end(), {am->mTextureCoords[0][v].x, am->mTextureCoords[0][v].y});
+                mesh.uvs.insert(mesh.uvs.end(),
+                                {am->mTextureCoords[0][v].x, am->mTextureCoords[0][v].y});
         }
         mesh.indices.reserve(3 * am->mNumFaces);
         for (unsigned f = 0; f < am->mNumFaces; ++f) {
             const aiFace& face = am->mFaces[f];
             if (face.mNumIndices != 3) continue;
             if (flip)
-                mesh.indices.insert(mesh.indices.end(), {face.mIndices[0], face.mIndices[2], face.mIndices[1]});
+                mesh.indices.insert(mesh.indices.end(),
+                                    {face.mIndices[0], face.mIndices[2], face.mIndices[1]});
             else
-                mesh.indices.insert(mesh.indices.end(), {face.mIndices[0], face.mIndices[1], face.mIndices[2]});
+                mesh.indices.insert(mesh.indices.end(),
+                                    {face.mIndices[0], face.mIndices[1], face.mIndices[2]});
         }
         mesh.materialIds = {materialBase + am->mMaterialIndex};
         mesh.finalizePadding();
         uint32_t meshIndex = uint32_t(scene.meshes.size());
         scene.meshes.push_back(std::move(mesh));
         if (!bake)
-            for (const Mat4& m : placements[mi]) scene.instances.push_back(Instance::place(meshIndex, m));
+            for (const Mat4& m : placements[mi])
+                scene.instances.push_back(Instance::place(meshIndex, m));
     }
 
     if (extras) return;  // COLLADA lights and camera come from the CGL pass
@@ -142,14 +155,21 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
         Vec3 dir = world.vector(Vec3(al->mDirection.x, al->mDirection.y, al->mDirection.z));
         if (length(dir) > 0) l.direction = normalize(dir);
         switch (al->mType) {
-            case aiLightSource_POINT: l.kind = LightKind::Point; break;
+            case aiLightSource_POINT:
+                l.kind = LightKind::Point;
+                break;
             case aiLightSource_SPOT:
                 l.kind = LightKind::Spot;
                 l.spotInnerDeg = degrees(al->mAngleInnerCone);
                 l.spotOuterDeg = degrees(al->mAngleOuterCone);
                 break;
-            case aiLightSource_DIRECTIONAL: l.kind = LightKind::Directional; break;
-            case aiLightSource_AMBIENT: l.kind = LightKind::Ambient; l.direction = Vec3(0, 1, 0); break;
+            case aiLightSource_DIRECTIONAL:
+                l.kind = LightKind::Directional;
+                break;
+            case aiLightSource_AMBIENT:
+                l.kind = LightKind::Ambient;
+                l.direction = Vec3(0, 1, 0);
+                break;
             case aiLightSource_AREA: {
                 l.kind = LightKind::Area;
                 Vec3 up = world.vector(Vec3(al->mUp.x, al->mUp.y, al->mUp.z));
@@ -158,7 +178,8 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
                 l.dimY = normalize(up) * al->mSize.y;
                 break;
             }
-            default: continue;
+            default:
+                continue;
         }
         scene.lights.push_back(l);
     }

@@ -1,9 +1,8 @@
 #include "scene/cgl_extras.h"
 
-#include <pugixml.hpp>
-
 #include <cmath>
 #include <cstdlib>
+#include <pugixml.hpp>
 #include <sstream>
 
 #include "scene/scene_error.h"
@@ -21,36 +20,44 @@ std::vector<double> parseNumbers(const std::string& file, pugi::xml_node node, c
         if (!*p) break;
         char* end = nullptr;
         double v = std::strtod(p, &end);
-        if (end == p) throw SceneError(file, std::string("garbled number in <") + what + ">: '" + text + "'");
-        if (!std::isfinite(v)) throw SceneError(file, std::string("non-finite number in <") + what + ">");
+        if (end == p)
+            throw SceneError(file, std::string("garbled number in <") + what + ">: '" + text + "'");
+        if (!std::isfinite(v))
+            throw SceneError(file, std::string("non-finite number in <") + what + ">");
         values.push_back(v);
         p = end;
     }
     return values;
 }
 
-std::vector<double> expectNumbers(const std::string& file, pugi::xml_node node, const char* what, size_t n) {
+std::vector<double> expectNumbers(const std::string& file, pugi::xml_node node, const char* what,
+                                  size_t n) {
     if (!node) throw SceneError(file, std::string("missing <") + what + ">");
     std::vector<double> v = parseNumbers(file, node, what);
     if (v.size() != n)
-        throw SceneError(file, std::string("<") + what + "> needs " + std::to_string(n) + " numbers, has " +
-                                   std::to_string(v.size()));
+        throw SceneError(file, std::string("<") + what + "> needs " + std::to_string(n) +
+                                   " numbers, has " + std::to_string(v.size()));
     return v;
 }
 
 Color expectColor(const std::string& file, pugi::xml_node parent, const char* child) {
     pugi::xml_node node = parent.child(child);
-    if (!node) throw SceneError(file, std::string("CGL <") + parent.name() + "> is missing <" + child + ">");
+    if (!node)
+        throw SceneError(file,
+                         std::string("CGL <") + parent.name() + "> is missing <" + child + ">");
     std::vector<double> v = parseNumbers(file, node, child);
     // COLLADA colours may carry alpha; it is ignored, as the course program does.
     if (v.size() != 3 && v.size() != 4)
-        throw SceneError(file, std::string("<") + child + "> needs 3 numbers, has " + std::to_string(v.size()));
+        throw SceneError(
+            file, std::string("<") + child + "> needs 3 numbers, has " + std::to_string(v.size()));
     return Color(float(v[0]), float(v[1]), float(v[2]));
 }
 
 float expectScalar(const std::string& file, pugi::xml_node parent, const char* child) {
     pugi::xml_node node = parent.child(child);
-    if (!node) throw SceneError(file, std::string("CGL <") + parent.name() + "> is missing <" + child + ">");
+    if (!node)
+        throw SceneError(file,
+                         std::string("CGL <") + parent.name() + "> is missing <" + child + ">");
     return float(expectNumbers(file, node, child, 1)[0]);
 }
 
@@ -76,7 +83,7 @@ Mat4 matrixFromRowMajor(const std::vector<double>& v) {
 }
 
 class Parser {
-public:
+  public:
     Parser(const std::string& file, pugi::xml_document& doc) : file_(file), doc_(doc) {}
 
     ColladaExtras run() {
@@ -92,7 +99,8 @@ public:
         for (pugi::xml_node lib : root.children()) index(lib);
         parseMaterials(root.child("library_materials"));
         pugi::xml_node visual = root.child("library_visual_scenes").child("visual_scene");
-        std::string sceneUrl = urlTarget(root.child("scene").child("instance_visual_scene").attribute("url"));
+        std::string sceneUrl =
+            urlTarget(root.child("scene").child("instance_visual_scene").attribute("url"));
         if (!sceneUrl.empty())
             for (pugi::xml_node vs : root.child("library_visual_scenes").children("visual_scene"))
                 if (sceneUrl == vs.attribute("id").as_string()) visual = vs;
@@ -105,7 +113,7 @@ public:
         return std::move(out_);
     }
 
-private:
+  private:
     void index(pugi::xml_node lib) {
         for (pugi::xml_node child : lib.children()) {
             const char* id = child.attribute("id").as_string();
@@ -165,10 +173,13 @@ private:
                                         effect.attribute("id").as_string() + "'");
         }
         if (m.kind == MaterialKind::Glass || m.kind == MaterialKind::Refraction) {
-            if (!(m.ior > 0)) throw SceneError(file_, "CGL <" + k + "> has ior " + std::to_string(m.ior) + " (must be > 0)");
+            if (!(m.ior > 0))
+                throw SceneError(
+                    file_, "CGL <" + k + "> has ior " + std::to_string(m.ior) + " (must be > 0)");
         }
         if (m.kind == MaterialKind::Microfacet && !(m.alpha > 0))
-            throw SceneError(file_, "CGL <microfacet> has alpha " + std::to_string(m.alpha) + " (must be > 0)");
+            throw SceneError(
+                file_, "CGL <microfacet> has alpha " + std::to_string(m.alpha) + " (must be > 0)");
         return m;
     }
 
@@ -178,7 +189,9 @@ private:
             std::string name = mat.attribute("name").as_string(id.c_str());
             std::string effectId = urlTarget(mat.child("instance_effect").attribute("url"));
             pugi::xml_node effect = find(effectId);
-            if (!effect) throw SceneError(file_, "material '" + id + "' names missing effect '" + effectId + "'");
+            if (!effect)
+                throw SceneError(file_,
+                                 "material '" + id + "' names missing effect '" + effectId + "'");
             out_.materialsById[id] = parseEffect(effect, name);
             out_.materialIdByName[name] = id;
         }
@@ -193,14 +206,16 @@ private:
                 std::vector<double> v = parseNumbers(file_, t, "matrix");
                 if (v.size() != 16) {
                     if (!hasCamera || v.size() > 16)
-                        throw SceneError(file_, "node '" + std::string(node.attribute("id").as_string()) +
-                                                    "' has a <matrix> of " + std::to_string(v.size()) +
-                                                    " numbers (needs 16)");
+                        throw SceneError(file_,
+                                         "node '" + std::string(node.attribute("id").as_string()) +
+                                             "' has a <matrix> of " + std::to_string(v.size()) +
+                                             " numbers (needs 16)");
                     // CBgems: the course program reads the numbers it finds and leaves the rest 0;
                     // only the camera direction is used, so do the same and say so.
-                    out_.warnings.push_back("camera node '" + std::string(node.attribute("id").as_string()) +
-                                            "' has a <matrix> of " + std::to_string(v.size()) +
-                                            " numbers; missing ones read as 0, as the CS184 program does");
+                    out_.warnings.push_back(
+                        "camera node '" + std::string(node.attribute("id").as_string()) +
+                        "' has a <matrix> of " + std::to_string(v.size()) +
+                        " numbers; missing ones read as 0, as the CS184 program does");
                     v.resize(16, 0.0);
                     std::ostringstream os;
                     os.precision(17);
@@ -233,9 +248,12 @@ private:
         double a = degrees * 3.14159265358979323846 / 180.0, c = std::cos(a), s = std::sin(a);
         Mat4 m;
         double x = axis.x, y = axis.y, z = axis.z;
-        m.m[0][0] = c + x * x * (1 - c), m.m[0][1] = x * y * (1 - c) - z * s, m.m[0][2] = x * z * (1 - c) + y * s;
-        m.m[1][0] = y * x * (1 - c) + z * s, m.m[1][1] = c + y * y * (1 - c), m.m[1][2] = y * z * (1 - c) - x * s;
-        m.m[2][0] = z * x * (1 - c) - y * s, m.m[2][1] = z * y * (1 - c) + x * s, m.m[2][2] = c + z * z * (1 - c);
+        m.m[0][0] = c + x * x * (1 - c), m.m[0][1] = x * y * (1 - c) - z * s,
+        m.m[0][2] = x * z * (1 - c) + y * s;
+        m.m[1][0] = y * x * (1 - c) + z * s, m.m[1][1] = c + y * y * (1 - c),
+        m.m[1][2] = y * z * (1 - c) - x * s;
+        m.m[2][0] = z * x * (1 - c) - y * s, m.m[2][1] = z * y * (1 - c) + x * s,
+        m.m[2][2] = c + z * z * (1 - c);
         return m;
     }
 
@@ -250,19 +268,22 @@ private:
     void addSphere(pugi::xml_node inst, const Mat4& world) {
         std::string geomId = urlTarget(inst.attribute("url"));
         pugi::xml_node geom = find(geomId);
-        if (!geom) throw SceneError(file_, "instance_geometry names missing geometry '" + geomId + "'");
+        if (!geom)
+            throw SceneError(file_, "instance_geometry names missing geometry '" + geomId + "'");
         if (geom.child("mesh")) return;  // triangles come through Assimp
         pugi::xml_node sphereNode = extraTechnique(geom).child("sphere");
         if (!sphereNode) return;
         Sphere s;
         s.name = geom.attribute("name").as_string(geomId.c_str());
         float radius = expectScalar(file_, sphereNode, "radius");
-        if (!(radius > 0)) throw SceneError(file_, "sphere '" + geomId + "' has radius " + std::to_string(radius));
+        if (!(radius > 0))
+            throw SceneError(file_, "sphere '" + geomId + "' has radius " + std::to_string(radius));
         // As the course program: centre = M*(0,0,0), radius scaled by the length of M*(1,0,0).
         s.center = Vec3(world.point(Vec3d(0, 0, 0)));
         s.radius = radius * float(length(world.vector(Vec3d(1, 0, 0))));
         out_.spheres.push_back(s);
-        pugi::xml_node bind = inst.child("bind_material").child("technique_common").child("instance_material");
+        pugi::xml_node bind =
+            inst.child("bind_material").child("technique_common").child("instance_material");
         out_.sphereMaterialIds.push_back(urlTarget(bind.attribute("target")));
     }
 
@@ -289,13 +310,15 @@ private:
         } else if (k == "spot") {
             light.kind = LightKind::Spot;
             if (pugi::xml_node angle = kind.child("falloff_angle"))
-                light.spotOuterDeg = float(expectNumbers(file_, angle, "falloff_angle", 1)[0]) * 0.5f;
+                light.spotOuterDeg =
+                    float(expectNumbers(file_, angle, "falloff_angle", 1)[0]) * 0.5f;
             light.spotInnerDeg = light.spotOuterDeg * 0.85f;
         } else if (k == "directional") {
             light.kind = LightKind::Directional;
         } else if (k == "ambient") {
             light.kind = LightKind::Ambient;
-            light.direction = Vec3(0, 1, 0);  // CS184's hemisphere light: the upper (+Y) hemisphere emits
+            light.direction =
+                Vec3(0, 1, 0);  // CS184's hemisphere light: the upper (+Y) hemisphere emits
         } else {
             throw SceneError(file_, "light '" + id + "' has unsupported type <" + k + ">");
         }
@@ -307,9 +330,13 @@ private:
         pugi::xml_node def = find(id);
         if (!def) throw SceneError(file_, "instance_camera names missing camera '" + id + "'");
         pugi::xml_node persp = def.child("optics").child("technique_common").child("perspective");
-        if (!persp) throw SceneError(file_, "camera '" + id + "' has no <perspective> (only perspective cameras are supported)");
+        if (!persp)
+            throw SceneError(file_,
+                             "camera '" + id +
+                                 "' has no <perspective> (only perspective cameras are supported)");
         Camera cam;
-        pugi::xml_node xfov = persp.child("xfov"), yfov = persp.child("yfov"), aspect = persp.child("aspect_ratio");
+        pugi::xml_node xfov = persp.child("xfov"), yfov = persp.child("yfov"),
+                       aspect = persp.child("aspect_ratio");
         cam.hFovDeg = xfov ? float(expectNumbers(file_, xfov, "xfov", 1)[0]) : 50.0f;
         cam.vFovDeg = yfov ? float(expectNumbers(file_, yfov, "yfov", 1)[0]) : 35.0f;
         if (!yfov && aspect) {
@@ -321,9 +348,12 @@ private:
             cam.hFovDeg = degrees(2.0f * std::atan(std::tan(radians(0.5f * cam.vFovDeg)) * ar));
         }
         if (!(cam.hFovDeg > 0 && cam.hFovDeg < 180 && cam.vFovDeg > 0 && cam.vFovDeg < 180))
-            throw SceneError(file_, "camera '" + id + "' has a field of view outside (0, 180) degrees");
-        if (pugi::xml_node n = persp.child("znear")) cam.nearClip = float(expectNumbers(file_, n, "znear", 1)[0]);
-        if (pugi::xml_node f = persp.child("zfar")) cam.farClip = float(expectNumbers(file_, f, "zfar", 1)[0]);
+            throw SceneError(file_,
+                             "camera '" + id + "' has a field of view outside (0, 180) degrees");
+        if (pugi::xml_node n = persp.child("znear"))
+            cam.nearClip = float(expectNumbers(file_, n, "znear", 1)[0]);
+        if (pugi::xml_node f = persp.child("zfar"))
+            cam.farClip = float(expectNumbers(file_, f, "zfar", 1)[0]);
         cam.position = Vec3(world.point(Vec3d(0, 0, 0)));
         Vec3d fwd = world.vector(Vec3d(0, 0, -1)), up = world.vector(Vec3d(0, 1, 0));
         if (length(fwd) > 0) cam.forward = Vec3(normalize(fwd));
@@ -348,8 +378,8 @@ ColladaExtras parseColladaExtras(const std::string& path) {
     pugi::xml_document doc;
     pugi::xml_parse_result result = doc.load_file(path.c_str());
     if (!result)
-        throw SceneError(path, std::string("malformed XML at byte ") + std::to_string(result.offset) + ": " +
-                                   result.description());
+        throw SceneError(path, std::string("malformed XML at byte ") +
+                                   std::to_string(result.offset) + ": " + result.description());
     return Parser(path, doc).run();
 }
 

@@ -18,10 +18,10 @@ struct ColladaExtras {
     // Material id and name -> material parsed from its effect (kind and parameters).
     std::map<std::string, Material> materialsById;
     std::map<std::string, std::string> materialIdByName;
-    std::vector<Sphere> spheres;        // world space (up-axis fix applied)
+    std::vector<Sphere> spheres;  // world space (up-axis fix applied)
     std::vector<std::string> sphereMaterialIds;
-    std::vector<Light> lights;          // world space
-    std::optional<Camera> camera;       // world space
+    std::vector<Light> lights;     // world space
+    std::optional<Camera> camera;  // world space
     std::vector<std::string> warnings;
     // Set when the file needed patching before Assimp could read it (CBgems' 15-number matrix).
     std::optional<std::string> patchedXml;

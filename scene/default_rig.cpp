@@ -3,7 +3,8 @@
 namespace kiln {
 
 void addDefaultLightRig(Scene& scene) {
-    // A key light from the upper front-left and a dim sky fill: readable shape, no pitch-black sides.
+    // A key light from the upper front-left and a dim sky fill: readable shape, no pitch-black
+    // sides.
     Light key;
     key.name = "default-key";
     key.kind = LightKind::Directional;
@@ -38,9 +39,10 @@ void addEmissiveMeshLights(Scene& scene) {
 }
 
 void mergeAreaLightsWithEmitters(Scene& scene) {
-    // The CS184 Cornell boxes hold the ceiling light twice: a CGL <area> rectangle (what light sampling
-    // uses) and an emissive quad (what rays see). They are one light: the quad's geometry with the area
-    // light's radiance, so it is neither counted twice nor seen with another brightness than it lights.
+    // The CS184 Cornell boxes hold the ceiling light twice: a CGL <area> rectangle (what light
+    // sampling uses) and an emissive quad (what rays see). They are one light: the quad's geometry
+    // with the area light's radiance, so it is neither counted twice nor seen with another
+    // brightness than it lights.
     for (size_t a = 0; a < scene.lights.size(); ++a) {
         Light& area = scene.lights[a];
         if (area.kind != LightKind::Area || area.hasMesh) continue;
@@ -59,8 +61,10 @@ void mergeAreaLightsWithEmitters(Scene& scene) {
             }
             float meshArea = 0;
             for (size_t t = 0; t < m.triangleCount(); ++t)
-                meshArea += 0.5f * length(cross(m.vertex(m.indices[3 * t + 1]) - m.vertex(m.indices[3 * t]),
-                                                m.vertex(m.indices[3 * t + 2]) - m.vertex(m.indices[3 * t])));
+                meshArea +=
+                    0.5f *
+                    length(cross(m.vertex(m.indices[3 * t + 1]) - m.vertex(m.indices[3 * t]),
+                                 m.vertex(m.indices[3 * t + 2]) - m.vertex(m.indices[3 * t])));
             bool sameSpot = length(centroid - area.position) <= 0.05f * size;
             bool sameArea = std::abs(meshArea - rectArea) <= 0.05f * rectArea;
             if (!(coplanar && sameSpot && sameArea)) continue;
@@ -68,7 +72,8 @@ void mergeAreaLightsWithEmitters(Scene& scene) {
             area.hasMesh = true;
             area.mesh = emitter.mesh;
             if (!(meshRadiance == area.radiance))
-                scene.warnings.push_back("area light '" + area.name + "' and emissive mesh '" + emitter.name +
+                scene.warnings.push_back("area light '" + area.name + "' and emissive mesh '" +
+                                         emitter.name +
                                          "' are one light; it emits the area light's radiance (" +
                                          std::to_string(area.radiance.x) + "), not the mesh's (" +
                                          std::to_string(meshRadiance.x) + ")");

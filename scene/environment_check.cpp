@@ -10,9 +10,12 @@ void checkEnvironmentMap(const std::string& path, std::vector<std::string>& warn
     auto in = OIIO::ImageInput::open(path);
     if (!in) throw SceneError(path, "cannot read environment map: " + OIIO::geterror());
     const OIIO::ImageSpec& spec = in->spec();
-    if (spec.nchannels < 3) throw SceneError(path, "environment map needs RGB channels, has " + std::to_string(spec.nchannels));
+    if (spec.nchannels < 3)
+        throw SceneError(
+            path, "environment map needs RGB channels, has " + std::to_string(spec.nchannels));
     if (spec.width != 2 * spec.height)
-        warnings.push_back(path + " is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+        warnings.push_back(path + " is " + std::to_string(spec.width) + "x" +
+                           std::to_string(spec.height) +
                            ", not the 2:1 of a lat-long map; it is used as lat-long anyway");
 }
 

@@ -8,11 +8,12 @@
 
 namespace kiln {
 
-// Any format Assimp reads. With extras (COLLADA), materials, lights, spheres and the camera come from
-// the CGL pass and the course's up-axis convention replaces Assimp's.
+// Any format Assimp reads. With extras (COLLADA), materials, lights, spheres and the camera come
+// from the CGL pass and the course's up-axis convention replaces Assimp's.
 void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scene& scene);
 
-// Direct binary/ASCII PLY reader: face lists and tristrips (which Assimp 5.2 reads as one triangle).
+// Direct binary/ASCII PLY reader: face lists and tristrips (which Assimp 5.2 reads as one
+// triangle).
 void readPly(const std::string& path, Scene& scene);
 
 }  // namespace kiln

@@ -32,11 +32,20 @@ PlyType parseType(const std::string& s) {
 
 size_t typeSize(PlyType t) {
     switch (t) {
-        case PlyType::Int8: case PlyType::UInt8: return 1;
-        case PlyType::Int16: case PlyType::UInt16: return 2;
-        case PlyType::Int32: case PlyType::UInt32: case PlyType::Float32: return 4;
-        case PlyType::Float64: return 8;
-        default: return 0;
+        case PlyType::Int8:
+        case PlyType::UInt8:
+            return 1;
+        case PlyType::Int16:
+        case PlyType::UInt16:
+            return 2;
+        case PlyType::Int32:
+        case PlyType::UInt32:
+        case PlyType::Float32:
+            return 4;
+        case PlyType::Float64:
+            return 8;
+        default:
+            return 0;
     }
 }
 
@@ -56,7 +65,7 @@ struct Element {
 enum class Format { Ascii, BinaryLE, BinaryBE };
 
 class MappedFile {
-public:
+  public:
     explicit MappedFile(const std::string& path) {
         fd_ = ::open(path.c_str(), O_RDONLY);
         if (fd_ < 0) throw SceneError(path, std::string("cannot open: ") + std::strerror(errno));
@@ -74,7 +83,7 @@ public:
     const char* data() const { return data_; }
     size_t size() const { return size_; }
 
-private:
+  private:
     int fd_ = -1;
     const char* data_ = nullptr;
     size_t size_ = 0;
@@ -82,37 +91,67 @@ private:
 
 // Reads values from the body, binary or ASCII, with bounds checks that name the file.
 class Cursor {
-public:
-    Cursor(const std::string& path, const char* p, const char* end, Format f) : path_(path), p_(p), end_(end), f_(f) {}
+  public:
+    Cursor(const std::string& path, const char* p, const char* end, Format f)
+        : path_(path), p_(p), end_(end), f_(f) {}
 
     double read(PlyType t) {
         if (f_ == Format::Ascii) return readAscii();
         size_t n = typeSize(t);
-        if (size_t(end_ - p_) < n) throw SceneError(path_, "file ends before the data its header declares");
+        if (size_t(end_ - p_) < n)
+            throw SceneError(path_, "file ends before the data its header declares");
         unsigned char b[8];
         std::memcpy(b, p_, n);
         p_ += n;
         if ((f_ == Format::BinaryBE) != (std::endian::native == std::endian::big))
             for (size_t i = 0; i < n / 2; ++i) std::swap(b[i], b[n - 1 - i]);
         switch (t) {
-            case PlyType::Int8: return double(int8_t(b[0]));
-            case PlyType::UInt8: return double(b[0]);
-            case PlyType::Int16: { int16_t v; std::memcpy(&v, b, 2); return v; }
-            case PlyType::UInt16: { uint16_t v; std::memcpy(&v, b, 2); return v; }
-            case PlyType::Int32: { int32_t v; std::memcpy(&v, b, 4); return v; }
-            case PlyType::UInt32: { uint32_t v; std::memcpy(&v, b, 4); return v; }
-            case PlyType::Float32: { float v; std::memcpy(&v, b, 4); return v; }
-            case PlyType::Float64: { double v; std::memcpy(&v, b, 8); return v; }
-            default: return 0;
+            case PlyType::Int8:
+                return double(int8_t(b[0]));
+            case PlyType::UInt8:
+                return double(b[0]);
+            case PlyType::Int16: {
+                int16_t v;
+                std::memcpy(&v, b, 2);
+                return v;
+            }
+            case PlyType::UInt16: {
+                uint16_t v;
+                std::memcpy(&v, b, 2);
+                return v;
+            }
+            case PlyType::Int32: {
+                int32_t v;
+                std::memcpy(&v, b, 4);
+                return v;
+            }
+            case PlyType::UInt32: {
+                uint32_t v;
+                std::memcpy(&v, b, 4);
+                return v;
+            }
+            case PlyType::Float32: {
+                float v;
+                std::memcpy(&v, b, 4);
+                return v;
+            }
+            case PlyType::Float64: {
+                double v;
+                std::memcpy(&v, b, 8);
+                return v;
+            }
+            default:
+                return 0;
         }
     }
     const char* position() const { return p_; }
     void skip(size_t n) {
-        if (size_t(end_ - p_) < n) throw SceneError(path_, "file ends before the data its header declares");
+        if (size_t(end_ - p_) < n)
+            throw SceneError(path_, "file ends before the data its header declares");
         p_ += n;
     }
 
-private:
+  private:
     double readAscii() {
         while (p_ < end_ && (*p_ == ' ' || *p_ == '\n' || *p_ == '\r' || *p_ == '\t')) ++p_;
         if (p_ >= end_) throw SceneError(path_, "file ends before the data its header declares");
@@ -134,7 +173,8 @@ void readPly(const std::string& path, Scene& scene) {
     MappedFile file(path);
     const char* data = file.data();
     const char* end = data + file.size();
-    if (file.size() < 4 || std::strncmp(data, "ply", 3) != 0) throw SceneError(path, "not a PLY file (no 'ply' magic)");
+    if (file.size() < 4 || std::strncmp(data, "ply", 3) != 0)
+        throw SceneError(path, "not a PLY file (no 'ply' magic)");
     const char* headerEnd = nullptr;
     for (const char* p = data; p + 10 <= end; ++p)
         if (std::strncmp(p, "end_header", 10) == 0) {
@@ -157,10 +197,14 @@ void readPly(const std::string& path, Scene& scene) {
         if (word == "format") {
             std::string f;
             ls >> f;
-            if (f == "ascii") format = Format::Ascii;
-            else if (f == "binary_little_endian") format = Format::BinaryLE;
-            else if (f == "binary_big_endian") format = Format::BinaryBE;
-            else throw SceneError(path, "unknown PLY format '" + f + "'");
+            if (f == "ascii")
+                format = Format::Ascii;
+            else if (f == "binary_little_endian")
+                format = Format::BinaryLE;
+            else if (f == "binary_big_endian")
+                format = Format::BinaryBE;
+            else
+                throw SceneError(path, "unknown PLY format '" + f + "'");
             haveFormat = true;
         } else if (word == "element") {
             Element e;
@@ -199,19 +243,29 @@ void readPly(const std::string& path, Scene& scene) {
             int ix = -1, iy = -1, iz = -1, inx = -1, iny = -1, inz = -1, iu = -1, iv = -1;
             for (size_t i = 0; i < e.props.size(); ++i) {
                 const std::string& n = e.props[i].name;
-                if (n == "x") ix = int(i);
-                else if (n == "y") iy = int(i);
-                else if (n == "z") iz = int(i);
-                else if (n == "nx") inx = int(i);
-                else if (n == "ny") iny = int(i);
-                else if (n == "nz") inz = int(i);
-                else if (n == "u" || n == "s" || n == "texture_u") iu = int(i);
-                else if (n == "v" || n == "t" || n == "texture_v") iv = int(i);
+                if (n == "x")
+                    ix = int(i);
+                else if (n == "y")
+                    iy = int(i);
+                else if (n == "z")
+                    iz = int(i);
+                else if (n == "nx")
+                    inx = int(i);
+                else if (n == "ny")
+                    iny = int(i);
+                else if (n == "nz")
+                    inz = int(i);
+                else if (n == "u" || n == "s" || n == "texture_u")
+                    iu = int(i);
+                else if (n == "v" || n == "t" || n == "texture_v")
+                    iv = int(i);
             }
-            if (ix < 0 || iy < 0 || iz < 0) throw SceneError(path, "PLY vertex element lacks x, y or z");
+            if (ix < 0 || iy < 0 || iz < 0)
+                throw SceneError(path, "PLY vertex element lacks x, y or z");
             bool normals = inx >= 0 && iny >= 0 && inz >= 0, uvs = iu >= 0 && iv >= 0;
             if (e.count > (file.size() / (format == Format::Ascii ? 6 : 12)) + 1)
-                throw SceneError(path, "PLY header declares " + std::to_string(e.count) + " vertices, more than the file can hold");
+                throw SceneError(path, "PLY header declares " + std::to_string(e.count) +
+                                           " vertices, more than the file can hold");
             mesh.positions.resize(3 * e.count + 1);
             if (normals) mesh.normals.resize(3 * e.count);
             if (uvs) mesh.uvs.resize(2 * e.count);
@@ -259,18 +313,21 @@ void readPly(const std::string& path, Scene& scene) {
                             continue;
                         }
                         if (idx < 0 || idx >= double(vertexCount))
-                            throw SceneError(path, "face " + std::to_string(f) + " has vertex index " +
-                                                       std::to_string(int64_t(idx)) + " out of range (" +
-                                                       std::to_string(vertexCount) + " vertices)");
+                            throw SceneError(path,
+                                             "face " + std::to_string(f) + " has vertex index " +
+                                                 std::to_string(int64_t(idx)) + " out of range (" +
+                                                 std::to_string(vertexCount) + " vertices)");
                         poly.push_back(uint32_t(idx));
                     }
                     if (!isIndexList) continue;
                     if (!strips) {
                         for (size_t k = 2; k < poly.size(); ++k)
-                            mesh.indices.insert(mesh.indices.end(), {poly[0], poly[k - 1], poly[k]});
+                            mesh.indices.insert(mesh.indices.end(),
+                                                {poly[0], poly[k - 1], poly[k]});
                         continue;
                     }
-                    // Tristrip: alternate winding; drop restarts and degenerate (repeated-index) triangles.
+                    // Tristrip: alternate winding; drop restarts and degenerate (repeated-index)
+                    // triangles.
                     size_t run = 0;
                     for (size_t k = 0; k < poly.size(); ++k) {
                         if (poly[k] == UINT32_MAX) {
@@ -280,8 +337,10 @@ void readPly(const std::string& path, Scene& scene) {
                         if (++run < 3) continue;
                         uint32_t a = poly[k - 2], b = poly[k - 1], c = poly[k];
                         if (a == b || b == c || a == c) continue;
-                        if (run % 2 == 1) mesh.indices.insert(mesh.indices.end(), {a, b, c});
-                        else mesh.indices.insert(mesh.indices.end(), {b, a, c});
+                        if (run % 2 == 1)
+                            mesh.indices.insert(mesh.indices.end(), {a, b, c});
+                        else
+                            mesh.indices.insert(mesh.indices.end(), {b, a, c});
                     }
                 }
             }

@@ -4,26 +4,40 @@ namespace kiln {
 
 const char* toString(MaterialKind kind) {
     switch (kind) {
-        case MaterialKind::Lambertian: return "lambertian";
-        case MaterialKind::Mirror: return "mirror";
-        case MaterialKind::Glass: return "glass";
-        case MaterialKind::Microfacet: return "microfacet";
-        case MaterialKind::Refraction: return "refraction";
-        case MaterialKind::Glossy: return "glossy";
-        case MaterialKind::Emission: return "emission";
+        case MaterialKind::Lambertian:
+            return "lambertian";
+        case MaterialKind::Mirror:
+            return "mirror";
+        case MaterialKind::Glass:
+            return "glass";
+        case MaterialKind::Microfacet:
+            return "microfacet";
+        case MaterialKind::Refraction:
+            return "refraction";
+        case MaterialKind::Glossy:
+            return "glossy";
+        case MaterialKind::Emission:
+            return "emission";
     }
     return "unknown";
 }
 
 const char* toString(LightKind kind) {
     switch (kind) {
-        case LightKind::Area: return "area";
-        case LightKind::MeshEmitter: return "emissive_mesh";
-        case LightKind::Point: return "point";
-        case LightKind::Spot: return "spot";
-        case LightKind::Directional: return "directional";
-        case LightKind::Ambient: return "ambient";
-        case LightKind::Environment: return "environment";
+        case LightKind::Area:
+            return "area";
+        case LightKind::MeshEmitter:
+            return "emissive_mesh";
+        case LightKind::Point:
+            return "point";
+        case LightKind::Spot:
+            return "spot";
+        case LightKind::Directional:
+            return "directional";
+        case LightKind::Ambient:
+            return "ambient";
+        case LightKind::Environment:
+            return "environment";
     }
     return "unknown";
 }
@@ -43,7 +57,8 @@ Bounds3 Scene::worldBounds() const {
     std::vector<bool> proto = prototypeMask();
     for (size_t m = 0; m < meshes.size(); ++m) {
         if (proto[m]) continue;
-        for (size_t v = 0; v < meshes[m].vertexCount(); ++v) b.extend(meshes[m].vertex(uint32_t(v)));
+        for (size_t v = 0; v < meshes[m].vertexCount(); ++v)
+            b.extend(meshes[m].vertex(uint32_t(v)));
     }
     for (const Instance& inst : instances) {
         const TriangleMesh& mesh = meshes[inst.mesh];

@@ -34,13 +34,15 @@ const char* toString(LightKind kind);
 struct Light {
     std::string name;
     LightKind kind = LightKind::Point;
-    Color radiance{1.0f};  // area/ambient/environment: radiance; point/spot: intensity; directional: irradiance
+    Color radiance{1.0f};  // area/ambient/environment: radiance; point/spot: intensity;
+                           // directional: irradiance
     Vec3 position;         // area: centre; point, spot
-    Vec3 direction{0, -1, 0};  // area: emitting side; spot: axis; directional: direction light travels
-    Vec3 dimX, dimY;           // area: full edge vectors of the rectangle
+    Vec3 direction{0, -1,
+                   0};  // area: emitting side; spot: axis; directional: direction light travels
+    Vec3 dimX, dimY;    // area: full edge vectors of the rectangle
     float spotInnerDeg = 30.0f, spotOuterDeg = 45.0f;
-    uint32_t mesh = 0;              // mesh emitter, or an area light's geometry when hasMesh
-    bool hasMesh = false;           // area light whose rectangle is an emissive mesh of the scene
+    uint32_t mesh = 0;            // mesh emitter, or an area light's geometry when hasMesh
+    bool hasMesh = false;         // area light whose rectangle is an emissive mesh of the scene
     std::string environmentPath;  // lat-long EXR/HDR
     float environmentScale = 1.0f;
 };
@@ -49,7 +51,8 @@ struct Camera {
     Vec3 position{0, 0, 5};
     Vec3 forward{0, 0, -1};
     Vec3 up{0, 1, 0};
-    float hFovDeg = 50.0f;  // full angles, as the file states them; aspect fit happens at render time
+    float hFovDeg =
+        50.0f;  // full angles, as the file states them; aspect fit happens at render time
     float vFovDeg = 35.0f;
     float nearClip = 0.001f, farClip = 1e30f;
     float apertureRadius = 0.0f;  // thin lens when > 0
@@ -65,15 +68,19 @@ struct TriangleMesh {
     std::string name;
     // xyz per vertex; one extra padding float at the end because Embree reads vertices as 16 bytes.
     std::vector<float> positions;
-    std::vector<uint32_t> indices;  // 3 per triangle
-    std::vector<float> normals;     // optional, xyz per vertex
-    std::vector<float> uvs;         // optional, uv per vertex
+    std::vector<uint32_t> indices;      // 3 per triangle
+    std::vector<float> normals;         // optional, xyz per vertex
+    std::vector<float> uvs;             // optional, uv per vertex
     std::vector<uint32_t> materialIds;  // one per triangle, or one for the whole mesh
 
     size_t vertexCount() const { return positions.size() / 3; }
     size_t triangleCount() const { return indices.size() / 3; }
-    Vec3 vertex(uint32_t i) const { return {positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]}; }
-    uint32_t materialOf(size_t tri) const { return materialIds.size() == 1 ? materialIds[0] : materialIds[tri]; }
+    Vec3 vertex(uint32_t i) const {
+        return {positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]};
+    }
+    uint32_t materialOf(size_t tri) const {
+        return materialIds.size() == 1 ? materialIds[0] : materialIds[tri];
+    }
     void finalizePadding();  // ensures the 16-byte read past the last vertex is legal
 };
 
@@ -104,15 +111,17 @@ struct Scene {
     std::vector<Light> lights;
     Camera camera;
     bool hasFileCamera = false;
-    bool isCs184 = false;  // Z-up COLLADA, as every CS184 library file is: framed by the course rule
+    bool isCs184 =
+        false;  // Z-up COLLADA, as every CS184 library file is: framed by the course rule
     bool framedByCourseRule = false;
     double loadSeconds = 0;
     std::vector<std::string> warnings;
 
-    // Everything above is stored relative to this point (world = stored + origin): rendering near the
-    // origin keeps float error bounds small for scenes placed far away (see recenterScene).
+    // Everything above is stored relative to this point (world = stored + origin): rendering near
+    // the origin keeps float error bounds small for scenes placed far away (see recenterScene).
     Vec3d origin{0.0};
-    uint64_t duplicateTriangles = 0;  // exact repeats of another triangle (see countDuplicateTriangles)
+    uint64_t duplicateTriangles =
+        0;  // exact repeats of another triangle (see countDuplicateTriangles)
 
     std::vector<bool> prototypeMask() const;  // meshes drawn only through instances
     Bounds3 worldBounds() const;

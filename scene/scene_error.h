@@ -7,7 +7,7 @@
 namespace kiln {
 
 class SceneError : public std::runtime_error {
-public:
+  public:
     SceneError(const std::string& file, const std::string& problem)
         : std::runtime_error(file + ": " + problem) {}
 };

@@ -17,10 +17,14 @@ std::string vec(const Vec3& v) { return "[" + num(v.x) + ", " + num(v.y) + ", " 
 std::string quote(const std::string& s) {
     std::string out = "\"";
     for (char c : s) {
-        if (c == '"' || c == '\\') out += '\\', out += c;
-        else if (c == '\n') out += "\\n";
-        else if (static_cast<unsigned char>(c) < 0x20) out += ' ';
-        else out += c;
+        if (c == '"' || c == '\\')
+            out += '\\', out += c;
+        else if (c == '\n')
+            out += "\\n";
+        else if (static_cast<unsigned char>(c) < 0x20)
+            out += ' ';
+        else
+            out += c;
     }
     return out + "\"";
 }
@@ -45,8 +49,8 @@ SceneSummary summarize(const Scene& scene) {
     for (const TriangleMesh& m : scene.meshes) {
         s.vertices += m.vertexCount();
         used.insert(m.materialIds.begin(), m.materialIds.end());
-        s.geometryBytes += m.positions.size() * 4 + m.indices.size() * 4 + m.normals.size() * 4 + m.uvs.size() * 4 +
-                           m.materialIds.size() * 4;
+        s.geometryBytes += m.positions.size() * 4 + m.indices.size() * 4 + m.normals.size() * 4 +
+                           m.uvs.size() * 4 + m.materialIds.size() * 4;
     }
     for (const Sphere& sp : scene.spheres) used.insert(sp.material);
     for (uint32_t id : used) ++s.materials[toString(scene.materials[id].kind)];
@@ -60,28 +64,44 @@ std::string sceneInfoText(const Scene& scene) {
     Bounds3 b = worldBoundsOf(scene);
     os << "scene       " << scene.sourcePath << "\n";
     os << "load        " << num(scene.loadSeconds) << " s\n";
-    os << "geometry    " << s.triangles << " triangles (" << s.uniqueTriangles << " stored), " << s.vertices
-       << " vertices, " << s.meshes << " meshes, " << s.instances << " instances, " << s.spheres << " spheres\n";
+    os << "geometry    " << s.triangles << " triangles (" << s.uniqueTriangles << " stored), "
+       << s.vertices << " vertices, " << s.meshes << " meshes, " << s.instances << " instances, "
+       << s.spheres << " spheres\n";
     os << "memory      " << s.geometryBytes << " bytes of geometry ("
-       << num(s.uniqueTriangles ? double(s.geometryBytes) / double(s.uniqueTriangles) : 0.0) << " bytes/triangle)\n";
+       << num(s.uniqueTriangles ? double(s.geometryBytes) / double(s.uniqueTriangles) : 0.0)
+       << " bytes/triangle)\n";
     os << "bounds      " << vec(b.lo) << " .. " << vec(b.hi) << "\n";
     os << "materials\n";
     std::set<uint32_t> used;
-    for (const TriangleMesh& m : scene.meshes) used.insert(m.materialIds.begin(), m.materialIds.end());
+    for (const TriangleMesh& m : scene.meshes)
+        used.insert(m.materialIds.begin(), m.materialIds.end());
     for (const Sphere& sp : scene.spheres) used.insert(sp.material);
     for (uint32_t id : used) {
         const Material& m = scene.materials[id];
         os << "  " << toString(m.kind) << " '" << m.name << "'";
         switch (m.kind) {
-            case MaterialKind::Lambertian: os << " albedo " << vec(m.albedo); break;
-            case MaterialKind::Mirror: os << " reflectance " << vec(m.reflectance); break;
-            case MaterialKind::Glass:
-                os << " ior " << num(m.ior) << " reflectance " << vec(m.reflectance) << " transmittance " << vec(m.transmittance);
+            case MaterialKind::Lambertian:
+                os << " albedo " << vec(m.albedo);
                 break;
-            case MaterialKind::Refraction: os << " ior " << num(m.ior) << " transmittance " << vec(m.transmittance); break;
-            case MaterialKind::Microfacet: os << " alpha " << num(m.alpha) << " eta " << vec(m.eta) << " k " << vec(m.k); break;
-            case MaterialKind::Glossy: os << " reflectance " << vec(m.reflectance) << " shininess " << num(m.shininess); break;
-            case MaterialKind::Emission: os << " radiance " << vec(m.emission); break;
+            case MaterialKind::Mirror:
+                os << " reflectance " << vec(m.reflectance);
+                break;
+            case MaterialKind::Glass:
+                os << " ior " << num(m.ior) << " reflectance " << vec(m.reflectance)
+                   << " transmittance " << vec(m.transmittance);
+                break;
+            case MaterialKind::Refraction:
+                os << " ior " << num(m.ior) << " transmittance " << vec(m.transmittance);
+                break;
+            case MaterialKind::Microfacet:
+                os << " alpha " << num(m.alpha) << " eta " << vec(m.eta) << " k " << vec(m.k);
+                break;
+            case MaterialKind::Glossy:
+                os << " reflectance " << vec(m.reflectance) << " shininess " << num(m.shininess);
+                break;
+            case MaterialKind::Emission:
+                os << " radiance " << vec(m.emission);
+                break;
         }
         os << "\n";
     }
@@ -89,18 +109,25 @@ std::string sceneInfoText(const Scene& scene) {
     for (const Light& l : scene.lights) {
         os << "  " << toString(l.kind) << " '" << l.name << "' radiance " << vec(l.radiance);
         if (l.kind == LightKind::Area)
-            os << " at " << vec(Vec3d(l.position) + scene.origin) << " facing " << vec(l.direction) << " size " << num(length(l.dimX)) << " x "
-               << num(length(l.dimY));
-        else if (l.kind == LightKind::Point || l.kind == LightKind::Spot) os << " at " << vec(Vec3d(l.position) + scene.origin);
-        else if (l.kind == LightKind::Directional) os << " direction " << vec(l.direction);
-        else if (l.kind == LightKind::Environment) os << " map " << l.environmentPath;
-        else if (l.kind == LightKind::MeshEmitter) os << " mesh " << l.mesh;
+            os << " at " << vec(Vec3d(l.position) + scene.origin) << " facing " << vec(l.direction)
+               << " size " << num(length(l.dimX)) << " x " << num(length(l.dimY));
+        else if (l.kind == LightKind::Point || l.kind == LightKind::Spot)
+            os << " at " << vec(Vec3d(l.position) + scene.origin);
+        else if (l.kind == LightKind::Directional)
+            os << " direction " << vec(l.direction);
+        else if (l.kind == LightKind::Environment)
+            os << " map " << l.environmentPath;
+        else if (l.kind == LightKind::MeshEmitter)
+            os << " mesh " << l.mesh;
         os << "\n";
     }
     const Camera& c = scene.camera;
-    os << "camera      " << (scene.framedByCourseRule ? "file direction, CS184 framing" : scene.hasFileCamera ? "file" : "default framing")
-       << " at " << vec(Vec3d(c.position) + scene.origin) << " looking " << vec(c.forward) << " hfov " << num(c.hFovDeg) << " vfov "
-       << num(c.vFovDeg) << "\n";
+    os << "camera      "
+       << (scene.framedByCourseRule ? "file direction, CS184 framing"
+           : scene.hasFileCamera    ? "file"
+                                    : "default framing")
+       << " at " << vec(Vec3d(c.position) + scene.origin) << " looking " << vec(c.forward)
+       << " hfov " << num(c.hFovDeg) << " vfov " << num(c.vFovDeg) << "\n";
     for (const std::string& w : scene.warnings) os << "warning     " << w << "\n";
     return os.str();
 }
@@ -113,7 +140,8 @@ std::string sceneInfoJson(const Scene& scene) {
     auto map = [&](const std::map<std::string, int>& m) {
         std::string out = "{";
         for (auto it = m.begin(); it != m.end(); ++it)
-            out += (it == m.begin() ? "" : ", ") + quote(it->first) + ": " + std::to_string(it->second);
+            out += (it == m.begin() ? "" : ", ") + quote(it->first) + ": " +
+                   std::to_string(it->second);
         return out + "}";
     };
     os << "{\n";
@@ -126,14 +154,16 @@ std::string sceneInfoJson(const Scene& scene) {
     os << "  \"instances\": " << s.instances << ",\n";
     os << "  \"materials\": " << map(s.materials) << ",\n";
     os << "  \"lights\": " << map(s.lights) << ",\n";
-    os << "  \"camera\": {\"position\": " << vec(Vec3d(c.position) + scene.origin) << ", \"direction\": " << vec(c.forward)
-       << ", \"up\": " << vec(c.up) << ", \"hfov\": " << num(c.hFovDeg) << ", \"vfov\": " << num(c.vFovDeg)
+    os << "  \"camera\": {\"position\": " << vec(Vec3d(c.position) + scene.origin)
+       << ", \"direction\": " << vec(c.forward) << ", \"up\": " << vec(c.up)
+       << ", \"hfov\": " << num(c.hFovDeg) << ", \"vfov\": " << num(c.vFovDeg)
        << ", \"from_file\": " << (scene.hasFileCamera ? "true" : "false") << "},\n";
     os << "  \"bbox\": {\"min\": " << vec(b.lo) << ", \"max\": " << vec(b.hi) << "},\n";
     os << "  \"geometry_bytes\": " << s.geometryBytes << ",\n";
     os << "  \"load_seconds\": " << num(scene.loadSeconds) << ",\n";
     os << "  \"warnings\": [";
-    for (size_t i = 0; i < scene.warnings.size(); ++i) os << (i ? ", " : "") << quote(scene.warnings[i]);
+    for (size_t i = 0; i < scene.warnings.size(); ++i)
+        os << (i ? ", " : "") << quote(scene.warnings[i]);
     os << "]\n}\n";
     return os.str();
 }

@@ -1,4 +1,5 @@
-// What `kiln info` prints: a human summary and a stable JSON form (documented in docs/info-json.md).
+// What `kiln info` prints: a human summary and a stable JSON form (documented in
+// docs/info-json.md).
 #pragma once
 
 #include <map>
@@ -9,8 +10,8 @@
 namespace kiln {
 
 struct SceneSummary {
-    uint64_t triangles = 0;           // as rendered (instances expanded)
-    uint64_t uniqueTriangles = 0;     // stored
+    uint64_t triangles = 0;        // as rendered (instances expanded)
+    uint64_t uniqueTriangles = 0;  // stored
     uint64_t spheres = 0, meshes = 0, instances = 0, vertices = 0;
     std::map<std::string, int> materials;  // kind -> count of materials in use
     std::map<std::string, int> lights;     // kind -> count

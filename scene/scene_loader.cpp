@@ -1,10 +1,10 @@
 #include "scene/scene_loader.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
-#include <array>
 #include <map>
 #include <tuple>
 #include <unordered_set>
@@ -18,7 +18,8 @@ namespace {
 
 std::string lowerExtension(const std::string& path) {
     std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
     return ext;
 }
 
@@ -34,9 +35,11 @@ void applyColladaExtras(const ColladaExtras& extras, Scene& scene) {
         } else {
             auto it = extras.materialsById.find(id);
             if (!id.empty() && it == extras.materialsById.end())
-                throw SceneError(scene.sourcePath, "sphere '" + s.name + "' binds unknown material '" + id + "'");
+                throw SceneError(scene.sourcePath,
+                                 "sphere '" + s.name + "' binds unknown material '" + id + "'");
             s.material = uint32_t(scene.materials.size());
-            scene.materials.push_back(it == extras.materialsById.end() ? Material{"default"} : it->second);
+            scene.materials.push_back(it == extras.materialsById.end() ? Material{"default"}
+                                                                       : it->second);
             sphereMaterial[id] = s.material;
         }
         scene.spheres.push_back(s);
@@ -70,7 +73,8 @@ uint64_t countDuplicateTriangles(const Scene& scene) {
         if (proto[m]) continue;
         const TriangleMesh& mesh = scene.meshes[m];
         for (size_t t = 0; t < mesh.triangleCount(); ++t) {
-            std::array<Vec3, 3> p = {mesh.vertex(mesh.indices[3 * t]), mesh.vertex(mesh.indices[3 * t + 1]),
+            std::array<Vec3, 3> p = {mesh.vertex(mesh.indices[3 * t]),
+                                     mesh.vertex(mesh.indices[3 * t + 1]),
                                      mesh.vertex(mesh.indices[3 * t + 2])};
             std::sort(p.begin(), p.end(), [](const Vec3& a, const Vec3& b) {
                 return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z);
@@ -110,7 +114,8 @@ Scene loadScene(const std::string& path, const LoadOptions& options) {
     scene.sourcePath = path;
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) throw SceneError(path, "no such file");
-    if (std::filesystem::is_directory(path, ec)) throw SceneError(path, "is a directory, not a scene file");
+    if (std::filesystem::is_directory(path, ec))
+        throw SceneError(path, "is a directory, not a scene file");
     if (!std::ifstream(path).good()) throw SceneError(path, "cannot read file (permission?)");
     if (std::filesystem::file_size(path, ec) == 0) throw SceneError(path, "file is empty");
 
@@ -130,7 +135,8 @@ Scene loadScene(const std::string& path, const LoadOptions& options) {
     scene.duplicateTriangles = countDuplicateTriangles(scene);
     if (scene.duplicateTriangles)
         scene.warnings.push_back(std::to_string(scene.duplicateTriangles) +
-                                 " triangles repeat another exactly; where they overlap the lowest-numbered one is shown");
+                                 " triangles repeat another exactly; where they overlap the "
+                                 "lowest-numbered one is shown");
 
     addEmissiveMeshLights(scene);
     mergeAreaLightsWithEmitters(scene);
@@ -155,16 +161,21 @@ Scene loadScene(const std::string& path, const LoadOptions& options) {
     }
     bool allDark = std::all_of(scene.lights.begin(), scene.lights.end(),
                                [](const Light& l) { return maxComponent(l.radiance) <= 0; });
-    if (allDark) scene.warnings.push_back("every light has zero power: only emission will be visible");
+    if (allDark)
+        scene.warnings.push_back("every light has zero power: only emission will be visible");
 
     using Rule = LoadOptions::CameraRule;
-    if (!scene.hasFileCamera) applyDefaultFraming(scene);
-    else if (options.cameraRule == Rule::Framed || (options.cameraRule == Rule::Auto && scene.isCs184))
+    if (!scene.hasFileCamera)
+        applyDefaultFraming(scene);
+    else if (options.cameraRule == Rule::Framed ||
+             (options.cameraRule == Rule::Auto && scene.isCs184))
         applyCs184Framing(scene);
-    scene.framedByCourseRule = scene.hasFileCamera && (options.cameraRule == Rule::Framed ||
-                                                       (options.cameraRule == Rule::Auto && scene.isCs184));
+    scene.framedByCourseRule =
+        scene.hasFileCamera &&
+        (options.cameraRule == Rule::Framed || (options.cameraRule == Rule::Auto && scene.isCs184));
 
-    scene.loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    scene.loadSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return scene;
 }
 

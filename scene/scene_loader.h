@@ -1,5 +1,5 @@
-// Loads any supported scene file into the scene model, validates it and completes it (camera framing,
-// default lights for bare meshes, environment light on request).
+// Loads any supported scene file into the scene model, validates it and completes it (camera
+// framing, default lights for bare meshes, environment light on request).
 #pragma once
 
 #include <string>
@@ -9,10 +9,10 @@
 namespace kiln {
 
 struct LoadOptions {
-    // Camera rule: Auto frames CS184-library COLLADA (Z-up, as every course file is) by the course rule
-    // and uses the file camera elsewhere; File and Framed force one or the other.
+    // Camera rule: Auto frames CS184-library COLLADA (Z-up, as every course file is) by the course
+    // rule and uses the file camera elsewhere; File and Framed force one or the other.
     enum class CameraRule { Auto, File, Framed } cameraRule = CameraRule::Auto;
-    std::string environmentMap;   // --env: adds a lat-long environment light
+    std::string environmentMap;  // --env: adds a lat-long environment light
     float environmentScale = 1.0f;
 };
 
@@ -32,8 +32,9 @@ void checkEnvironmentMap(const std::string& path, std::vector<std::string>& warn
 void addEmissiveMeshLights(Scene& scene);
 
 // Moves the scene so its bounds are centred on the origin (recording the shift in Scene::origin).
-// Float error bounds grow with coordinate magnitude: a 2-unit box placed at 1e6 would otherwise render
-// with ray offsets of about 0.1 unit. Subtracting a centre of the same magnitude is exact (Sterbenz).
+// Float error bounds grow with coordinate magnitude: a 2-unit box placed at 1e6 would otherwise
+// render with ray offsets of about 0.1 unit. Subtracting a centre of the same magnitude is exact
+// (Sterbenz).
 void recenterScene(Scene& scene);
 
 // Triangles whose three vertex positions repeat an earlier triangle of a world-space mesh.

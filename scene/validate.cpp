@@ -13,25 +13,29 @@ void validateScene(const Scene& scene) {
         size_t nv = mesh.vertexCount();
         for (size_t i = 0; i < 3 * nv; ++i)
             if (!std::isfinite(mesh.positions[i]))
-                throw SceneError(file, "mesh '" + mesh.name + "' has a non-finite (NaN/Inf) coordinate at vertex " +
+                throw SceneError(file, "mesh '" + mesh.name +
+                                           "' has a non-finite (NaN/Inf) coordinate at vertex " +
                                            std::to_string(i / 3));
         for (size_t i = 0; i < mesh.indices.size(); ++i)
             if (mesh.indices[i] >= nv)
-                throw SceneError(file, "mesh '" + mesh.name + "' triangle " + std::to_string(i / 3) +
-                                           " has vertex index " + std::to_string(mesh.indices[i]) +
-                                           " out of range (" + std::to_string(nv) + " vertices)");
+                throw SceneError(file, "mesh '" + mesh.name + "' triangle " +
+                                           std::to_string(i / 3) + " has vertex index " +
+                                           std::to_string(mesh.indices[i]) + " out of range (" +
+                                           std::to_string(nv) + " vertices)");
         for (size_t i = 0; i < mesh.normals.size(); ++i)
             if (!std::isfinite(mesh.normals[i]))
-                throw SceneError(file, "mesh '" + mesh.name + "' has a non-finite normal at vertex " +
+                throw SceneError(file, "mesh '" + mesh.name +
+                                           "' has a non-finite normal at vertex " +
                                            std::to_string(i / 3));
         for (uint32_t m : mesh.materialIds)
             if (m >= scene.materials.size())
-                throw SceneError(file, "mesh '" + mesh.name + "' names material " + std::to_string(m) +
-                                           " which does not exist");
+                throw SceneError(file, "mesh '" + mesh.name + "' names material " +
+                                           std::to_string(m) + " which does not exist");
     }
     for (const Sphere& s : scene.spheres) {
         if (!isFinite(s.center) || !std::isfinite(s.radius) || !(s.radius > 0))
-            throw SceneError(file, "sphere '" + s.name + "' has a non-finite centre or a radius <= 0");
+            throw SceneError(file,
+                             "sphere '" + s.name + "' has a non-finite centre or a radius <= 0");
         if (s.material >= scene.materials.size())
             throw SceneError(file, "sphere '" + s.name + "' names a material which does not exist");
     }

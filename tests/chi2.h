@@ -2,8 +2,8 @@
 // expected counts integrated from the claimed pdf, low-expectation bins pooled (pbrt, Mitsuba).
 #pragma once
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <optional>
 #include <string>
@@ -14,8 +14,8 @@
 
 namespace kiln::test {
 
-// Regularised upper incomplete gamma Q(a, x) (Numerical Recipes): the chi-square tail probability is
-// Q(dof / 2, statistic / 2).
+// Regularised upper incomplete gamma Q(a, x) (Numerical Recipes): the chi-square tail probability
+// is Q(dof / 2, statistic / 2).
 inline double gammaQ(double a, double x) {
     if (x <= 0) return 1.0;
     double gln = std::lgamma(a);
@@ -51,13 +51,16 @@ struct Chi2Result {
     std::string table;  // the pooled bins, for failure messages
 };
 
-// Cells with expected count below 5 are pooled, smallest first, into groups of at least 5 (Mitsuba's
-// rule): a pdf with sharp edges (area lights) leaves slivers whose integrated expectation is poor alone.
-inline Chi2Result chi2FromCounts(const std::vector<double>& observed, const std::vector<double>& expected) {
+// Cells with expected count below 5 are pooled, smallest first, into groups of at least 5
+// (Mitsuba's rule): a pdf with sharp edges (area lights) leaves slivers whose integrated
+// expectation is poor alone.
+inline Chi2Result chi2FromCounts(const std::vector<double>& observed,
+                                 const std::vector<double>& expected) {
     Chi2Result r;
     std::vector<size_t> order(observed.size());
     for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return expected[a] < expected[b]; });
+    std::sort(order.begin(), order.end(),
+              [&](size_t a, size_t b) { return expected[a] < expected[b]; });
     double pooledObs = 0, pooledExp = 0;
     int bins = 0, pooledCells = 0;
     for (size_t i : order) {
@@ -76,7 +79,8 @@ inline Chi2Result chi2FromCounts(const std::vector<double>& observed, const std:
         r.statistic += d * d / expected[i];
         ++bins;
     }
-    if (pooledObs > 0 || pooledExp > 0) {  // a remainder below 5: cannot be tested alone, fold it in
+    if (pooledObs > 0 ||
+        pooledExp > 0) {  // a remainder below 5: cannot be tested alone, fold it in
         double d = pooledObs - pooledExp;
         r.statistic += d * d / std::max(pooledExp, 5.0);
         ++bins;
@@ -88,14 +92,17 @@ inline Chi2Result chi2FromCounts(const std::vector<double>& observed, const std:
     return r;
 }
 
-// Directions over the whole sphere in (theta, phi) bins (pbrt's layout: fine near the poles, where peaked
-// lobes at normal incidence live). sample() returns a unit direction or nothing (a failed sample); pdf()
-// is the solid-angle density it claims. Expected counts integrate pdf * sin(theta) over each bin with
-// sub x sub midpoints; failed samples have their own bin, expected (1 - integral of the pdf).
+// Directions over the whole sphere in (theta, phi) bins (pbrt's layout: fine near the poles, where
+// peaked lobes at normal incidence live). sample() returns a unit direction or nothing (a failed
+// sample); pdf() is the solid-angle density it claims. Expected counts integrate pdf * sin(theta)
+// over each bin with sub x sub midpoints; failed samples have their own bin, expected (1 - integral
+// of the pdf).
 inline Chi2Result chi2Directions(const std::function<std::optional<Vec3>(Sampler&)>& sample,
-                                 const std::function<double(const Vec3&)>& pdf, int samples, uint64_t seed,
-                                 int thetaBins = 80, int phiBins = 160, int sub = 16) {
-    std::vector<double> observed(size_t(thetaBins * phiBins) + 1, 0.0), expected(observed.size(), 0.0);
+                                 const std::function<double(const Vec3&)>& pdf, int samples,
+                                 uint64_t seed, int thetaBins = 80, int phiBins = 160,
+                                 int sub = 16) {
+    std::vector<double> observed(size_t(thetaBins * phiBins) + 1, 0.0),
+        expected(observed.size(), 0.0);
     auto binOf = [&](const Vec3& w) {
         double theta = std::acos(std::clamp(double(w.z), -1.0, 1.0));
         int t = std::clamp(int(theta / M_PI * thetaBins), 0, thetaBins - 1);
@@ -116,9 +123,11 @@ inline Chi2Result chi2Directions(const std::function<std::optional<Vec3>(Sampler
             double integral = 0;
             for (int a = 0; a < sub; ++a)
                 for (int b = 0; b < sub; ++b) {
-                    double theta = (t + (a + 0.5) / sub) * dTheta, phi = (p + (b + 0.5) / sub) * dPhi;
+                    double theta = (t + (a + 0.5) / sub) * dTheta,
+                           phi = (p + (b + 0.5) / sub) * dPhi;
                     double sn = std::sin(theta);
-                    integral += sn * pdf(Vec3(float(sn * std::cos(phi)), float(sn * std::sin(phi)), float(std::cos(theta))));
+                    integral += sn * pdf(Vec3(float(sn * std::cos(phi)), float(sn * std::sin(phi)),
+                                              float(std::cos(theta))));
                 }
             integral *= dTheta * dPhi / (sub * sub);
             expected[size_t(t * phiBins + p)] = integral * samples;

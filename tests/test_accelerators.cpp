@@ -1,4 +1,5 @@
-// Both accelerators: construction edge cases, agreement ray by ray, spheres, instancing, watertightness.
+// Both accelerators: construction edge cases, agreement ray by ray, spheres, instancing,
+// watertightness.
 #include <cmath>
 
 #include "renderer/bvh.h"
@@ -30,7 +31,8 @@ TEST(ReferenceBvh, DegenerateSplitsNeverCrash) {
         for (int leaf : {1, 2, 4, 16, 255}) {
             ReferenceAccelerator accel(s, ReferenceBvhOptions{split, leaf});
             Hit hit;
-            ASSERT_TRUE(accel.intersect(Ray{Vec3(0.2f, 0.2f, 1), 0, Vec3(0, 0, -1), kInfinity}, hit));
+            ASSERT_TRUE(
+                accel.intersect(Ray{Vec3(0.2f, 0.2f, 1), 0, Vec3(0, 0, -1), kInfinity}, hit));
             EXPECT_NEAR(hit.t, 1.0f, 1e-6f);
             EXPECT_LE(accel.topLevelStatistics().maxDepth, 128u);
         }
@@ -41,7 +43,8 @@ TEST(ReferenceBvh, EmptySceneAndEveryLeafSizeAgree) {
     std::vector<Ray> rays;
     for (int i = 0; i < 2000; ++i) {
         Sampler r(3, uint64_t(i), 0);
-        rays.push_back(Ray{Vec3(r.next1D() * 3, r.next1D() * 3, 1), 0, Vec3(r.next1D() - 0.5f, r.next1D() - 0.5f, -1), kInfinity});
+        rays.push_back(Ray{Vec3(r.next1D() * 3, r.next1D() * 3, 1), 0,
+                           Vec3(r.next1D() - 0.5f, r.next1D() - 0.5f, -1), kInfinity});
     }
     ReferenceAccelerator base(s, ReferenceBvhOptions{});
     for (BvhSplit split : {BvhSplit::Sah, BvhSplit::MeanCentroid, BvhSplit::Midpoint})
@@ -51,7 +54,9 @@ TEST(ReferenceBvh, EmptySceneAndEveryLeafSizeAgree) {
                 Hit a, b;
                 bool ha = base.intersect(ray, a), hb = accel.intersect(ray, b);
                 ASSERT_EQ(ha, hb);
-                if (ha) EXPECT_EQ(a.t, b.t);
+                if (ha) {
+                    EXPECT_EQ(a.t, b.t);
+                }
             }
         }
 }
@@ -75,7 +80,8 @@ TEST(Spheres, AccurateForTinyHugeAndFarAwaySpheres) {
             float t;
             ASSERT_TRUE(intersectSphere(ray, centre, float(radius), t)) << radius << " " << offset;
             // Exact (double) answer for the same float inputs.
-            double dz = double(origin.z) - double(centre.z), dx = double(origin.x) - double(centre.x);
+            double dz = double(origin.z) - double(centre.z),
+                   dx = double(origin.x) - double(centre.x);
             double exact = dz - std::sqrt(double(float(radius)) * double(float(radius)) - dx * dx);
             // Only the final rounding to float may separate the two: a few ulps of t.
             EXPECT_NEAR(t, exact, 4 * std::numeric_limits<float>::epsilon() * exact)
@@ -106,7 +112,8 @@ TEST(Instancing, InstancedAndFlattenedScenesHitTheSameSurfaces) {
         TriangleMesh copy = ball;
         for (size_t v = 0; v < copy.vertexCount(); ++v) {
             Vec3 p = xf.point(copy.vertex(uint32_t(v)));
-            copy.positions[3 * v] = p.x, copy.positions[3 * v + 1] = p.y, copy.positions[3 * v + 2] = p.z;
+            copy.positions[3 * v] = p.x, copy.positions[3 * v + 1] = p.y,
+                               copy.positions[3 * v + 2] = p.z;
         }
         flat.meshes.push_back(copy);
     }
@@ -125,7 +132,8 @@ TEST(Instancing, InstancedAndFlattenedScenesHitTheSameSurfaces) {
         ASSERT_EQ(ha, hc);
         if (!ha) continue;
         ++hits;
-        // Instances report the prototype mesh and their instance index; flattened copies their mesh.
+        // Instances report the prototype mesh and their instance index; flattened copies their
+        // mesh.
         EXPECT_EQ(a.instance, b.shape);
         EXPECT_EQ(c.instance, d.shape);
         EXPECT_EQ(a.prim, b.prim);
@@ -139,9 +147,10 @@ TEST(Instancing, InstancedAndFlattenedScenesHitTheSameSurfaces) {
 }
 
 TEST(Watertight, RaysThroughSharedEdgesAndVerticesNeverLeak) {
-    // Rays aimed exactly at the shared edges and vertices of a closed tessellated sphere, arriving from
-    // outside within 60 degrees of the outward normal (a grazing ray may legitimately pass the rounded
-    // target), must hit: Embree with RTC_SCENE_FLAG_ROBUST (our default) and the reference test both.
+    // Rays aimed exactly at the shared edges and vertices of a closed tessellated sphere, arriving
+    // from outside within 60 degrees of the outward normal (a grazing ray may legitimately pass the
+    // rounded target), must hit: Embree with RTC_SCENE_FLAG_ROBUST (our default) and the reference
+    // test both.
     TriangleMesh ball = sphereMesh(24, 48);
     Scene s = sceneWith(ball);
     auto embree = makeEmbreeAccelerator(s);
@@ -155,7 +164,8 @@ TEST(Watertight, RaysThroughSharedEdgesAndVerticesNeverLeak) {
                 Vec3 target = a + (b - a) * f;
                 for (int k = 0; k < 3; ++k) {
                     Sampler r(11, t * 3 + e, uint64_t(k));
-                    Vec3 jitter = Vec3(r.next1D() - 0.5f, r.next1D() - 0.5f, r.next1D() - 0.5f) * 1.2f;
+                    Vec3 jitter =
+                        Vec3(r.next1D() - 0.5f, r.next1D() - 0.5f, r.next1D() - 0.5f) * 1.2f;
                     Vec3 out = normalize(normalize(target) + jitter);
                     if (dot(out, normalize(target)) < 0.5f) continue;  // keep within 60 degrees
                     Vec3 from = target + out * (1.0f + 3.0f * r.next1D());
@@ -188,8 +198,9 @@ TEST_P(Cs184Crosscheck, NoGenuineMismatches) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, Cs184Crosscheck,
-                         ::testing::Values("sky/CBspheres.dae", "sky/CBbunny.dae", "sky/CBgems.dae", "sky/CBcoil.dae",
-                                           "keenan/banana.dae", "meshedit/teapot.dae"),
+                         ::testing::Values("sky/CBspheres.dae", "sky/CBbunny.dae", "sky/CBgems.dae",
+                                           "sky/CBcoil.dae", "keenan/banana.dae",
+                                           "meshedit/teapot.dae"),
                          [](const auto& info) {
                              std::string n = info.param;
                              for (char& c : n)
@@ -220,7 +231,8 @@ TEST(EmbreeBatches, PacketsGiveTheSameHitsAsSingleRays) {
         EXPECT_GT(hitCount, 200);  // the box fills about a third of the course framing
         std::vector<uint8_t> occ(shadow.size());
         embree->occluded(std::span<const Ray>(shadow), std::span<uint8_t>(occ));
-        for (size_t i = 0; i < shadow.size(); ++i) EXPECT_EQ(occ[i] != 0, embree->occluded(shadow[i])) << i;
+        for (size_t i = 0; i < shadow.size(); ++i)
+            EXPECT_EQ(occ[i] != 0, embree->occluded(shadow[i])) << i;
     }
 }
 

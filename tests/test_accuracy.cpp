@@ -1,4 +1,5 @@
-// The accuracy tool's statistics on synthetic images with known answers, and a smoke run of the sweep.
+// The accuracy tool's statistics on synthetic images with known answers, and a smoke run of the
+// sweep.
 #include <fstream>
 
 #include "renderer/accuracy.h"
@@ -28,7 +29,8 @@ TEST(AccuracyStats, KnownErrors) {
 
 TEST(AccuracyStats, LogLogSlope) {
     std::vector<double> x, y, z;
-    for (double s = 1; s <= 1024; s *= 2) x.push_back(s), y.push_back(3.0 / s), z.push_back(0.2 / std::sqrt(s));
+    for (double s = 1; s <= 1024; s *= 2)
+        x.push_back(s), y.push_back(3.0 / s), z.push_back(0.2 / std::sqrt(s));
     EXPECT_NEAR(logLogSlope(x, y), -1.0, 1e-12);
     EXPECT_NEAR(logLogSlope(x, z), -0.5, 1e-12);
     EXPECT_EQ(logLogSlope({1.0}, {1.0}), 0.0);  // one point fits no line
@@ -36,11 +38,14 @@ TEST(AccuracyStats, LogLogSlope) {
 }
 
 TEST(AccuracyStats, SvgPlotHasSeriesAndTheSlopeLine) {
-    std::string svg = svgLogLogPlot("t", "time", "error", {{"a", {1, 2, 4}, {1, 0.5, 0.25}}, {"b", {1, 10}, {2, 0.2}}}, true);
+    std::string svg = svgLogLogPlot(
+        "t", "time", "error", {{"a", {1, 2, 4}, {1, 0.5, 0.25}}, {"b", {1, 10}, {2, 0.2}}}, true);
     EXPECT_EQ(svg.rfind("<svg", 0), 0u);
     EXPECT_NE(svg.find("</svg>"), std::string::npos);
     size_t polylines = 0;
-    for (size_t at = svg.find("<polyline"); at != std::string::npos; at = svg.find("<polyline", at + 1)) ++polylines;
+    for (size_t at = svg.find("<polyline"); at != std::string::npos;
+         at = svg.find("<polyline", at + 1))
+        ++polylines;
     EXPECT_EQ(polylines, 2u);
     EXPECT_NE(svg.find("slope -1"), std::string::npos);
 }
@@ -56,8 +61,8 @@ TEST(AccuracySweep, QuickRunErrorFallsWithSppAndReusesTheReference) {
     for (const AccuracyRun& r : first.runs)
         if (r.group == "spp") spp.push_back(r.spp), rel.push_back(r.error.relMse);
     ASSERT_GE(spp.size(), 4u);
-    EXPECT_LT(rel.back(), rel.front() / 4);            // 16 spp against 1 spp
-    EXPECT_LT(logLogSlope(spp, rel), -0.6);             // about -1
+    EXPECT_LT(rel.back(), rel.front() / 4);  // 16 spp against 1 spp
+    EXPECT_LT(logLogSlope(spp, rel), -0.6);  // about -1
     for (const char* f : {"accuracy.csv", "error_vs_time.svg", "spp.svg", "summary.md"})
         EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(o.outDir) / f)) << f;
     std::ifstream csv(std::filesystem::path(o.outDir) / "accuracy.csv");

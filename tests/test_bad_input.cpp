@@ -20,20 +20,24 @@ void expectError(const std::string& path, const std::string& what) {
 }
 
 // A minimal valid COLLADA scene; tests break one piece of it at a time.
-std::string collada(const std::string& effectExtra, const std::string& positions = "0 0 0 1 0 0 0 1 0",
+std::string collada(const std::string& effectExtra,
+                    const std::string& positions = "0 0 0 1 0 0 0 1 0",
                     const std::string& indices = "0 1 2", const std::string& lights = "") {
     return R"(<?xml version="1.0"?>
 <COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
 <asset><up_axis>Y_UP</up_axis></asset>
-<library_lights>)" + lights + R"(</library_lights>
+<library_lights>)" +
+           lights + R"(</library_lights>
 <library_effects><effect id="e"><profile_COMMON><technique sid="common"><phong><diffuse><color>0.5 0.5 0.5 1</color></diffuse></phong></technique></profile_COMMON>)" +
            effectExtra + R"(</effect></library_effects>
 <library_materials><material id="m" name="m"><instance_effect url="#e"/></material></library_materials>
 <library_geometries><geometry id="g" name="g"><mesh>
-<source id="p"><float_array id="pa" count="9">)" + positions + R"(</float_array>
+<source id="p"><float_array id="pa" count="9">)" +
+           positions + R"(</float_array>
 <technique_common><accessor source="#pa" count="3" stride="3"><param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/></accessor></technique_common></source>
 <vertices id="v"><input semantic="POSITION" source="#p"/></vertices>
-<triangles material="m" count="1"><input semantic="VERTEX" source="#v" offset="0"/><p>)" + indices + R"(</p></triangles>
+<triangles material="m" count="1"><input semantic="VERTEX" source="#v" offset="0"/><p>)" +
+           indices + R"(</p></triangles>
 </mesh></geometry></library_geometries>
 <library_visual_scenes><visual_scene id="s"><node id="n"><matrix>1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1</matrix>
 <instance_geometry url="#g"><bind_material><technique_common><instance_material symbol="m" target="#m"/></technique_common></bind_material></instance_geometry></node>
@@ -63,20 +67,24 @@ TEST(BadInput, MalformedXml) {
 
 TEST(BadInput, GarbledCglValue) {
     auto dir = test::scratchDir();
-    std::string extra = R"(<extra><technique profile="CGL"><glass><reflectance>1 1 1</reflectance><transmittance>1 one 1</transmittance><roughness>0</roughness><ior>1.5</ior></glass></technique></extra>)";
+    std::string extra =
+        R"(<extra><technique profile="CGL"><glass><reflectance>1 1 1</reflectance><transmittance>1 one 1</transmittance><roughness>0</roughness><ior>1.5</ior></glass></technique></extra>)";
     expectError(test::writeFile(dir / "garbled.dae", collada(extra)), "garbled number");
 }
 
 TEST(BadInput, MissingCglValue) {
     auto dir = test::scratchDir();
-    std::string extra = R"(<extra><technique profile="CGL"><glass><reflectance>1 1 1</reflectance><roughness>0</roughness><ior>1.5</ior></glass></technique></extra>)";
+    std::string extra =
+        R"(<extra><technique profile="CGL"><glass><reflectance>1 1 1</reflectance><roughness>0</roughness><ior>1.5</ior></glass></technique></extra>)";
     expectError(test::writeFile(dir / "missing.dae", collada(extra)), "missing <transmittance>");
 }
 
 TEST(BadInput, UnknownMaterial) {
     auto dir = test::scratchDir();
-    std::string extra = R"(<extra><technique profile="CGL"><velvet><sheen>1</sheen></velvet></technique></extra>)";
-    expectError(test::writeFile(dir / "unknown.dae", collada(extra)), "unknown CGL material <velvet>");
+    std::string extra =
+        R"(<extra><technique profile="CGL"><velvet><sheen>1</sheen></velvet></technique></extra>)";
+    expectError(test::writeFile(dir / "unknown.dae", collada(extra)),
+                "unknown CGL material <velvet>");
 }
 
 TEST(BadInput, NanVertexInCollada) {
@@ -86,27 +94,36 @@ TEST(BadInput, NanVertexInCollada) {
 
 TEST(BadInput, NanVertexInObj) {
     auto dir = test::scratchDir();
-    expectError(test::writeFile(dir / "nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n"), "non-finite");
+    expectError(test::writeFile(dir / "nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n"),
+                "non-finite");
 }
 
 TEST(BadInput, InfVertexInPly) {
     auto dir = test::scratchDir();
-    std::string ply = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-                      "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\ninf 0 0\n0 1 0\n3 0 1 2\n";
+    std::string ply =
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty "
+        "float z\n"
+        "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\ninf 0 0\n0 1 "
+        "0\n3 0 1 2\n";
     expectError(test::writeFile(dir / "inf.ply", ply), "non-finite");
 }
 
 TEST(BadInput, IndexOutOfRangeInPly) {
     auto dir = test::scratchDir();
-    std::string ply = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-                      "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n";
+    std::string ply =
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty "
+        "float z\n"
+        "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 "
+        "0\n3 0 1 7\n";
     expectError(test::writeFile(dir / "range.ply", ply), "out of range");
 }
 
 TEST(BadInput, TruncatedBinaryPly) {
     auto dir = test::scratchDir();
-    std::string ply = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                      "property float z\nend_header\n\x01\x02";
+    std::string ply =
+        "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float "
+        "y\n"
+        "property float z\nend_header\n\x01\x02";
     expectError(test::writeFile(dir / "short.ply", ply), "file ends before");
 }
 
@@ -117,7 +134,8 @@ TEST(BadInput, IndexOutOfRangeInObjIsRejected) {
 
 TEST(BadInput, EmptyScene) {
     auto dir = test::scratchDir();
-    std::string empty = R"(<?xml version="1.0"?><COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1"><asset><up_axis>Y_UP</up_axis></asset><library_visual_scenes><visual_scene id="s"/></library_visual_scenes><scene><instance_visual_scene url="#s"/></scene></COLLADA>)";
+    std::string empty =
+        R"(<?xml version="1.0"?><COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1"><asset><up_axis>Y_UP</up_axis></asset><library_visual_scenes><visual_scene id="s"/></library_visual_scenes><scene><instance_visual_scene url="#s"/></scene></COLLADA>)";
     expectError(test::writeFile(dir / "empty_scene.dae", empty), "");
 }
 
@@ -131,9 +149,11 @@ TEST(BadInput, SceneWithoutLightsWarnsAndGetsTheDefaultRig) {
 
 TEST(BadInput, NegativeLightRadiance) {
     auto dir = test::scratchDir();
-    std::string light = R"(<light id="l"><technique_common><point><color>-1 1 1</color></point></technique_common></light>)";
+    std::string light =
+        R"(<light id="l"><technique_common><point><color>-1 1 1</color></point></technique_common></light>)";
     std::string text = collada("", "0 0 0 1 0 0 0 1 0", "0 1 2", light);
-    text.replace(text.find("</visual_scene>"), 0, R"(<node id="ln"><instance_light url="#l"/></node>)");
+    text.replace(text.find("</visual_scene>"), 0,
+                 R"(<node id="ln"><instance_light url="#l"/></node>)");
     expectError(test::writeFile(dir / "neg.dae", text), "negative radiance");
 }
 
@@ -144,7 +164,8 @@ TEST(BadInput, MissingEnvironmentMap) {
         loadScene(test::shared("meshes/stanford-bunny.obj"), o);
         FAIL();
     } catch (const SceneError& e) {
-        EXPECT_NE(std::string(e.what()).find("/nonexistent/sky.exr: no such environment map"), std::string::npos);
+        EXPECT_NE(std::string(e.what()).find("/nonexistent/sky.exr: no such environment map"),
+                  std::string::npos);
     }
 }
 
@@ -156,7 +177,8 @@ TEST(BadInput, UnreadableEnvironmentMap) {
         loadScene(test::shared("meshes/stanford-bunny.obj"), o);
         FAIL();
     } catch (const SceneError& e) {
-        EXPECT_NE(std::string(e.what()).find("cannot read environment map"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("cannot read environment map"), std::string::npos)
+            << e.what();
     }
 }
 

@@ -1,8 +1,8 @@
-// BSDFs: sampling agrees with the pdf (chi-square), sample() agrees with eval()/pdf(), energy bounds, and
-// the delta lobes' directions and Fresnel-weighted choices.
+// BSDFs: sampling agrees with the pdf (chi-square), sample() agrees with eval()/pdf(), energy
+// bounds, and the delta lobes' directions and Fresnel-weighted choices.
+#include "chi2.h"
 #include "integrators/bsdf.h"
 #include "integrators/fresnel.h"
-#include "chi2.h"
 #include "test_support.h"
 
 namespace kiln {
@@ -56,26 +56,30 @@ TEST_P(BsdfSampling, ChiSquareAndConsistency) {
                 BsdfSample bs;
                 float uc = s.next1D(), u1 = s.next1D(), u2 = s.next1D();
                 if (!bsdf.sample(w, uc, u1, u2, bs)) return std::nullopt;
-                // The sample's value and density are the ones eval() and pdf() give for that direction.
+                // The sample's value and density are the ones eval() and pdf() give for that
+                // direction.
                 float pdf = bsdf.pdf(w, bs.wi);
                 Color f = bsdf.eval(w, bs.wi);
-                if (std::abs(pdf - bs.pdf) > 1e-3f * pdf || maxComponent(abs(f - bs.f)) > 1e-3f * maxComponent(f))
+                if (std::abs(pdf - bs.pdf) > 1e-3f * pdf ||
+                    maxComponent(abs(f - bs.f)) > 1e-3f * maxComponent(f))
                     ++inconsistent;
                 return bs.wi;
             };
-            test::Chi2Result r = test::chi2Directions(sample, [&](const Vec3& wi) { return bsdf.pdf(w, wi); }, 400000,
-                                                      17);
-            EXPECT_GT(r.pValue, 1e-4) << c.name << " theta " << GetParam() << (below ? " below" : "") << ": "
-                                      << r.table;
+            test::Chi2Result r = test::chi2Directions(
+                sample, [&](const Vec3& wi) { return bsdf.pdf(w, wi); }, 400000, 17);
+            EXPECT_GT(r.pValue, 1e-4)
+                << c.name << " theta " << GetParam() << (below ? " below" : "") << ": " << r.table;
             EXPECT_EQ(inconsistent, 0) << c.name;
         }
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(IncidentAngles, BsdfSampling, ::testing::Values(0.0f, 30.0f, 60.0f, 85.0f));
+INSTANTIATE_TEST_SUITE_P(IncidentAngles, BsdfSampling,
+                         ::testing::Values(0.0f, 30.0f, 60.0f, 85.0f));
 
 TEST(BsdfEnergy, ReflectedFractionNeverExceedsOne) {
-    // Albedo estimated by sampling: the mean of f cos / pdf is at most 1 (0.8 for the Lambert case).
+    // Albedo estimated by sampling: the mean of f cos / pdf is at most 1 (0.8 for the Lambert
+    // case).
     for (const BsdfCase& c : bsdfCases()) {
         Bsdf bsdf(c.material, c.model);
         for (float theta : {0.0f, 45.0f, 80.0f}) {
@@ -86,10 +90,13 @@ TEST(BsdfEnergy, ReflectedFractionNeverExceedsOne) {
                 Sampler s(5, uint64_t(i), 0);
                 BsdfSample bs;
                 float uc = s.next1D(), u1 = s.next1D(), u2 = s.next1D();
-                if (bsdf.sample(wo, uc, u1, u2, bs)) sum += maxComponent(bs.f) * std::abs(bs.wi.z) / bs.pdf;
+                if (bsdf.sample(wo, uc, u1, u2, bs))
+                    sum += maxComponent(bs.f) * std::abs(bs.wi.z) / bs.pdf;
             }
             EXPECT_LT(sum / kN, 1.02) << c.name << " theta " << theta;
-            if (c.name == "lambert") EXPECT_NEAR(sum / kN, 0.8, 0.01);
+            if (c.name == "lambert") {
+                EXPECT_NEAR(sum / kN, 0.8, 0.01);
+            }
         }
     }
 }
@@ -135,13 +142,15 @@ TEST(DeltaBsdfs, GlassChoosesReflectionWithFresnelProbabilityAndObeysSnell) {
                 float sinI = std::sqrt(1 - wo.z * wo.z), sinT = std::sqrt(1 - bs.wi.z * bs.wi.z);
                 ASSERT_NEAR(ni * sinI, nt * sinT, 1e-5f);
                 ASSERT_LT(bs.wi.z * wo.z, 0.0f);
-                // Weight: transmittance / eta^2 (radiance compression), whatever the lobe probability.
+                // Weight: transmittance / eta^2 (radiance compression), whatever the lobe
+                // probability.
                 float eta = nt / ni;
                 ASSERT_NEAR((bs.f * (std::abs(bs.wi.z) / bs.pdf)).x, 1 / (eta * eta), 1e-4f);
             }
             // Binomial: reflections ~ N F, standard deviation sqrt(N F (1 - F)); 5 sigma bound.
             double sigma = std::sqrt(kN * F * (1 - F));
-            EXPECT_NEAR(reflections, kN * F, 5 * sigma + 1) << "theta " << theta << (inside ? " inside" : "");
+            EXPECT_NEAR(reflections, kN * F, 5 * sigma + 1)
+                << "theta " << theta << (inside ? " inside" : "");
         }
     }
     // Beyond the critical angle (inside, 60 degrees for n = 1.45): total internal reflection.
@@ -171,7 +180,8 @@ TEST(Fresnel, KnownValues) {
     EXPECT_FLOAT_EQ(fresnelDielectric(0.0f, 1.5f), 1.0f);  // grazing
     // Conductor at normal incidence: ((n-1)^2 + k^2) / ((n+1)^2 + k^2).
     float n = 0.33228f, k = 3.1646f;
-    EXPECT_NEAR(fresnelConductor1(1.0f, n, k), ((n - 1) * (n - 1) + k * k) / ((n + 1) * (n + 1) + k * k), 1e-5f);
+    EXPECT_NEAR(fresnelConductor1(1.0f, n, k),
+                ((n - 1) * (n - 1) + k * k) / ((n + 1) * (n + 1) + k * k), 1e-5f);
     EXPECT_NEAR(fresnelConductor1(0.0f, n, k), 1.0f, 1e-5f);
 }
 

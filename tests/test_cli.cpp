@@ -39,11 +39,12 @@ int lines(const std::string& s) { return int(std::count(s.begin(), s.end(), '\n'
 TEST(Cli, HelpDocumentsEveryCommandAndOption) {
     CliRun top = runKiln("--help");
     EXPECT_EQ(top.code, 0);
-    for (const char* cmd : {"render", "info", "crosscheck", "bench"}) EXPECT_NE(top.out.find(cmd), std::string::npos);
+    for (const char* cmd : {"render", "info", "crosscheck", "bench"})
+        EXPECT_NE(top.out.find(cmd), std::string::npos);
     CliRun render = runKiln("render --help");
     EXPECT_EQ(render.code, 0);
-    for (const char* opt : {"-s, --spp", "-t, --threads", "-r, --resolution", "-f, --file", "--accel", "--integrator",
-                            "--camera", "--env"})
+    for (const char* opt : {"-s, --spp", "-t, --threads", "-r, --resolution", "-f, --file",
+                            "--accel", "--integrator", "--camera", "--env"})
         EXPECT_NE(render.out.find(opt), std::string::npos) << opt;
     EXPECT_EQ(runKiln("info --help").code, 0);
     EXPECT_EQ(runKiln("crosscheck --help").code, 0);
@@ -51,8 +52,9 @@ TEST(Cli, HelpDocumentsEveryCommandAndOption) {
 }
 
 TEST(Cli, BadFlagsAreOneLineErrorsWithExitCode2) {
-    for (const char* args : {"render --bogus scene.dae", "render -s abc x.dae", "render -s 0 x.dae", "render -r 10",
-                             "render --accel gpu x.dae", "frobnicate", "info", "render a.dae b.dae"}) {
+    for (const char* args :
+         {"render --bogus scene.dae", "render -s abc x.dae", "render -s 0 x.dae", "render -r 10",
+          "render --accel gpu x.dae", "frobnicate", "info", "render a.dae b.dae"}) {
         CliRun r = runKiln(args);
         EXPECT_EQ(r.code, 2) << args;
         EXPECT_GE(lines(r.err), 1) << args;
@@ -66,21 +68,24 @@ TEST(Cli, BadSceneIsOneLineNamingTheFile) {
     EXPECT_EQ(r.code, 2);
     EXPECT_EQ(lines(r.err), 1);
     EXPECT_NE(r.err.find("/nonexistent/scene.dae: no such file"), std::string::npos) << r.err;
-    CliRun unknown = runKiln("render " + test::repo("scenes/cornell.dae") + " --integrator magic -r 8 8 -o /tmp/kiln-tests/x");
+    CliRun unknown = runKiln("render " + test::repo("scenes/cornell.dae") +
+                             " --integrator magic -r 8 8 -o /tmp/kiln-tests/x");
     EXPECT_EQ(unknown.code, 2);
     EXPECT_NE(unknown.err.find("unknown integrator"), std::string::npos);
 }
 
 TEST(Cli, RenderWritesExrAndPngAndReportsStats) {
     auto dir = test::scratchDir();
-    CliRun r = runKiln("render " + test::repo("scenes/cornell.dae") + " -r 64 48 -s 2 -q -o " + (dir / "box").string());
+    CliRun r = runKiln("render " + test::repo("scenes/cornell.dae") + " -r 64 48 -s 2 -q -o " +
+                       (dir / "box").string());
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_TRUE(std::filesystem::exists(dir / "box.exr"));
     EXPECT_TRUE(std::filesystem::exists(dir / "box.png"));
     EXPECT_NE(r.err.find("Mrays/s"), std::string::npos);
     EXPECT_NE(r.err.find("load"), std::string::npos);
     // The CS184 form: -f names the PNG, the EXR goes beside it.
-    CliRun f = runKiln("render " + test::repo("scenes/cornell.dae") + " -r 32 24 -q -t 1 -f " + (dir / "cs.png").string());
+    CliRun f = runKiln("render " + test::repo("scenes/cornell.dae") + " -r 32 24 -q -t 1 -f " +
+                       (dir / "cs.png").string());
     ASSERT_EQ(f.code, 0) << f.err;
     EXPECT_TRUE(std::filesystem::exists(dir / "cs.png"));
     EXPECT_TRUE(std::filesystem::exists(dir / "cs.exr"));
@@ -89,33 +94,46 @@ TEST(Cli, RenderWritesExrAndPngAndReportsStats) {
 TEST(Cli, OutputOptions) {
     auto dir = test::scratchDir();
     std::string scene = test::repo("scenes/cornell.dae");
-    for (const char* bad : {"--aov sparkle", "--view Filmic", "--display P3", "--compression lzma"}) {
-        CliRun r = runKiln("render " + scene + " -r 8 8 -q -o " + (dir / "bad").string() + " " + bad);
+    for (const char* bad :
+         {"--aov sparkle", "--view Filmic", "--display P3", "--compression lzma"}) {
+        CliRun r =
+            runKiln("render " + scene + " -r 8 8 -q -o " + (dir / "bad").string() + " " + bad);
         EXPECT_EQ(r.code, 2) << bad;
         EXPECT_EQ(lines(r.err), 1) << bad << ": " << r.err;
         EXPECT_FALSE(std::filesystem::exists(dir / "bad.exr")) << bad;  // refused before rendering
     }
-    CliRun ok = runKiln("render " + scene + " -r 16 12 -s 32 -a 8 0.1 -q --half --compression piz --aov all "
-                        "--view 'ACES 1.0 SDR-video' -o " + (dir / "full").string());
+    CliRun ok = runKiln("render " + scene +
+                        " -r 16 12 -s 32 -a 8 0.1 -q --half --compression piz --aov all "
+                        "--view 'ACES 1.0 SDR-video' -o " +
+                        (dir / "full").string());
     ASSERT_EQ(ok.code, 0) << ok.err;
-    for (const char* f : {"full.exr", "full.png", "full.samples.png"}) EXPECT_TRUE(std::filesystem::exists(dir / f)) << f;
+    for (const char* f : {"full.exr", "full.png", "full.samples.png"})
+        EXPECT_TRUE(std::filesystem::exists(dir / f)) << f;
     CliRun info = runKiln("render " + test::shared("meshes/stanford-bunny.obj") + " --env " +
-                          test::shared("envmaps/studio.exr") + " -r 16 12 -s 2 -q -o " + (dir / "env").string());
+                          test::shared("envmaps/studio.exr") + " -r 16 12 -s 2 -q -o " +
+                          (dir / "env").string());
     EXPECT_EQ(info.code, 0) << info.err;
 }
 
 TEST(Cli, PlanIsPrintedRecordedAndOverridable) {
     auto dir = test::scratchDir();
     CliRun info = runKiln("info " + test::cs184("meshedit/cow.dae"));
-    EXPECT_NE(info.out.find("render plan (diffuse-only,delta-lights-only)"), std::string::npos) << info.out;
-    CliRun hemi = runKiln("render " + test::cs184("meshedit/cow.dae") + " -H -r 8 6 -q -o " + (dir / "h").string());
+    EXPECT_NE(info.out.find("render plan (diffuse-only,delta-lights-only)"), std::string::npos)
+        << info.out;
+    CliRun hemi = runKiln("render " + test::cs184("meshedit/cow.dae") + " -H -r 8 6 -q -o " +
+                          (dir / "h").string());
     EXPECT_EQ(hemi.code, 0);
     EXPECT_NE(hemi.err.find("hemisphere sampling cannot see"), std::string::npos) << hemi.err;
-    CliRun general = runKiln("render " + test::cs184("meshedit/cow.dae") + " --plan general -r 8 6 -q -o " + (dir / "g").string());
+    CliRun general = runKiln("render " + test::cs184("meshedit/cow.dae") +
+                             " --plan general -r 8 6 -q -o " + (dir / "g").string());
     EXPECT_EQ(general.code, 0) << general.err;
-    CliRun header = runKiln("render " + test::cs184("sky/CBspheres.dae") + " -r 8 6 -q -o " + (dir / "p").string());
+    CliRun header = runKiln("render " + test::cs184("sky/CBspheres.dae") + " -r 8 6 -q -o " +
+                            (dir / "p").string());
     ASSERT_EQ(header.code, 0);
-    EXPECT_EQ(std::system(("oiiotool --info -v " + (dir / "p.exr").string() + " | grep -q 'kiln:plan: \"delta-specular'").c_str()), 0);
+    EXPECT_EQ(std::system(("oiiotool --info -v " + (dir / "p.exr").string() +
+                           " | grep -q 'kiln:plan: \"delta-specular'")
+                              .c_str()),
+              0);
     EXPECT_EQ(runKiln("render x.dae --plan fastest").code, 2);
 }
 
@@ -137,8 +155,9 @@ TEST(Cli, SigintWritesThePartialImageAndExitsNonZero) {
     ASSERT_GE(pid, 0);
     if (pid == 0) {
         ::freopen("/dev/null", "w", stderr);
-        ::execl(KILN_BINARY, KILN_BINARY, "render", test::cs184("sky/CBbunny.dae").c_str(), "--accel", "reference",
-                "-r", "400", "300", "-s", "100000", "-q", "-o", out.c_str(), (char*)nullptr);
+        ::execl(KILN_BINARY, KILN_BINARY, "render", test::cs184("sky/CBbunny.dae").c_str(),
+                "--accel", "reference", "-r", "400", "300", "-s", "100000", "-q", "-o", out.c_str(),
+                (char*)nullptr);
         ::_exit(127);
     }
     // Wait until it renders (the load takes a moment), then interrupt.

@@ -10,8 +10,9 @@ namespace kiln {
 namespace {
 
 TEST(Framing, FovWidenedToTheImageAspect) {
-    // CS184 Cornell camera: xfov 49.13434, aspect_ratio 1.777778 -> vfov 28.84; at 800x600 the vertical
-    // angle widens to 2*atan(tan(hfov/2) / (4/3)) = 37.85 degrees and the horizontal stays.
+    // CS184 Cornell camera: xfov 49.13434, aspect_ratio 1.777778 -> vfov 28.84; at 800x600 the
+    // vertical angle widens to 2*atan(tan(hfov/2) / (4/3)) = 37.85 degrees and the horizontal
+    // stays.
     float h = 49.13434f, v = degrees(2 * std::atan(std::tan(radians(h / 2)) / 1.777778f));
     fitFovToAspect(h, v, 800.0f / 600.0f);
     EXPECT_NEAR(h, 49.13434f, 1e-4f);
@@ -80,8 +81,8 @@ TEST(ThinLens, RaysThroughOnePixelMeetOnThePlaneOfFocus) {
         spreadNear = std::max(spreadNear, length(atNear - meet * (2.0f / 7.0f)));
         EXPECT_LE(length(r.origin - cam.position), 0.2f + 1e-6f);  // starts on the lens
     }
-    EXPECT_LT(spread, 1e-5f);     // sharp on the plane of focus
-    EXPECT_GT(spreadNear, 0.05f); // blurred in front of it
+    EXPECT_LT(spread, 1e-5f);      // sharp on the plane of focus
+    EXPECT_GT(spreadNear, 0.05f);  // blurred in front of it
 }
 
 }  // namespace

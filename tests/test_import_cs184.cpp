@@ -1,4 +1,5 @@
-// Every scene of the CS184 library imports with the counts of its SOURCES.md and the CGL extras it holds.
+// Every scene of the CS184 library imports with the counts of its SOURCES.md and the CGL extras it
+// holds.
 #include "scene/scene_info.h"
 #include "scene/scene_loader.h"
 #include "test_support.h"
@@ -42,12 +43,14 @@ INSTANTIATE_TEST_SUITE_P(
         Expected{"meshedit/maxplanck.dae", 50801, 0, {{"directional", 1}}},
         Expected{"meshedit/peter.dae", 40018, 0, {{"directional", 1}}},
         Expected{"meshedit/teapot.dae", 2464, 0, {{"directional", 1}}},
-        Expected{"simple/cube.dae", 12, 0, {{"point", 1}}}, Expected{"simple/plane.dae", 2, 0, {{"point", 1}}},
+        Expected{"simple/cube.dae", 12, 0, {{"point", 1}}},
+        Expected{"simple/plane.dae", 2, 0, {{"point", 1}}},
         Expected{"sky/CBbunny.dae", 28588, 0, kCornellLights},
         Expected{"sky/CBbunny_microfacet_cu.dae", 28588, 0, kCornellLights},
         Expected{"sky/CBcoil.dae", 7884, 0, kCornellLights},
         Expected{"sky/CBempty.dae", 12, 0, {{"point", 1}, {"emissive_mesh", 1}}},
-        Expected{"sky/CBgems.dae", 252, 0, kCornellLights}, Expected{"sky/CBspheres.dae", 12, 2, kCornellLights},
+        Expected{"sky/CBgems.dae", 252, 0, kCornellLights},
+        Expected{"sky/CBspheres.dae", 12, 2, kCornellLights},
         Expected{"sky/CBspheres_lambertian.dae", 12, 2, kCornellLights},
         Expected{"sky/CBspheres_microfacet_al_ag.dae", 12, 2, kCornellLights},
         Expected{"sky/CBspheres_tex.dae", 12, 2, kCornellLights},
@@ -55,8 +58,12 @@ INSTANTIATE_TEST_SUITE_P(
         Expected{"sky/bunny_microfacet_cu.dae", 33696, 0, {{"ambient", 1}}},
         Expected{"sky/bunny_microfacet_cu_unlit.dae", 33696, 0, {{"ambient", 1}}},
         Expected{"sky/bunny_unlit.dae", 33696, 0, {{"ambient", 1}}},
-        Expected{"variants/2018-2020/sky/CBempty_dark.dae", 12, 0, {{"point", 1}, {"emissive_mesh", 1}}},
-        Expected{"variants/2018-2020/sky/CBempty_light.dae", 12, 0, {{"point", 1}, {"emissive_mesh", 1}}},
+        Expected{
+            "variants/2018-2020/sky/CBempty_dark.dae", 12, 0, {{"point", 1}, {"emissive_mesh", 1}}},
+        Expected{"variants/2018-2020/sky/CBempty_light.dae",
+                 12,
+                 0,
+                 {{"point", 1}, {"emissive_mesh", 1}}},
         Expected{"variants/2018-2020/sky/CBspheres_glossy.dae", 12, 2, kCornellLights},
         Expected{"variants/2018-2020/sky/bunny.dae", 33696, 0, {{"ambient", 1}}},
         // The p3-2 template comments out the emitter quad: 10 of its 12 triangles are placed.
@@ -110,11 +117,13 @@ TEST(Cs184Extras, MicrofacetParametersAsInTheFile) {
     for (const Sphere& sp : s.spheres) metals.push_back(&s.materials[sp.material]);
     // Which sphere holds which metal is the file's binding; check both sets are present exactly.
     auto isAl = [](const Material* m) {
-        return m->kind == MaterialKind::Microfacet && m->alpha == 0.25f && m->eta == Color(0.059193f, 0.059881f, 0.047366f) &&
+        return m->kind == MaterialKind::Microfacet && m->alpha == 0.25f &&
+               m->eta == Color(0.059193f, 0.059881f, 0.047366f) &&
                m->k == Color(4.1283f, 3.5892f, 2.8132f);
     };
     auto isAg = [](const Material* m) {
-        return m->kind == MaterialKind::Microfacet && m->alpha == 0.025f && m->eta == Color(1.3352f, 1.0109f, 0.68955f) &&
+        return m->kind == MaterialKind::Microfacet && m->alpha == 0.025f &&
+               m->eta == Color(1.3352f, 1.0109f, 0.68955f) &&
                m->k == Color(7.3398f, 6.6157f, 5.6471f);
     };
     EXPECT_TRUE((isAl(metals[0]) && isAg(metals[1])) || (isAg(metals[0]) && isAl(metals[1])));
@@ -177,8 +186,9 @@ TEST(Cs184Extras, CornellBoxSpansTheCourseBounds) {
 TEST(Cs184Extras, InfoJsonHasTheDocumentedKeys) {
     Scene s = loadScene(cs184("sky/CBspheres.dae"));
     std::string json = sceneInfoJson(s);
-    for (const char* key : {"\"triangles\": 12", "\"spheres\": 2", "\"meshes\"", "\"materials\": {",
-                            "\"glass\": 1", "\"lights\": {\"area\": 1}", "\"camera\"", "\"bbox\"", "\"load_seconds\""})
+    for (const char* key :
+         {"\"triangles\": 12", "\"spheres\": 2", "\"meshes\"", "\"materials\": {", "\"glass\": 1",
+          "\"lights\": {\"area\": 1}", "\"camera\"", "\"bbox\"", "\"load_seconds\""})
         EXPECT_NE(json.find(key), std::string::npos) << key << "\n" << json;
 }
 

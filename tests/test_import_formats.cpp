@@ -1,4 +1,5 @@
-// Formats other than COLLADA and PLY go through Assimp: node transforms composed, shared meshes instanced.
+// Formats other than COLLADA and PLY go through Assimp: node transforms composed, shared meshes
+// instanced.
 #include "scene/scene_info.h"
 #include "scene/scene_loader.h"
 #include "test_support.h"
@@ -8,7 +9,8 @@ namespace {
 
 TEST(AssimpFormats, GltfMeshPlacedThreeTimesBecomesInstances) {
     auto dir = test::scratchDir();
-    std::string gltf = R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1, 2]}], "nodes": [{"mesh": 0, "translation": [0, 0, 0]}, {"mesh": 0, "translation": [5, 0, 0]}, {"mesh": 0, "translation": [0, 5, 0], "scale": [2, 2, 2]}], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}], "buffers": [{"byteLength": 44, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAABAAIAAAA="}], "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6}], "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}, {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}]})";
+    std::string gltf =
+        R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1, 2]}], "nodes": [{"mesh": 0, "translation": [0, 0, 0]}, {"mesh": 0, "translation": [5, 0, 0]}, {"mesh": 0, "translation": [0, 5, 0], "scale": [2, 2, 2]}], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}], "buffers": [{"byteLength": 44, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAABAAIAAAA="}], "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6}], "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}, {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}]})";
     Scene s = loadScene(test::writeFile(dir / "three.gltf", gltf));
     SceneSummary sum = summarize(s);
     EXPECT_EQ(sum.uniqueTriangles, 1u);
@@ -22,18 +24,22 @@ TEST(AssimpFormats, GltfMeshPlacedThreeTimesBecomesInstances) {
 
 TEST(AssimpFormats, AsciiStl) {
     auto dir = test::scratchDir();
-    std::string stl = "solid t\n"
-                      "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n"
-                      "facet normal 0 0 1\nouter loop\nvertex 1 0 0\nvertex 1 1 0\nvertex 0 1 0\nendloop\nendfacet\n"
-                      "endsolid t\n";
+    std::string stl =
+        "solid t\n"
+        "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 "
+        "0\nendloop\nendfacet\n"
+        "facet normal 0 0 1\nouter loop\nvertex 1 0 0\nvertex 1 1 0\nvertex 0 1 "
+        "0\nendloop\nendfacet\n"
+        "endsolid t\n";
     Scene s = loadScene(test::writeFile(dir / "quad.stl", stl));
     EXPECT_EQ(summarize(s).triangles, 2u);
 }
 
 TEST(AssimpFormats, ObjQuadsAreTriangulatedAndGroupsKept) {
     auto dir = test::scratchDir();
-    std::string obj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\n"
-                      "o first\nf 1 2 3 4\no second\nf 5 6 7\n";
+    std::string obj =
+        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\n"
+        "o first\nf 1 2 3 4\no second\nf 5 6 7\n";
     Scene s = loadScene(test::writeFile(dir / "two.obj", obj));
     SceneSummary sum = summarize(s);
     EXPECT_EQ(sum.triangles, 3u);

@@ -22,7 +22,9 @@ TEST_P(MeshImport, CountsCameraAndLights) {
     Scene s = loadScene(test::shared(std::string("meshes/") + e.file));
     SceneSummary sum = summarize(s);
     EXPECT_EQ(sum.triangles, e.triangles);
-    if (e.vertices) EXPECT_EQ(sum.vertices, e.vertices);
+    if (e.vertices) {
+        EXPECT_EQ(sum.vertices, e.vertices);
+    }
     EXPECT_FALSE(s.hasFileCamera);
     // Default rig: a key light and a sky fill; default framing looks at the bounds' centre.
     EXPECT_EQ(sum.lights, (std::map<std::string, int>{{"ambient", 1}, {"directional", 1}}));
@@ -32,20 +34,21 @@ TEST_P(MeshImport, CountsCameraAndLights) {
     EXPECT_GT(length(b.centroid() - s.camera.position), 0.5f * length(b.diagonal()));
 }
 
-INSTANTIATE_TEST_SUITE_P(Shared, MeshImport,
-                         ::testing::Values(MeshExpected{"igea.ply", 134345, 268686},
-                                           MeshExpected{"igea_triangles.ply", 134345, 268686},
-                                           MeshExpected{"igea_subdiv1_1M.ply", 537374, 1074744},
-                                           // OBJ vertex counts change with Assimp's vertex joining; check faces.
-                                           MeshExpected{"ogre.obj", 0, 124008}, MeshExpected{"lucy.obj", 0, 99970},
-                                           MeshExpected{"nefertiti.obj", 0, 99938},
-                                           MeshExpected{"stanford-bunny.obj", 0, 69451}),
-                         [](const auto& info) {
-                             std::string n = info.param.file;
-                             for (char& c : n)
-                                 if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                             return n;
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    Shared, MeshImport,
+    ::testing::Values(MeshExpected{"igea.ply", 134345, 268686},
+                      MeshExpected{"igea_triangles.ply", 134345, 268686},
+                      MeshExpected{"igea_subdiv1_1M.ply", 537374, 1074744},
+                      // OBJ vertex counts change with Assimp's vertex joining; check faces.
+                      MeshExpected{"ogre.obj", 0, 124008}, MeshExpected{"lucy.obj", 0, 99970},
+                      MeshExpected{"nefertiti.obj", 0, 99938},
+                      MeshExpected{"stanford-bunny.obj", 0, 69451}),
+    [](const auto& info) {
+        std::string n = info.param.file;
+        for (char& c : n)
+            if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+        return n;
+    });
 
 // Triangles as index triples rotated so the smallest index comes first (winding kept).
 std::vector<std::array<uint32_t, 3>> canonicalTriangles(const TriangleMesh& m) {
@@ -60,8 +63,9 @@ std::vector<std::array<uint32_t, 3>> canonicalTriangles(const TriangleMesh& m) {
 }
 
 TEST(PlyTristrips, DecodeToTheSameTrianglesAsTheRewrittenFile) {
-    // igea.ply stores one tristrips element (Assimp reads it as one triangle); igea_triangles.ply is the
-    // same mesh rewritten as a face list. Same vertices, so the same triangles with the same winding.
+    // igea.ply stores one tristrips element (Assimp reads it as one triangle); igea_triangles.ply
+    // is the same mesh rewritten as a face list. Same vertices, so the same triangles with the same
+    // winding.
     Scene strips = loadScene(test::shared("meshes/igea.ply"));
     Scene faces = loadScene(test::shared("meshes/igea_triangles.ply"));
     ASSERT_EQ(strips.meshes.size(), 1u);

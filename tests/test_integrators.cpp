@@ -1,6 +1,6 @@
-// Light transport end to end: furnaces with known answers, agreement between estimators that must agree,
-// roulette without bias, CS184 depth semantics, adaptive sampling and determinism. Tolerances come from
-// the estimator's own sample variance (5 standard errors).
+// Light transport end to end: furnaces with known answers, agreement between estimators that must
+// agree, roulette without bias, CS184 depth semantics, adaptive sampling and determinism.
+// Tolerances come from the estimator's own sample variance (5 standard errors).
 #include "integrators/path.h"
 #include "renderer/render_loop.h"
 #include "scene/scene_loader.h"
@@ -19,7 +19,8 @@ ImageEstimate estimate(const Film& film) {
     int pixels = film.width() * film.height();
     for (int y = 0; y < film.height(); ++y)
         for (int x = 0; x < film.width(); ++x) {
-            double n = film.samples(x, y), s1 = film.luminanceSum(x, y), s2 = film.luminanceSquareSum(x, y);
+            double n = film.samples(x, y), s1 = film.luminanceSum(x, y),
+                   s2 = film.luminanceSquareSum(x, y);
             e.mean += s1 / n;
             if (n > 1) var += std::max(0.0, (s2 - s1 * s1 / n) / (n - 1)) / n;
         }
@@ -45,8 +46,8 @@ RenderSettings small(int w, int h, int spp, uint64_t seed = 0) {
 
 void expectAgree(const ImageEstimate& a, const ImageEstimate& b, const std::string& what) {
     double bound = 5 * std::sqrt(a.stderror * a.stderror + b.stderror * b.stderror);
-    EXPECT_NEAR(a.mean, b.mean, bound) << what << ": " << a.mean << " +- " << a.stderror << " vs " << b.mean << " +- "
-                                       << b.stderror;
+    EXPECT_NEAR(a.mean, b.mean, bound) << what << ": " << a.mean << " +- " << a.stderror << " vs "
+                                       << b.mean << " +- " << b.stderror;
     EXPECT_GT(bound, 0.0) << what;  // a zero-variance comparison would prove nothing
 }
 
@@ -63,7 +64,8 @@ TEST(Furnace, WhiteSphereInAUniformEnvironmentIsInvisible) {
     s.lights.push_back(env);
     s.camera.position = Vec3(0, 0, 4);
     s.camera.hFovDeg = s.camera.vFovDeg = 35;
-    for (DirectSampling sampling : {DirectSampling::Mis, DirectSampling::Light, DirectSampling::Hemisphere}) {
+    for (DirectSampling sampling :
+         {DirectSampling::Mis, DirectSampling::Light, DirectSampling::Hemisphere}) {
         PathOptions opt;
         opt.sampling = sampling;
         opt.maxDepth = 50;
@@ -74,7 +76,8 @@ TEST(Furnace, WhiteSphereInAUniformEnvironmentIsInvisible) {
         int outliers = 0;
         for (int y = 0; y < 24; ++y)
             for (int x = 0; x < 24; ++x) {
-                double n = film.samples(x, y), s1 = film.luminanceSum(x, y), s2 = film.luminanceSquareSum(x, y);
+                double n = film.samples(x, y), s1 = film.luminanceSum(x, y),
+                       s2 = film.luminanceSquareSum(x, y);
                 double sd = std::sqrt(std::max(0.0, (s2 - s1 * s1 / n) / (n - 1)) / n);
                 outliers += std::abs(s1 / n - 1.0) > 5 * sd + 1e-5;
             }
@@ -96,7 +99,8 @@ TEST(Furnace, ClosedEmittingBoxGivesOneOverOneMinusAlbedo) {
         opt.maxDepth = 100000;  // unlimited: roulette ends the paths
         Film film = renderPath(s, opt, small(16, 16, 128));
         ImageEstimate e = estimate(film);
-        EXPECT_NEAR(e.mean, 1.0 / (1.0 - albedo), 5 * e.stderror) << "albedo " << albedo << " +- " << e.stderror;
+        EXPECT_NEAR(e.mean, 1.0 / (1.0 - albedo), 5 * e.stderror)
+            << "albedo " << albedo << " +- " << e.stderror;
         EXPECT_GT(e.stderror, 0.0);
     }
 }
@@ -105,18 +109,22 @@ TEST(DirectLighting, HemisphereLightAndMisAgreeOnCBspheresLambertian) {
     Scene s = loadScene(test::cs184("sky/CBspheres_lambertian.dae"));
     ImageEstimate results[3];
     int i = 0;
-    for (DirectSampling sampling : {DirectSampling::Hemisphere, DirectSampling::Light, DirectSampling::Mis}) {
+    for (DirectSampling sampling :
+         {DirectSampling::Hemisphere, DirectSampling::Light, DirectSampling::Mis}) {
         PathOptions opt;
         opt.maxDepth = 1;
         opt.sampling = sampling;
         opt.lightSamples = sampling == DirectSampling::Hemisphere ? 1 : 4;
-        results[i++] = estimate(renderPath(s, opt, small(64, 48, sampling == DirectSampling::Hemisphere ? 512 : 64)));
+        results[i++] = estimate(
+            renderPath(s, opt, small(64, 48, sampling == DirectSampling::Hemisphere ? 512 : 64)));
     }
     expectAgree(results[0], results[1], "hemisphere vs light");
     expectAgree(results[1], results[2], "light vs MIS");
     expectAgree(results[0], results[2], "hemisphere vs MIS");
-    // Per camera sample, MIS has a lower variance than hemisphere sampling (512 vs 64 samples were taken).
-    EXPECT_LT(results[2].stderror * results[2].stderror * 64, results[0].stderror * results[0].stderror * 512);
+    // Per camera sample, MIS has a lower variance than hemisphere sampling (512 vs 64 samples were
+    // taken).
+    EXPECT_LT(results[2].stderror * results[2].stderror * 64,
+              results[0].stderror * results[0].stderror * 512);
 }
 
 TEST(RussianRoulette, UnbiasedAgainstNoRoulette) {
@@ -192,8 +200,8 @@ TEST(Adaptive, PixelsStopWhenTheCs184ConfidenceTestPasses) {
             double mu = s1 / n, var = std::max(0.0, (s2 - s1 * s1 / n) / (n - 1));
             EXPECT_LE(1.96 * std::sqrt(var / n), 0.05 * mu + 1e-9) << x << "," << y;
         }
-    EXPECT_EQ(lo, 16u);   // black background pixels stop after one batch
-    EXPECT_GT(hi, 16u);   // noisy pixels keep sampling
+    EXPECT_EQ(lo, 16u);  // black background pixels stop after one batch
+    EXPECT_GT(hi, 16u);  // noisy pixels keep sampling
 }
 
 }  // namespace

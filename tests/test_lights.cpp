@@ -1,5 +1,5 @@
-// Light sampling: chi-square of sampled directions against the claimed pdf for every light with extent,
-// exact values for delta lights, selection by power.
+// Light sampling: chi-square of sampled directions against the claimed pdf for every light with
+// extent, exact values for delta lights, selection by power.
 #include <OpenImageIO/imageio.h>
 
 #include "chi2.h"
@@ -30,8 +30,8 @@ bool hitTriangles(const std::vector<Vec3>& tris, const Vec3& ref, const Vec3& w,
     return best < kInfinity;
 }
 
-void expectLightMatchesPdf(const LightSet& lights, size_t i, const Vec3& ref, const std::vector<Vec3>& shape,
-                           const std::string& what) {
+void expectLightMatchesPdf(const LightSet& lights, size_t i, const Vec3& ref,
+                           const std::vector<Vec3>& shape, const std::string& what) {
     auto sample = [&](Sampler& s) -> std::optional<Vec3> {
         LightSample ls;
         float u1 = s.next1D(), u2 = s.next1D();
@@ -59,7 +59,8 @@ TEST(LightSampling, RectangleAreaLight) {
     s.lights.push_back(l);
     LightSet lights(s);
     Vec3 c = l.position - l.dimX * 0.5f - l.dimY * 0.5f;
-    std::vector<Vec3> rect = {c, c + l.dimX, c + l.dimX + l.dimY, c, c + l.dimX + l.dimY, c + l.dimY};
+    std::vector<Vec3> rect = {c, c + l.dimX,          c + l.dimX + l.dimY,
+                              c, c + l.dimX + l.dimY, c + l.dimY};
     expectLightMatchesPdf(lights, 0, Vec3(0, 0, 0), rect, "rectangle");
     expectLightMatchesPdf(lights, 0, Vec3(1.2f, 0.6f, 0.3f), rect, "rectangle, oblique");
     // One-sided: nothing reaches a point above the light.
@@ -100,7 +101,9 @@ TEST(LightSampling, AmbientHemisphere) {
         EXPECT_GT(ls.wi.y, 0.0f);
         return ls.wi;
     };
-    auto pdf = [&](const Vec3& w) -> double { return lights.pdf(0, Vec3(0.0f), w, Vec3(0.0f), Vec3(0.0f)); };
+    auto pdf = [&](const Vec3& w) -> double {
+        return lights.pdf(0, Vec3(0.0f), w, Vec3(0.0f), Vec3(0.0f));
+    };
     test::Chi2Result r = test::chi2Directions(sample, pdf, 300000, 5);
     EXPECT_GT(r.pValue, 1e-4) << r.table;
 }
@@ -128,7 +131,8 @@ TEST(LightSampling, EnvironmentMapImportance) {
     l.environmentPath = path;
     s.lights.push_back(l);
     LightSet lights(s);
-    // Histogram in the map's own spherical coordinates (pole = +Y, phi = 0 at -Z) so bins align with pixels.
+    // Histogram in the map's own spherical coordinates (pole = +Y, phi = 0 at -Z) so bins align
+    // with pixels.
     auto toMapFrame = [](const Vec3& d) { return Vec3(-d.z, d.x, d.y); };
     auto fromMapFrame = [](const Vec3& w) { return Vec3(w.y, w.z, -w.x); };
     auto sample = [&](Sampler& smp) -> std::optional<Vec3> {
@@ -139,7 +143,9 @@ TEST(LightSampling, EnvironmentMapImportance) {
         EXPECT_EQ(ls.Li, lights.escaped(0, ls.wi, false));
         return toMapFrame(ls.wi);
     };
-    auto pdf = [&](const Vec3& w) -> double { return lights.pdf(0, Vec3(0.0f), fromMapFrame(w), Vec3(0.0f), Vec3(0.0f)); };
+    auto pdf = [&](const Vec3& w) -> double {
+        return lights.pdf(0, Vec3(0.0f), fromMapFrame(w), Vec3(0.0f), Vec3(0.0f));
+    };
     test::Chi2Result r = test::chi2Directions(sample, pdf, 400000, 31, 64, 128, 8);
     EXPECT_GT(r.pValue, 1e-4) << r.table;
 }
@@ -165,7 +171,7 @@ TEST(LightSampling, DeltaLightsAndSelectionByPower) {
     EXPECT_TRUE(ls.delta);
     EXPECT_NEAR(ls.Li.x, 3.0f / 4.0f, 1e-6f);  // inverse square
     ASSERT_TRUE(lights.sample(1, Vec3(0, 0, 0), 0.5f, 0.5f, ls));
-    EXPECT_NEAR(ls.Li.x, 3.0f / 4.0f, 1e-6f);  // on the axis: full intensity
+    EXPECT_NEAR(ls.Li.x, 3.0f / 4.0f, 1e-6f);                       // on the axis: full intensity
     EXPECT_FALSE(lights.sample(1, Vec3(3, 0, 0), 0.5f, 0.5f, ls));  // 56 degrees off axis: dark
     ASSERT_TRUE(lights.sample(2, Vec3(5, 5, 5), 0.5f, 0.5f, ls));
     EXPECT_TRUE(ls.infinite);

@@ -1,4 +1,5 @@
-// EXR layers and metadata, the beauty = emission + direct + indirect identity, OCIO views, heat map.
+// EXR layers and metadata, the beauty = emission + direct + indirect identity, OCIO views, heat
+// map.
 #include <OpenImageIO/imageio.h>
 
 #include "color/chromaticities.h"
@@ -40,25 +41,33 @@ Color layer(const Film& f, int x, int y, const std::string& name) {
 
 void expectClose(const Color& a, const Color& b, const std::string& what) {
     float tol = 1e-5f * std::max(1.0f, maxComponent(abs(a)));
-    EXPECT_LE(maxComponent(abs(a - b)), tol) << what << ": " << a.x << " " << a.y << " " << a.z << " vs " << b.x << " "
-                                             << b.y << " " << b.z;
+    EXPECT_LE(maxComponent(abs(a - b)), tol) << what << ": " << a.x << " " << a.y << " " << a.z
+                                             << " vs " << b.x << " " << b.y << " " << b.z;
 }
 
 TEST(Aovs, BeautyIsEmissionPlusDirectPlusIndirectAndTheSplitsAddUp) {
-    for (const std::string& scene : {test::cs184("sky/CBspheres.dae"), test::cs184("sky/CBbunny_microfacet_cu.dae"),
-                                     test::cs184("sky/bunny.dae"), test::repo("scenes/cornell.dae")}) {
+    for (const std::string& scene :
+         {test::cs184("sky/CBspheres.dae"), test::cs184("sky/CBbunny_microfacet_cu.dae"),
+          test::cs184("sky/bunny.dae"), test::repo("scenes/cornell.dae")}) {
         Film f = render(scene, AovRequest::parse("all", 5));
         double total = 0;
         for (int y = 0; y < f.height(); ++y)
             for (int x = 0; x < f.width(); ++x) {
-                Color e = layer(f, x, y, "emission"), d = layer(f, x, y, "direct"), i = layer(f, x, y, "indirect");
+                Color e = layer(f, x, y, "emission"), d = layer(f, x, y, "direct"),
+                      i = layer(f, x, y, "indirect");
                 expectClose(f.pixel(x, y), e + d + i, scene + " beauty");
-                expectClose(d, layer(f, x, y, "direct_diffuse") + layer(f, x, y, "direct_specular") +
-                                   layer(f, x, y, "direct_transmission"), scene + " direct lobes");
-                expectClose(i, layer(f, x, y, "indirect_diffuse") + layer(f, x, y, "indirect_specular") +
-                                   layer(f, x, y, "indirect_transmission"), scene + " indirect lobes");
+                expectClose(d,
+                            layer(f, x, y, "direct_diffuse") + layer(f, x, y, "direct_specular") +
+                                layer(f, x, y, "direct_transmission"),
+                            scene + " direct lobes");
+                expectClose(i,
+                            layer(f, x, y, "indirect_diffuse") +
+                                layer(f, x, y, "indirect_specular") +
+                                layer(f, x, y, "indirect_transmission"),
+                            scene + " indirect lobes");
                 Color bounces(0.0f);
-                for (int b = 1; b <= 5; ++b) bounces += layer(f, x, y, "bounce" + std::to_string(b));
+                for (int b = 1; b <= 5; ++b)
+                    bounces += layer(f, x, y, "bounce" + std::to_string(b));
                 expectClose(d + i, bounces, scene + " bounces");
                 total += luminance(d) + luminance(i);
             }
@@ -67,7 +76,8 @@ TEST(Aovs, BeautyIsEmissionPlusDirectPlusIndirectAndTheSplitsAddUp) {
 }
 
 TEST(Aovs, GlassSceneHasTransmissionAndSpecularLight) {
-    Film f = render(test::cs184("sky/CBspheres.dae"), AovRequest::parse("direct_specular,indirect_transmission", 5), 5, 16);
+    Film f = render(test::cs184("sky/CBspheres.dae"),
+                    AovRequest::parse("direct_specular,indirect_transmission", 5), 5, 16);
     double spec = 0, trans = 0;
     for (int y = 0; y < f.height(); ++y)
         for (int x = 0; x < f.width(); ++x) {
@@ -75,7 +85,8 @@ TEST(Aovs, GlassSceneHasTransmissionAndSpecularLight) {
             trans += f.aov(x, y, 3) + f.aov(x, y, 4) + f.aov(x, y, 5);
         }
     EXPECT_GT(trans, 0.0);  // light seen through the glass sphere: two refractions, so indirect
-    EXPECT_GT(spec, 0.0);   // the ceiling light seen in the mirror sphere: one specular bounce, direct
+    EXPECT_GT(spec,
+              0.0);  // the ceiling light seen in the mirror sphere: one specular bounce, direct
 }
 
 TEST(Aovs, RequestParsing) {
@@ -89,7 +100,8 @@ TEST(Aovs, RequestParsing) {
 }
 
 TEST(ExrOutput, ChannelsTypesAndMetadataRoundTrip) {
-    Film f = render(test::cs184("sky/CBspheres.dae"), AovRequest::parse("default,P,primid,objectid", 5));
+    Film f =
+        render(test::cs184("sky/CBspheres.dae"), AovRequest::parse("default,P,primid,objectid", 5));
     auto dir = test::scratchDir();
     for (bool half : {false, true}) {
         std::string path = (dir / (half ? "half.exr" : "float.exr")).string();
@@ -106,9 +118,11 @@ TEST(ExrOutput, ChannelsTypesAndMetadataRoundTrip) {
             return i < 0 ? OIIO::TypeDesc() : spec.channelformat(i);
         };
         OIIO::TypeDesc colour = half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT;
-        for (const char* c : {"R", "G", "B", "A", "emission.R", "direct.G", "indirect.B", "albedo.R", "N.X"})
+        for (const char* c :
+             {"R", "G", "B", "A", "emission.R", "direct.G", "indirect.B", "albedo.R", "N.X"})
             EXPECT_EQ(type(c), colour) << c;
-        for (const char* c : {"P.X", "P.Y", "P.Z", "Z", "samples", "variance", "primid", "objectid"})
+        for (const char* c :
+             {"P.X", "P.Y", "P.Z", "Z", "samples", "variance", "primid", "objectid"})
             EXPECT_EQ(type(c), OIIO::TypeDesc(OIIO::TypeDesc::FLOAT)) << c;
         EXPECT_EQ(spec.get_string_attribute("compression"), half ? "piz" : "zip");
         EXPECT_EQ(spec.get_string_attribute("kiln:spp"), "8");
@@ -123,7 +137,8 @@ TEST(ExrOutput, ChannelsTypesAndMetadataRoundTrip) {
             for (int x = 0; x < f.width(); ++x) {
                 size_t base = (size_t(y) * spec.width + x) * spec.nchannels;
                 ASSERT_EQ(px[base + n], float(f.samples(x, y)));
-                ASSERT_NEAR(px[base + r], f.pixel(x, y).x, half ? 1e-3f * std::max(1.0f, f.pixel(x, y).x) : 0.0f);
+                ASSERT_NEAR(px[base + r], f.pixel(x, y).x,
+                            half ? 1e-3f * std::max(1.0f, f.pixel(x, y).x) : 0.0f);
             }
         // The command-line tools read it too.
         EXPECT_EQ(std::system(("oiiotool --info -v " + path + " > /dev/null").c_str()), 0);
@@ -143,7 +158,8 @@ TEST(ColourManagement, ViewsOfTheShippedConfig) {
     float grey = displayTransform(0.18f, "sRGB", "ACES 1.0 SDR-video");
     EXPECT_GT(grey, 0.3f);
     EXPECT_LT(grey, 0.5f);
-    EXPECT_LT(displayTransform(1.0f, "sRGB", "ACES 1.0 SDR-video"), 0.95f);  // the tone curve rolls off
+    EXPECT_LT(displayTransform(1.0f, "sRGB", "ACES 1.0 SDR-video"),
+              0.95f);  // the tone curve rolls off
     EXPECT_NO_THROW(checkDisplayView("sRGB", "Raw"));
     EXPECT_THROW(checkDisplayView("sRGB", "Filmic"), std::invalid_argument);
     EXPECT_THROW(checkDisplayView("P3", "Standard"), std::invalid_argument);
@@ -163,7 +179,7 @@ TEST(HeatMap, BlueFewRedManyWithALegend) {
     std::vector<uint8_t> px(size_t(in->spec().width) * in->spec().height * 3);
     ASSERT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, px.data()));
     auto at = [&](int x, int y, int c) { return px[(size_t(y) * 20 + x) * 3 + c]; };
-    EXPECT_GT(at(0, 0, 2), 100);   // fewest samples: blue
+    EXPECT_GT(at(0, 0, 2), 100);  // fewest samples: blue
     EXPECT_LT(at(0, 0, 0), 50);
     EXPECT_GT(at(19, 0, 0), 100);  // most samples: red
     EXPECT_LT(at(19, 0, 2), 50);
@@ -179,15 +195,18 @@ TEST(ColourManagement, ChromaticitiesConvertToTheWorkingSpace) {
     Mat3 id = toWorkingSpace(kRec709D65);
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) EXPECT_NEAR(id[i][j], i == j ? 1.0 : 0.0, 1e-9);
-    // ACES2065-1 (AP0, ACES white) to linear Rec.709 with Bradford adaptation: the published matrix.
+    // ACES2065-1 (AP0, ACES white) to linear Rec.709 with Bradford adaptation: the published
+    // matrix.
     Chromaticities ap0 = {0.7347f, 0.2653f, 0.0f, 1.0f, 0.0001f, -0.077f, 0.32168f, 0.33767f};
     Mat3 m = toWorkingSpace(ap0);
-    const double expected[3][3] = {{2.52169, -1.13413, -0.38756}, {-0.27648, 1.37272, -0.09624},
+    const double expected[3][3] = {{2.52169, -1.13413, -0.38756},
+                                   {-0.27648, 1.37272, -0.09624},
                                    {-0.01538, -0.15298, 1.16835}};
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) EXPECT_NEAR(m[i][j], expected[i][j], 2e-3) << i << "," << j;
     // Whatever the primaries, the file's white stays white.
-    Chromaticities d50 = {0.648447f, 0.330877f, 0.321187f, 0.597894f, 0.155901f, 0.0660563f, 0.345708f, 0.358541f};
+    Chromaticities d50 = {0.648447f, 0.330877f,  0.321187f, 0.597894f,
+                          0.155901f, 0.0660563f, 0.345708f, 0.358541f};
     Mat3 c = toWorkingSpace(d50);
     for (int i = 0; i < 3; ++i) EXPECT_NEAR(c[i][0] + c[i][1] + c[i][2], 1.0, 1e-6);
 }
@@ -216,10 +235,13 @@ TEST(ColourManagement, EnvironmentMapsAreConvertedOnLoad) {
         }
     Vec3 dir = EnvironmentMap::direction((x + 0.5f) / w, (y + 0.5f) / h);
     Color loaded = lights.escaped(0, dir, true);
-    Color file(raw[(size_t(y) * w + x) * 3], raw[(size_t(y) * w + x) * 3 + 1], raw[(size_t(y) * w + x) * 3 + 2]);
-    Mat3 m = toWorkingSpace({0.648447f, 0.330877f, 0.321187f, 0.597894f, 0.155901f, 0.0660563f, 0.345708f, 0.358541f});
+    Color file(raw[(size_t(y) * w + x) * 3], raw[(size_t(y) * w + x) * 3 + 1],
+               raw[(size_t(y) * w + x) * 3 + 2]);
+    Mat3 m = toWorkingSpace(
+        {0.648447f, 0.330877f, 0.321187f, 0.597894f, 0.155901f, 0.0660563f, 0.345708f, 0.358541f});
     for (int i = 0; i < 3; ++i)
-        EXPECT_NEAR(loaded[i], m[i][0] * file.x + m[i][1] * file.y + m[i][2] * file.z, 1e-4f * (1 + file[i]));
+        EXPECT_NEAR(loaded[i], m[i][0] * file.x + m[i][1] * file.y + m[i][2] * file.z,
+                    1e-4f * (1 + file[i]));
     EXPECT_GT(maxComponent(abs(loaded - file)), 1e-4f);
 }
 

@@ -1,5 +1,5 @@
-// The render plan: what each CS184 scene calls for, and the specialised paths giving the general path's
-// image.
+// The render plan: what each CS184 scene calls for, and the specialised paths giving the general
+// path's image.
 #include "integrators/path.h"
 #include "integrators/render_plan.h"
 #include "renderer/render_loop.h"
@@ -56,8 +56,8 @@ INSTANTIATE_TEST_SUITE_P(
         return n;
     });
 
-Film render(const Scene& s, const Accelerator& accel, const PathOptions& opt, const RenderPlan& plan,
-            uint64_t* rays = nullptr) {
+Film render(const Scene& s, const Accelerator& accel, const PathOptions& opt,
+            const RenderPlan& plan, uint64_t* rays = nullptr) {
     PathIntegrator integrator(s, accel, opt);
     integrator.setAovs(plan.aovs);
     integrator.usePlan(plan);
@@ -70,16 +70,18 @@ Film render(const Scene& s, const Accelerator& accel, const PathOptions& opt, co
 }
 
 TEST(SpecialisedPaths, GiveTheGeneralPathsImage) {
-    // Each specialisation removes code that cannot contribute, and draws the same random numbers, so the
-    // images are not only statistically equal but identical.
+    // Each specialisation removes code that cannot contribute, and draws the same random numbers,
+    // so the images are not only statistically equal but identical.
     struct Case {
         const char* scene;
         int depth;
         const char* aovs;
     };
-    for (const Case& c : {Case{"sky/CBspheres_lambertian.dae", 5, "none"}, Case{"meshedit/cow.dae", 1, "none"},
-                          Case{"meshedit/cow.dae", 3, "none"}, Case{"sky/bunny.dae", 4, "none"},
-                          Case{"sky/CBbunny_microfacet_cu.dae", 5, "none"}, Case{"sky/CBspheres.dae", 5, "default"}}) {
+    for (const Case& c :
+         {Case{"sky/CBspheres_lambertian.dae", 5, "none"}, Case{"meshedit/cow.dae", 1, "none"},
+          Case{"meshedit/cow.dae", 3, "none"}, Case{"sky/bunny.dae", 4, "none"},
+          Case{"sky/CBbunny_microfacet_cu.dae", 5, "none"},
+          Case{"sky/CBspheres.dae", 5, "default"}}) {
         Scene s = loadScene(test::cs184(c.scene));
         auto accel = makeEmbreeAccelerator(s);
         PathOptions opt;
@@ -90,7 +92,8 @@ TEST(SpecialisedPaths, GiveTheGeneralPathsImage) {
         double sum = 0;
         for (int y = 0; y < 30; ++y)
             for (int x = 0; x < 40; ++x) {
-                ASSERT_EQ(a.pixel(x, y), b.pixel(x, y)) << c.scene << " -m " << c.depth << " at " << x << "," << y;
+                ASSERT_EQ(a.pixel(x, y), b.pixel(x, y))
+                    << c.scene << " -m " << c.depth << " at " << x << "," << y;
                 sum += luminance(a.pixel(x, y));
             }
         EXPECT_GT(sum, 0.0) << c.scene;
@@ -105,7 +108,8 @@ TEST(SpecialisedPaths, DeltaLightsOnlySkipsTheUselessLastRay) {
     uint64_t special = 0, general = 0;
     render(s, *accel, opt, planFor(s, *accel, AovRequest{}), &special);
     render(s, *accel, opt, planFor(s, *accel, AovRequest{}, true), &general);
-    EXPECT_LT(special, general);  // camera + shadow rays only; the general path also traces a continuation
+    EXPECT_LT(special,
+              general);  // camera + shadow rays only; the general path also traces a continuation
 }
 
 }  // namespace

@@ -67,16 +67,18 @@ TEST(RenderLoop, BitIdenticalWhateverTheThreadsAndTiles) {
 
 // Interrupts the render after a fixed number of camera samples, as SIGINT would.
 class InterruptingIntegrator final : public Integrator {
-public:
-    InterruptingIntegrator(const Scene& s, const Accelerator& a, int after) : Integrator(s, a), inner_(s, a), after_(after) {}
+  public:
+    InterruptingIntegrator(const Scene& s, const Accelerator& a, int after)
+        : Integrator(s, a), inner_(s, a), after_(after) {}
     using Integrator::Li;
-    void Li(const Ray& ray, Sampler& sampler, RayCounter& counter, SampleRecord& record) const override {
+    void Li(const Ray& ray, Sampler& sampler, RayCounter& counter,
+            SampleRecord& record) const override {
         if (++calls_ == after_) renderCancelFlag().store(true);
         inner_.Li(ray, sampler, counter, record);
     }
     const char* name() const override { return "interrupting"; }
 
-private:
+  private:
     NormalsIntegrator inner_;
     int after_;
     mutable std::atomic<int> calls_{0};
@@ -111,7 +113,8 @@ TEST(RenderLoop, InterruptKeepsTrueSampleCountsAndWritesThem) {
     ASSERT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()));
     for (int y = 0; y < 48; ++y)
         for (int x = 0; x < 64; ++x)
-            ASSERT_EQ(pixels[(size_t(y) * 64 + x) * spec.nchannels + samplesChannel], float(film.samples(x, y)));
+            ASSERT_EQ(pixels[(size_t(y) * 64 + x) * spec.nchannels + samplesChannel],
+                      float(film.samples(x, y)));
 }
 
 TEST(ImageOutput, ExrRoundTripKeepsChannelsValuesAndMetadata) {
@@ -125,7 +128,8 @@ TEST(ImageOutput, ExrRoundTripKeepsChannelsValuesAndMetadata) {
     auto in = OIIO::ImageInput::open(path);
     ASSERT_TRUE(in);
     const OIIO::ImageSpec& spec = in->spec();
-    for (const char* ch : {"R", "G", "B", "A", "samples"}) EXPECT_GE(spec.channelindex(ch), 0) << ch;
+    for (const char* ch : {"R", "G", "B", "A", "samples"})
+        EXPECT_GE(spec.channelindex(ch), 0) << ch;
     EXPECT_EQ(spec.get_string_attribute("kiln:spp"), "8");
     EXPECT_EQ(spec.get_string_attribute("kiln:integrator"), "normals");
     EXPECT_EQ(spec.get_string_attribute("kiln:colorspace"), "lin_rec709");

@@ -1,5 +1,5 @@
-// Hard cases stay numerically stable: watertightness, far-away and rescaled scenes, bent shading normals,
-// degenerate geometry, deep paths, and non-finite samples that never reach the image.
+// Hard cases stay numerically stable: watertightness, far-away and rescaled scenes, bent shading
+// normals, degenerate geometry, deep paths, and non-finite samples that never reach the image.
 #include <algorithm>
 #include <cstdio>
 
@@ -35,8 +35,10 @@ Estimate blockEstimate(const Film& f, int x0, int y0, int x1, int y1) {
     return e;
 }
 
-Film renderScene(const Scene& s, int w, int h, int spp, PathOptions opt = {}, AcceleratorKind kind = AcceleratorKind::Embree) {
-    auto accel = kind == AcceleratorKind::Embree ? makeEmbreeAccelerator(s) : makeReferenceAccelerator(s);
+Film renderScene(const Scene& s, int w, int h, int spp, PathOptions opt = {},
+                 AcceleratorKind kind = AcceleratorKind::Embree) {
+    auto accel =
+        kind == AcceleratorKind::Embree ? makeEmbreeAccelerator(s) : makeReferenceAccelerator(s);
     PathIntegrator integrator(s, *accel, opt);
     RenderSettings settings;
     settings.width = w, settings.height = h, settings.spp = spp, settings.progress = false;
@@ -45,13 +47,15 @@ Film renderScene(const Scene& s, int w, int h, int spp, PathOptions opt = {}, Ac
     return film;
 }
 
-// --- Watertightness --------------------------------------------------------------------------------
+// --- Watertightness
+// --------------------------------------------------------------------------------
 
-// Rays aimed exactly at interior edges (shared by two triangles) and vertices, from the front of both
-// neighbours (within 60 degrees of each normal). Returns the number that hit nothing.
+// Rays aimed exactly at interior edges (shared by two triangles) and vertices, from the front of
+// both neighbours (within 60 degrees of each normal). Returns the number that hit nothing.
 struct LeakCount {
     uint64_t rays = 0, embree = 0, reference = 0;
-    uint64_t vertexRays = 0, embreeAtVertices = 0;  // Embree's share at exact vertices (see docs/robustness.md)
+    uint64_t vertexRays = 0,
+             embreeAtVertices = 0;  // Embree's share at exact vertices (see docs/robustness.md)
 };
 
 LeakCount edgeLeaks(const Scene& s, uint64_t seed) {
@@ -68,13 +72,15 @@ LeakCount edgeLeaks(const Scene& s, uint64_t seed) {
                 fan[a].push_back(t);
             }
         auto normal = [&](uint32_t t) {
-            Vec3 p0 = m.vertex(m.indices[3 * t]), p1 = m.vertex(m.indices[3 * t + 1]), p2 = m.vertex(m.indices[3 * t + 2]);
+            Vec3 p0 = m.vertex(m.indices[3 * t]), p1 = m.vertex(m.indices[3 * t + 1]),
+                 p2 = m.vertex(m.indices[3 * t + 2]);
             Vec3 n = cross(p1 - p0, p2 - p0);
             return dot(n, n) > 0 ? normalize(n) : Vec3(0.0f);
         };
         uint64_t k = 0;
         for (const auto& [edge, tris] : edges) {
-            if (tris.size() != 2) continue;  // boundary or non-manifold: nothing to be watertight about
+            if (tris.size() != 2)
+                continue;  // boundary or non-manifold: nothing to be watertight about
             Vec3 n1 = normal(tris[0]), n2 = normal(tris[1]);
             if (dot(n1, n2) < 0.2f) continue;  // too sharp for a direction in front of both
             Vec3 a = m.vertex(edge.first), b = m.vertex(edge.second);
@@ -82,15 +88,19 @@ LeakCount edgeLeaks(const Scene& s, uint64_t seed) {
                 Vec3 target = a + (b - a) * f;
                 for (int j = 0; j < 3; ++j) {
                     Sampler r(seed, k++, 0);
-                    Vec3 jitter = Vec3(r.next1D() - 0.5f, r.next1D() - 0.5f, r.next1D() - 0.5f) * 1.2f;
+                    Vec3 jitter =
+                        Vec3(r.next1D() - 0.5f, r.next1D() - 0.5f, r.next1D() - 0.5f) * 1.2f;
                     Vec3 away = normalize(normalize(n1 + n2) + jitter);
                     if (dot(away, n1) < 0.5f || dot(away, n2) < 0.5f) continue;
-                    // Aimed at a vertex, the ray passes every triangle of its fan: it must face them all,
-                    // or the fan folds in projection and leaves a real gap beside the vertex.
-                    if (f == 0.0f && std::any_of(fan[edge.first].begin(), fan[edge.first].end(),
-                                                 [&](uint32_t t) { return dot(away, normal(t)) < 0.2f; }))
+                    // Aimed at a vertex, the ray passes every triangle of its fan: it must face
+                    // them all, or the fan folds in projection and leaves a real gap beside the
+                    // vertex.
+                    if (f == 0.0f &&
+                        std::any_of(fan[edge.first].begin(), fan[edge.first].end(),
+                                    [&](uint32_t t) { return dot(away, normal(t)) < 0.2f; }))
                         continue;
-                    // The winding may face inwards: approach from the side the normals point to either way.
+                    // The winding may face inwards: approach from the side the normals point to
+                    // either way.
                     float dist = (0.05f + r.next1D()) * length(b - a) * 20;
                     Ray ray{target + away * dist, 0, -away * dist, kInfinity};
                     Hit h;
@@ -117,8 +127,10 @@ TEST(Watertightness, NoLeaksThroughSharedEdgesOverAMillionRays) {
         EXPECT_EQ(c.embree, 0u) << what << ": Embree leaked through an edge";
         EXPECT_EQ(c.reference, 0u) << what;
         EXPECT_GT(c.rays, 1000u) << what;
-        // Embree (ROBUST) is watertight along edges but not exactly at vertices: bounded, documented.
-        EXPECT_LE(c.embreeAtVertices, c.vertexRays / 200) << what << ": " << c.embreeAtVertices << " of " << c.vertexRays;
+        // Embree (ROBUST) is watertight along edges but not exactly at vertices: bounded,
+        // documented.
+        EXPECT_LE(c.embreeAtVertices, c.vertexRays / 200)
+            << what << ": " << c.embreeAtVertices << " of " << c.vertexRays;
         total.rays += c.rays;
         total.vertexRays += c.vertexRays;
         total.embreeAtVertices += c.embreeAtVertices;
@@ -134,8 +146,8 @@ TEST(Watertightness, NoLeaksThroughSharedEdgesOverAMillionRays) {
 }
 
 TEST(Watertightness, FarFromTheOriginToo) {
-    // Embree's verify places its watertightness meshes at (148376, 1234, -223423); so do we, without
-    // recentring, to test the traversal itself at that magnitude.
+    // Embree's verify places its watertightness meshes at (148376, 1234, -223423); so do we,
+    // without recentring, to test the traversal itself at that magnitude.
     TriangleMesh ball = test::sphereMesh(40, 80);
     for (size_t v = 0; v < ball.vertexCount(); ++v) {
         ball.positions[3 * v] = ball.positions[3 * v] * 1000 + 148376;
@@ -173,7 +185,8 @@ TEST(ShadowRays, StopShortOfTheLightByItsErrorBoundAndNeverSelfOcclude) {
             int occluded = 0, tested = 0;
             for (int i = 0; i < 20000; ++i) {
                 Sampler r(8, uint64_t(i), 0);
-                Ray down{Vec3(shift + r.next1D() * 2, r.next1D() * 2, 0.5f), 0, Vec3(0, 0, -1), kInfinity};
+                Ray down{Vec3(shift + r.next1D() * 2, r.next1D() * 2, 0.5f), 0, Vec3(0, 0, -1),
+                         kInfinity};
                 Hit hit;
                 if (!accel->intersect(down, hit) || hit.shape != 0) continue;
                 SurfaceInteraction si = makeInteraction(s, down, hit);
@@ -188,14 +201,17 @@ TEST(ShadowRays, StopShortOfTheLightByItsErrorBoundAndNeverSelfOcclude) {
     }
 }
 
-// --- Far away and rescaled -------------------------------------------------------------------------
+// --- Far away and rescaled
+// -------------------------------------------------------------------------
 
-// A closed box (2 x 1.5 x 2) with a block inside and an emissive ceiling panel, as OBJ + MTL with every
-// coordinate a multiple of 1/16, so translating it by up to 1e6 is exact in float.
-std::string writeBoxObj(const std::filesystem::path& dir, const std::string& name, double scale, Vec3d shift) {
+// A closed box (2 x 1.5 x 2) with a block inside and an emissive ceiling panel, as OBJ + MTL with
+// every coordinate a multiple of 1/16, so translating it by up to 1e6 is exact in float.
+std::string writeBoxObj(const std::filesystem::path& dir, const std::string& name, double scale,
+                        Vec3d shift) {
     auto P = [&](double x, double y, double z) {
         char buf[160];
-        std::snprintf(buf, sizeof buf, "v %.17g %.17g %.17g\n", x * scale + shift.x, y * scale + shift.y, z * scale + shift.z);
+        std::snprintf(buf, sizeof buf, "v %.17g %.17g %.17g\n", x * scale + shift.x,
+                      y * scale + shift.y, z * scale + shift.z);
         return std::string(buf);
     };
     std::string obj = "mtllib " + name + ".mtl\n";
@@ -210,17 +226,19 @@ std::string writeBoxObj(const std::filesystem::path& dir, const std::string& nam
         for (double x : {-0.25, 0.25}) obj += P(x, 1.4375, z);
     auto quads = [&](int base, const char* material) {
         // Faces of a box whose corners are base+0..7 (x fastest, then z, then y).
-        int q[6][4] = {{0, 1, 3, 2}, {4, 6, 7, 5}, {0, 4, 5, 1}, {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 5, 7, 3}};
+        int q[6][4] = {{0, 1, 3, 2}, {4, 6, 7, 5}, {0, 4, 5, 1},
+                       {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 5, 7, 3}};
         std::string f = std::string("usemtl ") + material + "\n";
         for (auto& face : q)
-            f += "f " + std::to_string(base + face[0]) + " " + std::to_string(base + face[1]) + " " +
-                 std::to_string(base + face[2]) + " " + std::to_string(base + face[3]) + "\n";
+            f += "f " + std::to_string(base + face[0]) + " " + std::to_string(base + face[1]) +
+                 " " + std::to_string(base + face[2]) + " " + std::to_string(base + face[3]) + "\n";
         return f;
     };
     obj += "o box\n" + quads(1, "white") + "o block\n" + quads(9, "grey");
     obj += "o light\nusemtl light\nf 17 19 20 18\n";
-    test::writeFile(dir / (name + ".mtl"), "newmtl white\nKd 0.7 0.7 0.7\nnewmtl grey\nKd 0.4 0.5 0.6\n"
-                                            "newmtl light\nKd 0 0 0\nKe 12 12 12\n");
+    test::writeFile(dir / (name + ".mtl"),
+                    "newmtl white\nKd 0.7 0.7 0.7\nnewmtl grey\nKd 0.4 0.5 0.6\n"
+                    "newmtl light\nKd 0 0 0\nKe 12 12 12\n");
     return test::writeFile(dir / (name + ".obj"), obj);
 }
 
@@ -229,7 +247,8 @@ TEST(FarAndScaled, SameImageWhenTranslatedOrScaled) {
     auto render = [&](double scale, Vec3d shift, const std::string& name) {
         Scene s = loadScene(writeBoxObj(dir, name, scale, shift));
         // Inside the box, looking at the block: the camera scales and moves with the scene.
-        s.camera.position = Vec3(Vec3d(0.75 * scale, 0.75 * scale, 0.875 * scale) + shift - s.origin);
+        s.camera.position =
+            Vec3(Vec3d(0.75 * scale, 0.75 * scale, 0.875 * scale) + shift - s.origin);
         s.camera.forward = normalize(Vec3(-0.5f, -0.3f, -1));
         s.camera.hFovDeg = s.camera.vFovDeg = 70;
         s.camera.nearClip = float(1e-4 * scale);
@@ -241,33 +260,41 @@ TEST(FarAndScaled, SameImageWhenTranslatedOrScaled) {
         Vec3d shift;
         const char* name;
     };
-    for (const Case& c : {Case{1, Vec3d(1e3, -1e3, 1e3), "moved_1e3"}, Case{1, Vec3d(-1e5, 1e5, 1e5), "moved_1e5"},
-                          Case{1, Vec3d(1e6, 1e6, -1e6), "moved_1e6"}, Case{1e-3, Vec3d(0.0), "scaled_1e-3"},
-                          Case{1e3, Vec3d(0.0), "scaled_1e3"}}) {
+    for (const Case& c :
+         {Case{1, Vec3d(1e3, -1e3, 1e3), "moved_1e3"}, Case{1, Vec3d(-1e5, 1e5, 1e5), "moved_1e5"},
+          Case{1, Vec3d(1e6, 1e6, -1e6), "moved_1e6"}, Case{1e-3, Vec3d(0.0), "scaled_1e-3"},
+          Case{1e3, Vec3d(0.0), "scaled_1e3"}}) {
         Film f = render(c.scale, c.shift, c.name);
         int mismatched = 0, blocks = 0;
         for (int by = 0; by < 18; by += 6)
             for (int bx = 0; bx < 24; bx += 6) {
-                Estimate a = blockEstimate(reference, bx, by, bx + 6, by + 6), b = blockEstimate(f, bx, by, bx + 6, by + 6);
+                Estimate a = blockEstimate(reference, bx, by, bx + 6, by + 6),
+                         b = blockEstimate(f, bx, by, bx + 6, by + 6);
                 ++blocks;
-                mismatched += std::abs(a.mean - b.mean) > 5 * std::sqrt(a.se * a.se + b.se * b.se) + 1e-6;
+                mismatched +=
+                    std::abs(a.mean - b.mean) > 5 * std::sqrt(a.se * a.se + b.se * b.se) + 1e-6;
             }
         EXPECT_EQ(mismatched, 0) << c.name << " (" << blocks << " blocks)";
         // No acne, no holes: nothing in the closed, lit box renders black.
         for (int y = 0; y < 18; ++y)
-            for (int x = 0; x < 24; ++x) ASSERT_GT(f.pixel(x, y).x, 0.0f) << c.name << " " << x << "," << y;
+            for (int x = 0; x < 24; ++x)
+                ASSERT_GT(f.pixel(x, y).x, 0.0f) << c.name << " " << x << "," << y;
     }
 }
 
-// --- Bent shading normals and thin walls -----------------------------------------------------------
+// --- Bent shading normals and thin walls
+// -----------------------------------------------------------
 
 Scene thinWallScene(float bendDegrees) {
-    // A one-sided-looking wall (a single quad) at z = 0, a light behind it, the camera in front of it.
+    // A one-sided-looking wall (a single quad) at z = 0, a light behind it, the camera in front of
+    // it.
     TriangleMesh wall = test::gridMesh(4, 4, 0.5f);
-    for (size_t v = 0; v < wall.vertexCount(); ++v) wall.positions[3 * v] -= 1, wall.positions[3 * v + 1] -= 1;
+    for (size_t v = 0; v < wall.vertexCount(); ++v)
+        wall.positions[3 * v] -= 1, wall.positions[3 * v + 1] -= 1;
     float b = radians(bendDegrees);
     for (size_t v = 0; v < wall.vertexCount(); ++v)  // shading normals leaning hard, alternately
-        wall.normals.insert(wall.normals.end(), {std::sin(b) * (v % 2 ? 1.0f : -1.0f), 0.0f, std::cos(b)});
+        wall.normals.insert(wall.normals.end(),
+                            {std::sin(b) * (v % 2 ? 1.0f : -1.0f), 0.0f, std::cos(b)});
     Scene s = test::sceneWith(wall);
     Light light;
     light.kind = LightKind::Point;
@@ -289,7 +316,8 @@ TEST(ShadingNormals, NoLightLeaksThroughAThinWallWhateverTheBend) {
         Scene s = thinWallScene(bend);
         Film f = renderScene(s, 16, 16, 16);
         for (int y = 0; y < 16; ++y)
-            for (int x = 0; x < 16; ++x) ASSERT_EQ(f.pixel(x, y), Color(0.0f)) << "bend " << bend << " at " << x << "," << y;
+            for (int x = 0; x < 16; ++x)
+                ASSERT_EQ(f.pixel(x, y), Color(0.0f)) << "bend " << bend << " at " << x << "," << y;
     }
 }
 
@@ -298,7 +326,8 @@ TEST(ShadingNormals, NoBlackSpotsOnALitFloorWithBentNormals) {
     // The grid lies in z = 0 facing +z; lean its shading normals by up to 75 degrees.
     for (size_t v = 0; v < floor.vertexCount(); ++v) {
         float a = radians(75.0f) * (float((v * 7) % 5) / 4.0f), phi = float(v) * 2.1f;
-        floor.normals.insert(floor.normals.end(), {std::sin(a) * std::cos(phi), std::sin(a) * std::sin(phi), std::cos(a)});
+        floor.normals.insert(floor.normals.end(), {std::sin(a) * std::cos(phi),
+                                                   std::sin(a) * std::sin(phi), std::cos(a)});
     }
     Scene s = test::sceneWith(floor);
     Light env;
@@ -313,14 +342,15 @@ TEST(ShadingNormals, NoBlackSpotsOnALitFloorWithBentNormals) {
         for (int x = 0; x < 20; ++x) ASSERT_GT(luminance(f.pixel(x, y)), 0.0f) << x << "," << y;
 }
 
-// --- Degenerate geometry ---------------------------------------------------------------------------
+// --- Degenerate geometry
+// ---------------------------------------------------------------------------
 
 TEST(Degenerate, ZeroAreaSliverAndParallelCasesStayFinite) {
     TriangleMesh m;
-    m.positions = {0, 0, 0, 1, 0, 0, 0, 1, 0,           // regular
-                   2, 0, 0, 3, 0, 0, 4, 0, 0,           // zero area (collinear)
-                   5, 5, 5, 5, 5, 5, 5, 5, 5,           // zero area (a point)
-                   0, 3, 0, 10, 3, 0, 0, 3.000001f, 0}; // sliver
+    m.positions = {0, 0, 0, 1,  0, 0, 0, 1,         0,   // regular
+                   2, 0, 0, 3,  0, 0, 4, 0,         0,   // zero area (collinear)
+                   5, 5, 5, 5,  5, 5, 5, 5,         5,   // zero area (a point)
+                   0, 3, 0, 10, 3, 0, 0, 3.000001f, 0};  // sliver
     m.indices = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11};
     m.materialIds = {0};
     m.finalizePadding();
@@ -332,7 +362,8 @@ TEST(Degenerate, ZeroAreaSliverAndParallelCasesStayFinite) {
         Sampler r(4, uint64_t(i), 0);
         // Rays grazing and parallel to the z = 0 plane, and rays straight at the degenerate ones.
         Vec3 o(r.next1D() * 12 - 1, r.next1D() * 8 - 1, i % 2 ? 0.0f : r.next1D() - 0.5f);
-        Vec3 d = i % 2 ? Vec3(r.next1D() - 0.5f, r.next1D() - 0.5f, 0) : Vec3(r.next1D() - 0.5f, r.next1D() - 0.5f, -o.z);
+        Vec3 d = i % 2 ? Vec3(r.next1D() - 0.5f, r.next1D() - 0.5f, 0)
+                       : Vec3(r.next1D() - 0.5f, r.next1D() - 0.5f, -o.z);
         Ray ray{o, 0, d, kInfinity};
         for (const Accelerator* a : {embree.get(), reference.get()}) {
             Hit h;
@@ -340,7 +371,8 @@ TEST(Degenerate, ZeroAreaSliverAndParallelCasesStayFinite) {
             ++hits;
             ASSERT_TRUE(std::isfinite(h.t) && std::isfinite(h.u) && std::isfinite(h.v));
             SurfaceInteraction si = makeInteraction(s, ray, h);
-            ASSERT_TRUE(isFinite(si.p) && isFinite(si.ng) && isFinite(si.ns) && isFinite(si.pError));
+            ASSERT_TRUE(isFinite(si.p) && isFinite(si.ng) && isFinite(si.ns) &&
+                        isFinite(si.pError));
             Ray next = spawnRay(si, si.ng);
             ASSERT_TRUE(isFinite(next.origin));
         }
@@ -353,7 +385,8 @@ TEST(Degenerate, ZeroAreaSliverAndParallelCasesStayFinite) {
 
 TEST(HardCases, AcceleratorsAgreeOnFarAwayAndTinyScenes) {
     auto dir = test::scratchDir();
-    for (auto [scale, shift] : {std::pair{1.0, Vec3d(1e6, 1e6, -1e6)}, std::pair{1e-3, Vec3d(0.0)}, std::pair{1e3, Vec3d(0.0)}}) {
+    for (auto [scale, shift] : {std::pair{1.0, Vec3d(1e6, 1e6, -1e6)}, std::pair{1e-3, Vec3d(0.0)},
+                                std::pair{1e3, Vec3d(0.0)}}) {
         Scene s = loadScene(writeBoxObj(dir, "box", scale, shift));
         auto embree = makeEmbreeAccelerator(s);
         auto reference = makeReferenceAccelerator(s);
@@ -368,7 +401,9 @@ TEST(Degenerate, DuplicateTrianglesLowestIndexWinsInBothAccelerators) {
     std::vector<uint32_t> base = grid.indices;
     for (int copy = 1; copy < 3; ++copy)
         for (size_t t = 0; t < base.size(); t += 3)
-            grid.indices.insert(grid.indices.end(), {base[t + size_t(copy)], base[t + (size_t(copy) + 1) % 3], base[t + (size_t(copy) + 2) % 3]});
+            grid.indices.insert(grid.indices.end(),
+                                {base[t + size_t(copy)], base[t + (size_t(copy) + 1) % 3],
+                                 base[t + (size_t(copy) + 2) % 3]});
     Scene s = test::sceneWith(grid);
     s.duplicateTriangles = countDuplicateTriangles(s);
     uint32_t n = uint32_t(base.size() / 3);
@@ -381,7 +416,8 @@ TEST(Degenerate, DuplicateTrianglesLowestIndexWinsInBothAccelerators) {
         int hits = 0;
         for (int i = 0; i < 5000; ++i) {
             Sampler r(6, uint64_t(i), 0);
-            Ray ray{Vec3(r.next1D() * 12, r.next1D() * 12, 2), 0, Vec3(r.next1D() - 0.5f, r.next1D() - 0.5f, -1), kInfinity};
+            Ray ray{Vec3(r.next1D() * 12, r.next1D() * 12, 2), 0,
+                    Vec3(r.next1D() - 0.5f, r.next1D() - 0.5f, -1), kInfinity};
             Hit a, b;
             bool ha = embree->intersect(ray, a), hb = reference->intersect(ray, b);
             ASSERT_EQ(ha, hb);
@@ -395,7 +431,8 @@ TEST(Degenerate, DuplicateTrianglesLowestIndexWinsInBothAccelerators) {
     }
 }
 
-// --- Deep paths, extreme radiance, non-finite samples ----------------------------------------------
+// --- Deep paths, extreme radiance, non-finite samples
+// ----------------------------------------------
 
 TEST(DeepPaths, ThousandBouncesWithoutRouletteStayFinite) {
     TriangleMesh shell = test::sphereMesh(12, 24);
@@ -410,7 +447,8 @@ TEST(DeepPaths, ThousandBouncesWithoutRouletteStayFinite) {
     opt.roulette = Roulette::Off;
     Film f = renderScene(s, 4, 4, 16, opt);
     Estimate e = blockEstimate(f, 0, 0, 4, 4);
-    EXPECT_NEAR(e.mean, 2.0, 5 * e.se + 1e-4);  // 1 / (1 - 0.5); 0.5^1000 of the tail is far below float
+    EXPECT_NEAR(e.mean, 2.0,
+                5 * e.se + 1e-4);  // 1 / (1 - 0.5); 0.5^1000 of the tail is far below float
     for (int y = 0; y < 4; ++y)
         for (int x = 0; x < 4; ++x) EXPECT_EQ(f.samples(x, y), 16u);
 }
@@ -440,12 +478,13 @@ TEST(ExtremeValues, TinyAndHugeRadianceAndZeroAreaLights) {
 
 // An integrator that returns NaN for one known sample: the film drops it and the loop reports it.
 class PoisonedIntegrator final : public Integrator {
-public:
+  public:
     using Integrator::Integrator;
     using Integrator::Li;
     void Li(const Ray& ray, Sampler& sampler, RayCounter& counter, SampleRecord& r) const override {
         r.L = Color(0.5f);
-        if (std::abs(ray.dir.x) < 0.02f && std::abs(ray.dir.y) < 0.02f) r.L = Color(std::nanf(""), 0, 0);
+        if (std::abs(ray.dir.x) < 0.02f && std::abs(ray.dir.y) < 0.02f)
+            r.L = Color(std::nanf(""), 0, 0);
     }
     const char* name() const override { return "poisoned"; }
 };

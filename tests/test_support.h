@@ -3,10 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <cmath>
 
 #include "scene/scene.h"
 
@@ -58,7 +58,8 @@ inline TriangleMesh gridMesh(int w, int h, float cell = 1.0f) {
     TriangleMesh m;
     m.name = "grid";
     for (int y = 0; y <= h; ++y)
-        for (int x = 0; x <= w; ++x) m.positions.insert(m.positions.end(), {x * cell, y * cell, 0.0f});
+        for (int x = 0; x <= w; ++x)
+            m.positions.insert(m.positions.end(), {x * cell, y * cell, 0.0f});
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
             uint32_t a = uint32_t(y * (w + 1) + x), b = a + 1, c = a + uint32_t(w) + 1, d = c + 1;
@@ -76,11 +77,13 @@ inline TriangleMesh sphereMesh(int rings, int segments) {
     for (int r = 0; r <= rings; ++r)
         for (int s = 0; s < segments; ++s) {
             float th = kPi * r / rings, ph = 2 * kPi * s / segments;
-            m.positions.insert(m.positions.end(), {std::sin(th) * std::cos(ph), std::cos(th), std::sin(th) * std::sin(ph)});
+            m.positions.insert(m.positions.end(), {std::sin(th) * std::cos(ph), std::cos(th),
+                                                   std::sin(th) * std::sin(ph)});
         }
     for (int r = 0; r < rings; ++r)
         for (int s = 0; s < segments; ++s) {
-            uint32_t a = uint32_t(r * segments + s), b = uint32_t(r * segments + (s + 1) % segments);
+            uint32_t a = uint32_t(r * segments + s),
+                     b = uint32_t(r * segments + (s + 1) % segments);
             uint32_t c = a + uint32_t(segments), d = b + uint32_t(segments);
             if (r > 0) m.indices.insert(m.indices.end(), {a, c, b});
             if (r < rings - 1) m.indices.insert(m.indices.end(), {b, c, d});

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cstdio>
 
 #include "integrators/render_plan.h"
@@ -37,6 +38,13 @@ int runInfo(const std::vector<std::string>& args) {
     }
     std::fputs(sceneInfoText(scene).c_str(), stdout);
     auto accel = makeEmbreeAccelerator(scene);
+    uint64_t tris = std::max<uint64_t>(1, scene.uniqueTriangles());
+    std::printf(
+        "embree      %llu bytes of BVH (%.1f bytes/triangle), built in %.3f s; scene model + BVH: "
+        "%.1f bytes/triangle\n",
+        (unsigned long long)accel->stats().memoryBytes,
+        double(accel->stats().memoryBytes) / double(tris), accel->stats().buildSeconds,
+        double(accel->stats().memoryBytes + summarize(scene).geometryBytes) / double(tris));
     RenderPlan plan = planFor(scene, *accel, AovRequest::defaults());
     std::printf("render plan (%s)\n%s", plan.compact().c_str(), plan.text().c_str());
     return 0;

@@ -1,3 +1,5 @@
+#include <sys/resource.h>
+
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -350,6 +352,9 @@ int runRender(const std::vector<std::string>& args) {
                  heatPath.c_str(), (unsigned long long)stats.samples,
                  (unsigned long long)stats.rays, mrays, loadTime, buildTime, stats.seconds,
                  writeTime);
+    struct rusage usage {};
+    getrusage(RUSAGE_SELF, &usage);
+    std::fprintf(stderr, "kiln: peak resident memory %.1f MiB\n", double(usage.ru_maxrss) / 1024.0);
     if (stats.nonFiniteSamples) {
         std::fprintf(
             stderr,

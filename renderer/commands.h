@@ -11,6 +11,7 @@ int runRender(const std::vector<std::string>& args);
 int runInfo(const std::vector<std::string>& args);
 int runCrosscheck(const std::vector<std::string>& args);
 int runBench(const std::vector<std::string>& args);
+int runTools(const std::vector<std::string>& args);            // kiln tools subdivide
 int runAccuracyCommand(const std::vector<std::string>& args);  // kiln bench accuracy
 
 }  // namespace kiln

@@ -21,6 +21,7 @@ constexpr const char* kUsage =
     "  bench accel       build time and rays/s of both accelerators\n"
     "  bench plan        render time of the plan's specialised path against the general one\n"
     "  bench accuracy    error against time over spp, strategies, depth, adaptive sampling\n"
+    "  tools subdivide   1-to-4 midpoint subdivision of a mesh, written as binary PLY\n"
     "\n"
     "'kiln <command> --help' lists each command's options.\n";
 
@@ -43,6 +44,7 @@ int main(int argc, char** argv) {
         if (command == "info") return kiln::runInfo(args);
         if (command == "crosscheck") return kiln::runCrosscheck(args);
         if (command == "bench") return kiln::runBench(args);
+        if (command == "tools") return kiln::runTools(args);
         std::fprintf(stderr, "kiln: unknown command '%s'\n%s", command.c_str(), kUsage);
         return 2;
     } catch (const kiln::UsageError& e) {

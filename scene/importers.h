@@ -12,6 +12,19 @@ namespace kiln {
 // from the CGL pass and the course's up-axis convention replaces Assimp's.
 void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scene& scene);
 
+// Any supported file into `scene` (appending), without validation or completion (lights, framing).
+void importFile(const std::string& path, Scene& scene);
+
+// kiln's own scene description (.kiln, XML): includes other scene files, places meshes by path with
+// a transform or a fit to a box, instances a mesh on a grid, and sets materials, lights and the
+// camera.
+void readKilnScene(const std::string& path, Scene& scene);
+
+// Memory the loader may use: MemAvailable, or $KILN_MEMORY_LIMIT (bytes) when set.
+uint64_t availableMemoryBytes();
+// Throws SceneError, before any allocation, when a mesh of these counts would not fit.
+void checkMemoryFor(const std::string& path, uint64_t vertices, uint64_t triangles);
+
 // Direct binary/ASCII PLY reader: face lists and tristrips (which Assimp 5.2 reads as one
 // triangle).
 void readPly(const std::string& path, Scene& scene);

@@ -108,10 +108,7 @@ void recenterScene(Scene& scene) {
     scene.origin = Vec3d(c);
 }
 
-Scene loadScene(const std::string& path, const LoadOptions& options) {
-    auto start = std::chrono::steady_clock::now();
-    Scene scene;
-    scene.sourcePath = path;
+void importFile(const std::string& path, Scene& scene) {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) throw SceneError(path, "no such file");
     if (std::filesystem::is_directory(path, ec))
@@ -122,6 +119,8 @@ Scene loadScene(const std::string& path, const LoadOptions& options) {
     std::string ext = lowerExtension(path);
     if (ext == ".ply") {
         readPly(path, scene);
+    } else if (ext == ".kiln") {
+        readKilnScene(path, scene);
     } else if (ext == ".dae") {
         ColladaExtras extras = parseColladaExtras(path);
         importWithAssimp(path, &extras, scene);
@@ -130,6 +129,14 @@ Scene loadScene(const std::string& path, const LoadOptions& options) {
     } else {
         importWithAssimp(path, nullptr, scene);
     }
+}
+
+Scene loadScene(const std::string& path, const LoadOptions& options) {
+    auto start = std::chrono::steady_clock::now();
+    Scene scene;
+    scene.sourcePath = path;
+    importFile(path, scene);
+    std::string ext = lowerExtension(path);
     validateScene(scene);
     recenterScene(scene);
     scene.duplicateTriangles = countDuplicateTriangles(scene);

@@ -1,0 +1,66 @@
+#include "scene/mesh_tools.h"
+
+#include <cstdio>
+#include <cstring>
+#include <stdexcept>
+#include <unordered_map>
+
+namespace kiln {
+
+TriangleMesh subdivideMidpoint(const TriangleMesh& mesh) {
+    TriangleMesh out;
+    out.name = mesh.name;
+    out.materialIds = mesh.materialIds.size() == 1 ? mesh.materialIds : std::vector<uint32_t>{};
+    size_t nv = mesh.vertexCount();
+    out.positions.assign(mesh.positions.begin(), mesh.positions.begin() + long(3 * nv));
+    out.positions.reserve(3 * (nv + 2 * mesh.triangleCount()) + 1);
+    out.indices.reserve(4 * mesh.indices.size());
+    std::unordered_map<uint64_t, uint32_t> midpoints;
+    midpoints.reserve(mesh.triangleCount() * 3 / 2 + 1);
+    auto midpoint = [&](uint32_t a, uint32_t b) {
+        uint64_t key = a < b ? (uint64_t(a) << 32 | b) : (uint64_t(b) << 32 | a);
+        auto [it, inserted] = midpoints.try_emplace(key, uint32_t(out.positions.size() / 3));
+        if (inserted) {
+            Vec3 m = (mesh.vertex(a) + mesh.vertex(b)) * 0.5f;
+            out.positions.insert(out.positions.end(), {m.x, m.y, m.z});
+        }
+        return it->second;
+    };
+    for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+        uint32_t a = mesh.indices[3 * t], b = mesh.indices[3 * t + 1], c = mesh.indices[3 * t + 2];
+        uint32_t ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
+        out.indices.insert(out.indices.end(), {a, ab, ca, ab, b, bc, ca, bc, c, ab, bc, ca});
+        if (out.materialIds.empty())
+            out.materialIds.insert(out.materialIds.end(), 4, mesh.materialOf(t));
+    }
+    out.finalizePadding();
+    return out;
+}
+
+void writeBinaryPly(const std::string& path, const TriangleMesh& mesh) {
+    std::string tmp = path + ".tmp";
+    FILE* f = std::fopen(tmp.c_str(), "wb");
+    if (!f) throw std::runtime_error(path + ": cannot write");
+    std::fprintf(f,
+                 "ply\nformat binary_little_endian 1.0\ncomment written by kiln\nelement vertex "
+                 "%zu\nproperty float x\n"
+                 "property float y\nproperty float z\nelement face %zu\nproperty list uchar int "
+                 "vertex_indices\n"
+                 "end_header\n",
+                 mesh.vertexCount(), mesh.triangleCount());
+    bool ok = std::fwrite(mesh.positions.data(), sizeof(float), 3 * mesh.vertexCount(), f) ==
+              3 * mesh.vertexCount();
+    std::vector<unsigned char> face(13);
+    face[0] = 3;
+    for (size_t t = 0; t < mesh.triangleCount() && ok; ++t) {
+        std::memcpy(&face[1], &mesh.indices[3 * t], 12);
+        ok = std::fwrite(face.data(), 1, 13, f) == 13;
+    }
+    ok = std::fclose(f) == 0 && ok;
+    if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0) {
+        std::remove(tmp.c_str());
+        throw std::runtime_error(path + ": write failed (disk full?)");
+    }
+}
+
+}  // namespace kiln

@@ -1,6 +1,7 @@
 // kiln bench accel: build time and rays/s of both accelerators, 1 and all threads, with ratios
 // measured in the same run (the machine is shared and noisy; absolute figures drift, ratios much
 // less).
+#include <sys/resource.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
@@ -15,6 +16,7 @@
 #include "renderer/ray_sets.h"
 #include "renderer/reference_bvh.h"
 #include "renderer/render_loop.h"
+#include "scene/scene_info.h"
 #include "scene/scene_loader.h"
 
 namespace kiln {
@@ -122,7 +124,50 @@ int benchPlan(const std::vector<std::string>& args) {
     return 0;
 }
 
+// kiln bench scale: what big scenes cost. One row per scene; run one scene per process for a
+// meaningful peak-memory column (tools/scale_report.sh does).
+int benchScale(const std::vector<std::string>& args) {
+    ArgParser parser("bench scale", "SCENE...");
+    std::vector<std::string> pos = parser.parse(args);
+    if (parser.helpRequested()) {
+        std::fputs(parser.helpText().c_str(), stdout);
+        return 0;
+    }
+    if (pos.empty()) throw UsageError("needs at least one scene file");
+    std::printf("%-28s %12s %12s %8s %8s %9s %9s %9s %9s\n", "scene", "triangles", "stored",
+                "load s", "build s", "bytes/tri", "prim Mr/s", "path Mr/s", "peak GiB");
+    for (const std::string& path : pos) {
+        double t0 = now();
+        Scene scene = loadScene(path);
+        double load = now() - t0;
+        auto accel = makeEmbreeAccelerator(scene);
+        uint64_t stored = std::max<uint64_t>(1, scene.uniqueTriangles());
+        double bytes =
+            double(accel->stats().memoryBytes + summarize(scene).geometryBytes) / double(stored);
+        std::vector<Ray> primary = makeCoherentCameraRays(scene, 800, 600, 400000);
+        double prim =
+            measure(*accel, primary, Mode::Packets, int(std::thread::hardware_concurrency()), 3);
+        PathIntegrator integrator(scene, *accel, PathOptions{});
+        RenderSettings settings;
+        settings.width = 160, settings.height = 120, settings.spp = 8, settings.progress = false;
+        Film film(160, 120);
+        RenderStats stats = renderImage(scene, integrator, settings, film);
+        struct rusage usage {};
+        getrusage(RUSAGE_SELF, &usage);
+        std::string name = path.substr(path.find_last_of('/') + 1);
+        std::printf("%-28s %12llu %12llu %8.2f %8.2f %9.1f %9.2f %9.2f %9.2f\n", name.c_str(),
+                    (unsigned long long)scene.instancedTriangles(),
+                    (unsigned long long)scene.uniqueTriangles(), load, accel->stats().buildSeconds,
+                    bytes, prim, double(stats.rays) / stats.seconds * 1e-6,
+                    double(usage.ru_maxrss) / (1024.0 * 1024.0));
+        std::fflush(stdout);
+    }
+    return 0;
+}
+
 int runBench(const std::vector<std::string>& args) {
+    if (!args.empty() && args[0] == "scale")
+        return benchScale(std::vector<std::string>(args.begin() + 1, args.end()));
     if (!args.empty() && args[0] == "plan")
         return benchPlan(std::vector<std::string>(args.begin() + 1, args.end()));
     if (!args.empty() && args[0] == "accuracy")

@@ -311,6 +311,17 @@ void readPly(const std::string& path, Scene& scene) {
             mesh.positions.resize(3 * e.count + 1);
             if (normals) mesh.normals.resize(3 * e.count);
             if (uvs) mesh.uvs.resize(2 * e.count);
+            // Fast path, the common binary layout: little-endian float x y z and nothing else.
+            bool packedXyz = format == Format::BinaryLE &&
+                             std::endian::native == std::endian::little && e.props.size() == 3 &&
+                             ix == 0 && iy == 1 && iz == 2;
+            for (const Property& p : e.props) packedXyz &= !p.isList && p.type == PlyType::Float32;
+            if (packedXyz) {
+                const char* src = cur.position();
+                cur.skip(size_t(e.count) * 12);
+                std::memcpy(mesh.positions.data(), src, size_t(e.count) * 12);
+                continue;
+            }
             std::vector<double> row(e.props.size());
             for (uint64_t v = 0; v < e.count; ++v) {
                 for (size_t i = 0; i < e.props.size(); ++i) {
@@ -338,7 +349,35 @@ void readPly(const std::string& path, Scene& scene) {
             bool strips = e.name == "tristrips";
             std::vector<uint32_t> poly;
             if (!strips) mesh.indices.reserve(mesh.indices.size() + 3 * e.count);
-            for (uint64_t f = 0; f < e.count; ++f) {
+            // Fast path: binary little-endian faces of one uchar-counted int list, read as 13-byte
+            // triangle records straight from the mapped file (other polygons still take the general
+            // path below).
+            bool packedFaces =
+                !strips && format == Format::BinaryLE &&
+                std::endian::native == std::endian::little && e.props.size() == 1 &&
+                e.props[0].isList && e.props[0].countType == PlyType::UInt8 &&
+                (e.props[0].type == PlyType::Int32 || e.props[0].type == PlyType::UInt32) &&
+                (e.props[0].name == "vertex_indices" || e.props[0].name == "vertex_index");
+            uint64_t f0 = 0;
+            if (packedFaces) {
+                for (; f0 < e.count; ++f0) {
+                    const unsigned char* rec =
+                        reinterpret_cast<const unsigned char*>(cur.position());
+                    if (size_t(end - cur.position()) < 13 || rec[0] != 3)
+                        break;  // not a triangle: general path
+                    uint32_t idx[3];
+                    std::memcpy(idx, rec + 1, 12);
+                    for (uint32_t i : idx)
+                        if (i >= vertexCount)
+                            throw SceneError(path,
+                                             "face " + std::to_string(f0) + " has vertex index " +
+                                                 std::to_string(int32_t(i)) + " out of range (" +
+                                                 std::to_string(vertexCount) + " vertices)");
+                    mesh.indices.insert(mesh.indices.end(), idx, idx + 3);
+                    cur.skip(13);
+                }
+            }
+            for (uint64_t f = f0; f < e.count; ++f) {
                 for (const Property& p : e.props) {
                     if (!p.isList) {
                         cur.read(p.type);

@@ -120,8 +120,8 @@ struct Scene {
     // Everything above is stored relative to this point (world = stored + origin): rendering near
     // the origin keeps float error bounds small for scenes placed far away (see recenterScene).
     Vec3d origin{0.0};
-    uint64_t duplicateTriangles =
-        0;  // exact repeats of another triangle (see countDuplicateTriangles)
+    uint64_t duplicateTriangles = 0;  // exact repeats of another triangle (countDuplicateTriangles)
+    bool duplicatesChecked = true;    // false above the loader's size limit for that check
 
     std::vector<bool> prototypeMask() const;  // meshes drawn only through instances
     Bounds3 worldBounds() const;

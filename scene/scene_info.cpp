@@ -70,6 +70,12 @@ std::string sceneInfoText(const Scene& scene) {
     os << "memory      " << s.geometryBytes << " bytes of geometry ("
        << num(s.uniqueTriangles ? double(s.geometryBytes) / double(s.uniqueTriangles) : 0.0)
        << " bytes/triangle)\n";
+    if (!scene.duplicatesChecked)
+        os << "duplicates  not checked (more than 20M triangles): ties between exact duplicates "
+              "are not resolved\n";
+    else if (scene.duplicateTriangles)
+        os << "duplicates  " << scene.duplicateTriangles
+           << " triangles repeat another; the lowest index wins\n";
     os << "bounds      " << vec(b.lo) << " .. " << vec(b.hi) << "\n";
     os << "materials\n";
     std::set<uint32_t> used;

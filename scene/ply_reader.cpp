@@ -359,8 +359,16 @@ void readPly(const std::string& path, Scene& scene) {
                 (e.props[0].type == PlyType::Int32 || e.props[0].type == PlyType::UInt32) &&
                 (e.props[0].name == "vertex_indices" || e.props[0].name == "vertex_index");
             uint64_t f0 = 0;
+            // Long loads say how far they are (every quarter), so a 100M-triangle file is not a silent wait.
+            bool report = e.count >= 10'000'000;
+            uint64_t nextReport = e.count / 4;
             if (packedFaces) {
                 for (; f0 < e.count; ++f0) {
+                    if (report && f0 == nextReport) {
+                        std::fprintf(stderr, "kiln: loading %s: %d%% of %llu faces\n", path.c_str(),
+                                     int(100 * f0 / e.count), (unsigned long long)e.count);
+                        nextReport += e.count / 4;
+                    }
                     const unsigned char* rec =
                         reinterpret_cast<const unsigned char*>(cur.position());
                     if (size_t(end - cur.position()) < 13 || rec[0] != 3)

@@ -45,10 +45,8 @@ ReferenceAccelerator::ReferenceAccelerator(const Scene& scene, const ReferenceBv
         b.extend(sp.center + Vec3(sp.radius + pad));
         boxes.push_back(b);
     }
-    worldToObject_.resize(scene.instances.size());
     for (uint32_t j = 0; j < scene.instances.size(); ++j) {
         const Instance& inst = scene.instances[j];
-        worldToObject_[j] = inst.worldToObject;
         const Bounds3& local = prototypeBvh_[inst.mesh].bounds();
         if (local.empty()) continue;
         Bounds3 b;
@@ -110,7 +108,7 @@ bool ReferenceAccelerator::trace(Ray& ray, Hit* hit, TraversalCounters* counters
                 }
                 case ItemKind::Instance: {
                     // Same parametrisation in object space: transform origin and direction, keep t.
-                    const Mat4& w2o = worldToObject_[item.a];
+                    const Mat4& w2o = scene_.instances[item.a].worldToObject;
                     uint32_t mesh = scene_.instances[item.a].mesh;
                     Ray local{w2o.point(r.origin), r.tMin, w2o.vector(r.dir), r.tMax};
                     bool any = prototypeBvh_[mesh].traverse<AnyHit>(

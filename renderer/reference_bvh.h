@@ -33,7 +33,6 @@ class ReferenceAccelerator final : public Accelerator {
     std::vector<Item> items_;
     Bvh top_;
     std::vector<Bvh> prototypeBvh_;  // per mesh; empty unless the mesh is instanced
-    std::vector<Mat4> worldToObject_;
     AcceleratorStats stats_;
 };
 

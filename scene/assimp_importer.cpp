@@ -96,8 +96,10 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
         if (!(am->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) || placements[mi].empty()) continue;
         bool bake = placements[mi].size() == 1;
         const Mat4& xf = placements[mi][0];
-        bool flip =
-            bake && xf.determinant3() < 0;  // keep winding consistent with the geometric normal
+        // Keep the winding consistent with the geometric normal; invert once per mesh for the
+        // normals.
+        bool flip = bake && xf.determinant3() < 0;
+        Mat4 inverse = bake ? xf.inverse() : Mat4::identity();
         TriangleMesh mesh;
         mesh.name = am->mName.C_Str();
         mesh.positions.reserve(3 * am->mNumVertices + 1);
@@ -110,7 +112,7 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
             mesh.normals.reserve(3 * am->mNumVertices);
             for (unsigned v = 0; v < am->mNumVertices; ++v) {
                 Vec3 n(am->mNormals[v].x, am->mNormals[v].y, am->mNormals[v].z);
-                if (bake) n = xf.normal(n);
+                if (bake) n = transformNormal(inverse, n);
                 float len = length(n);
                 if (len > 0) n = n / len;
                 mesh.normals.insert(mesh.normals.end(), {n.x, n.y, n.z});

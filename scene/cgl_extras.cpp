@@ -217,9 +217,6 @@ class Parser {
                         "' has a <matrix> of " + std::to_string(v.size()) +
                         " numbers; missing ones read as 0, as the CS184 program does");
                     v.resize(16, 0.0);
-                    std::ostringstream os;
-                    os.precision(17);
-                    for (size_t i = 0; i < v.size(); ++i) os << (i ? " " : "") << v[i];
                     // Assimp refuses the short matrix; give it an identity so the rest imports.
                     t.text().set("1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1");
                     patched_ = true;

@@ -91,6 +91,7 @@ void merge(Scene& dst, Scene& src, const Mat4& xf, int override, bool asPrototyp
     std::vector<bool> proto = src.prototypeMask();
     uint32_t meshBase = uint32_t(dst.meshes.size());
     bool flip = xf.determinant3() < 0;
+    Mat4 inverse = xf.inverse();  // once: normals transform by its transpose
     for (size_t i = 0; i < src.meshes.size(); ++i) {
         TriangleMesh m = std::move(src.meshes[i]);
         for (uint32_t& id : m.materialIds) id = override >= 0 ? uint32_t(override) : id + base;
@@ -101,8 +102,8 @@ void merge(Scene& dst, Scene& src, const Mat4& xf, int override, bool asPrototyp
                                 m.positions[3 * v + 2] = p.z;
             }
             for (size_t v = 0; v + 2 < m.normals.size(); v += 3) {
-                Vec3 n =
-                    normalize(xf.normal(Vec3(m.normals[v], m.normals[v + 1], m.normals[v + 2])));
+                Vec3 n = normalize(transformNormal(
+                    inverse, Vec3(m.normals[v], m.normals[v + 1], m.normals[v + 2])));
                 m.normals[v] = n.x, m.normals[v + 1] = n.y, m.normals[v + 2] = n.z;
             }
             if (flip)

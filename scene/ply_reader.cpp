@@ -147,6 +147,15 @@ class Cursor {
                 return 0;
         }
     }
+    // Reads past one value of a property, list or scalar.
+    void skipProperty(const Property& p) {
+        if (!p.isList) {
+            read(p.type);
+            return;
+        }
+        size_t n = size_t(read(p.countType));
+        for (size_t k = 0; k < n; ++k) read(p.type);
+    }
     const char* position() const { return p_; }
     void skip(size_t n) {
         if (size_t(end_ - p_) < n)
@@ -326,8 +335,7 @@ void readPly(const std::string& path, Scene& scene) {
             for (uint64_t v = 0; v < e.count; ++v) {
                 for (size_t i = 0; i < e.props.size(); ++i) {
                     if (e.props[i].isList) {
-                        size_t n = size_t(cur.read(e.props[i].countType));
-                        for (size_t k = 0; k < n; ++k) cur.read(e.props[i].type);
+                        cur.skipProperty(e.props[i]);
                         continue;
                     }
                     row[i] = cur.read(e.props[i].type);
@@ -359,7 +367,8 @@ void readPly(const std::string& path, Scene& scene) {
                 (e.props[0].type == PlyType::Int32 || e.props[0].type == PlyType::UInt32) &&
                 (e.props[0].name == "vertex_indices" || e.props[0].name == "vertex_index");
             uint64_t f0 = 0;
-            // Long loads say how far they are (every quarter), so a 100M-triangle file is not a silent wait.
+            // Long loads say how far they are (every quarter), so a 100M-triangle file is not a
+            // silent wait.
             bool report = e.count >= 10'000'000;
             uint64_t nextReport = e.count / 4;
             if (packedFaces) {
@@ -436,14 +445,7 @@ void readPly(const std::string& path, Scene& scene) {
         } else {
             // Unknown element: skip its rows.
             for (uint64_t r = 0; r < e.count; ++r)
-                for (const Property& p : e.props) {
-                    if (p.isList) {
-                        size_t n = size_t(cur.read(p.countType));
-                        for (size_t k = 0; k < n; ++k) cur.read(p.type);
-                    } else {
-                        cur.read(p.type);
-                    }
-                }
+                for (const Property& p : e.props) cur.skipProperty(p);
         }
     }
     if (mesh.positions.empty()) throw SceneError(path, "PLY has no vertex element");

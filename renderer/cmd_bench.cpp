@@ -16,6 +16,7 @@
 #include "renderer/ray_sets.h"
 #include "renderer/reference_bvh.h"
 #include "renderer/render_loop.h"
+#include "scene/importers.h"
 #include "scene/scene_info.h"
 #include "scene/scene_loader.h"
 
@@ -127,15 +128,19 @@ int benchPlan(const std::vector<std::string>& args) {
 // kiln bench scale: what big scenes cost. One row per scene; run one scene per process for a
 // meaningful peak-memory column (tools/scale_report.sh does).
 int benchScale(const std::vector<std::string>& args) {
-    ArgParser parser("bench scale", "SCENE...");
+    ArgParser parser("bench scale", "SCENE... [--compare-assimp]");
+    bool compareAssimp = false;
+    parser.flag("compare-assimp", "",
+                "also time Assimp's import of each OBJ/PLY file (the direct readers' baseline)",
+                compareAssimp);
     std::vector<std::string> pos = parser.parse(args);
     if (parser.helpRequested()) {
         std::fputs(parser.helpText().c_str(), stdout);
         return 0;
     }
     if (pos.empty()) throw UsageError("needs at least one scene file");
-    std::printf("%-28s %12s %12s %8s %8s %9s %9s %9s %9s\n", "scene", "triangles", "stored",
-                "load s", "build s", "bytes/tri", "prim Mr/s", "path Mr/s", "peak GiB");
+    std::printf("%-28s %12s %12s %8s %8s %9s %9s %9s %9s %9s\n", "scene", "triangles", "stored",
+                "load s", "build s", "bytes/tri", "prim 1", "prim pkt", "path Mr/s", "peak GiB");
     for (const std::string& path : pos) {
         double t0 = now();
         Scene scene = loadScene(path);
@@ -145,8 +150,10 @@ int benchScale(const std::vector<std::string>& args) {
         double bytes =
             double(accel->stats().memoryBytes + summarize(scene).geometryBytes) / double(stored);
         std::vector<Ray> primary = makeCoherentCameraRays(scene, 800, 600, 400000);
-        double prim =
-            measure(*accel, primary, Mode::Packets, int(std::thread::hardware_concurrency()), 3);
+        int threads = int(std::thread::hardware_concurrency());
+        // Camera rays one at a time (as the render loop traces them) and as 16-wide packets.
+        double primSingle = measure(*accel, primary, Mode::Single, threads, 3);
+        double primPackets = measure(*accel, primary, Mode::Packets, threads, 3);
         PathIntegrator integrator(scene, *accel, PathOptions{});
         RenderSettings settings;
         settings.width = 160, settings.height = 120, settings.spp = 8, settings.progress = false;
@@ -155,11 +162,19 @@ int benchScale(const std::vector<std::string>& args) {
         struct rusage usage {};
         getrusage(RUSAGE_SELF, &usage);
         std::string name = path.substr(path.find_last_of('/') + 1);
-        std::printf("%-28s %12llu %12llu %8.2f %8.2f %9.1f %9.2f %9.2f %9.2f\n", name.c_str(),
+        std::printf("%-28s %12llu %12llu %8.2f %8.2f %9.1f %9.2f %9.2f %9.2f %9.2f\n", name.c_str(),
                     (unsigned long long)scene.instancedTriangles(),
                     (unsigned long long)scene.uniqueTriangles(), load, accel->stats().buildSeconds,
-                    bytes, prim, double(stats.rays) / stats.seconds * 1e-6,
+                    bytes, primSingle, primPackets, double(stats.rays) / stats.seconds * 1e-6,
                     double(usage.ru_maxrss) / (1024.0 * 1024.0));
+        if (compareAssimp && path.find(".kiln") == std::string::npos) {
+            double a0 = now();
+            Scene viaAssimp;
+            importWithAssimp(path, nullptr, viaAssimp);
+            double assimp = now() - a0;
+            std::printf("%-28s Assimp import %.2f s, %.1fx the direct reader's load\n", "",
+                        assimp, assimp / load);
+        }
         std::fflush(stdout);
     }
     return 0;

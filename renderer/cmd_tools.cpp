@@ -12,9 +12,10 @@ namespace kiln {
 
 int runTools(const std::vector<std::string>& args) {
     if (args.empty() || args[0] != "subdivide")
-        throw UsageError("usage: kiln tools subdivide IN OUT.ply [--levels N]");
-    ArgParser parser("tools subdivide",
-                     "IN OUT.ply [--levels N]   (1-to-4 midpoint subdivision, binary PLY)");
+        throw UsageError("usage: kiln tools subdivide IN OUT.ply|OUT.obj [--levels N]");
+    ArgParser parser(
+        "tools subdivide",
+        "IN OUT.ply|OUT.obj [--levels N]   (1-to-4 midpoint subdivision; binary PLY or OBJ)");
     int levels = 1;
     parser.intOption("levels", "", "subdivision levels, each x4 triangles (default 1)", levels, 1,
                      8);
@@ -24,7 +25,8 @@ int runTools(const std::vector<std::string>& args) {
         std::fputs(parser.helpText().c_str(), stdout);
         return 0;
     }
-    if (pos.size() != 2) throw UsageError("needs IN and OUT.ply");
+    if (pos.size() != 2) throw UsageError("needs IN and OUT.ply (or OUT.obj)");
+    bool obj = pos[1].size() > 4 && pos[1].compare(pos[1].size() - 4, 4, ".obj") == 0;
     auto t0 = std::chrono::steady_clock::now();
     Scene scene = loadScene(pos[0]);
     // All world-space meshes joined into one (the scene was recentred: add the origin back).
@@ -44,7 +46,10 @@ int runTools(const std::vector<std::string>& args) {
     checkMemoryFor(pos[1], uint64_t(joined.vertexCount()) << (2 * levels),
                    uint64_t(joined.triangleCount()) << (2 * levels));
     for (int l = 0; l < levels; ++l) joined = subdivideMidpoint(joined);
-    writeBinaryPly(pos[1], joined);
+    if (obj)
+        writeObj(pos[1], joined);
+    else
+        writeBinaryPly(pos[1], joined);
     double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::fprintf(stderr, "kiln: %s: %zu vertices, %zu triangles, %.2f s\n", pos[1].c_str(),
                  joined.vertexCount(), joined.triangleCount(), s);

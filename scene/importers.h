@@ -29,4 +29,9 @@ void checkMemoryFor(const std::string& path, uint64_t vertices, uint64_t triangl
 // triangle).
 void readPly(const std::string& path, Scene& scene);
 
+// Direct multi-threaded OBJ reader for geometry-only files. Returns false, leaving `scene`
+// untouched, when the file needs Assimp (materials, free-form geometry, attribute indices that
+// differ from position indices).
+bool readObj(const std::string& path, Scene& scene);
+
 }  // namespace kiln

@@ -1,5 +1,6 @@
 #include "scene/mesh_tools.h"
 
+#include <charconv>
 #include <cstdio>
 #include <cstring>
 #include <stdexcept>
@@ -56,6 +57,47 @@ void writeBinaryPly(const std::string& path, const TriangleMesh& mesh) {
         std::memcpy(&face[1], &mesh.indices[3 * t], 12);
         ok = std::fwrite(face.data(), 1, 13, f) == 13;
     }
+    ok = std::fclose(f) == 0 && ok;
+    if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0) {
+        std::remove(tmp.c_str());
+        throw std::runtime_error(path + ": write failed (disk full?)");
+    }
+}
+
+void writeObj(const std::string& path, const TriangleMesh& mesh) {
+    std::string tmp = path + ".tmp";
+    FILE* f = std::fopen(tmp.c_str(), "wb");
+    if (!f) throw std::runtime_error(path + ": cannot write");
+    std::vector<char> buf;
+    bool ok = true;
+    auto flush = [&] {
+        ok = ok && std::fwrite(buf.data(), 1, buf.size(), f) == buf.size();
+        buf.clear();
+    };
+    char line[96];
+    for (size_t v = 0; v < mesh.vertexCount() && ok; ++v) {
+        char* p = line;
+        *p++ = 'v';
+        for (int k = 0; k < 3; ++k) {
+            *p++ = ' ';
+            p = std::to_chars(p, line + sizeof line, mesh.positions[3 * v + size_t(k)]).ptr;
+        }
+        *p++ = '\n';
+        buf.insert(buf.end(), line, p);
+        if (buf.size() > (1 << 20)) flush();
+    }
+    for (size_t t = 0; t < mesh.triangleCount() && ok; ++t) {
+        char* p = line;
+        *p++ = 'f';
+        for (int k = 0; k < 3; ++k) {
+            *p++ = ' ';
+            p = std::to_chars(p, line + sizeof line, mesh.indices[3 * t + size_t(k)] + 1).ptr;
+        }
+        *p++ = '\n';
+        buf.insert(buf.end(), line, p);
+        if (buf.size() > (1 << 20)) flush();
+    }
+    flush();
     ok = std::fclose(f) == 0 && ok;
     if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0) {
         std::remove(tmp.c_str());

@@ -1,4 +1,4 @@
-// Mesh generators for scale tests: midpoint subdivision and a binary PLY writer.
+// Mesh generators for scale tests: midpoint subdivision, binary PLY and OBJ writers.
 #pragma once
 
 #include <string>
@@ -14,5 +14,8 @@ TriangleMesh subdivideMidpoint(const TriangleMesh& mesh);
 // Binary little-endian PLY: float x y z per vertex, uchar-int face lists. Throws
 // std::runtime_error.
 void writeBinaryPly(const std::string& path, const TriangleMesh& mesh);
+
+// ASCII OBJ (v and f lines, shortest round-trip floats). Throws std::runtime_error.
+void writeObj(const std::string& path, const TriangleMesh& mesh);
 
 }  // namespace kiln

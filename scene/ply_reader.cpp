@@ -1,9 +1,5 @@
 // A direct PLY reader: binary (both endians) and ASCII, vertex positions/normals/uvs, faces as
 // polygon lists (fan-triangulated) and tristrips (-1 restarts, degenerate strip triangles dropped).
-#include <fcntl.h>
-#include <sys/mman.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include <bit>
 #include <charconv>
@@ -14,6 +10,7 @@
 #include <sstream>
 
 #include "scene/importers.h"
+#include "scene/mapped_file.h"
 #include "scene/scene_error.h"
 
 namespace kiln {
@@ -66,31 +63,6 @@ struct Element {
 };
 
 enum class Format { Ascii, BinaryLE, BinaryBE };
-
-class MappedFile {
-  public:
-    explicit MappedFile(const std::string& path) {
-        fd_ = ::open(path.c_str(), O_RDONLY);
-        if (fd_ < 0) throw SceneError(path, std::string("cannot open: ") + std::strerror(errno));
-        struct stat st {};
-        ::fstat(fd_, &st);
-        size_ = size_t(st.st_size);
-        if (size_ == 0) throw SceneError(path, "file is empty");
-        data_ = static_cast<const char*>(::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE, fd_, 0));
-        if (data_ == MAP_FAILED) throw SceneError(path, "cannot map file");
-    }
-    ~MappedFile() {
-        if (data_ && data_ != MAP_FAILED) ::munmap(const_cast<char*>(data_), size_);
-        if (fd_ >= 0) ::close(fd_);
-    }
-    const char* data() const { return data_; }
-    size_t size() const { return size_; }
-
-  private:
-    int fd_ = -1;
-    const char* data_ = nullptr;
-    size_t size_ = 0;
-};
 
 // Reads values from the body, binary or ASCII, with bounds checks that name the file.
 class Cursor {

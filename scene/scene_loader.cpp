@@ -143,6 +143,8 @@ void importFile(const std::string& path, Scene& scene) {
     std::string ext = lowerExtension(path);
     if (ext == ".ply") {
         readPly(path, scene);
+    } else if (ext == ".obj") {
+        if (!readObj(path, scene)) importWithAssimp(path, nullptr, scene);
     } else if (ext == ".kiln") {
         readKilnScene(path, scene);
     } else if (ext == ".dae") {

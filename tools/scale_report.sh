@@ -6,6 +6,11 @@ cd "$(dirname "$0")/.."
 M=../shared/meshes
 mkdir -p out/scale
 [ -f out/scale/igea_17M.ply ] || build/kiln tools subdivide $M/igea.ply out/scale/igea_17M.ply --levels 3
+# The Lucy ladder is one surface at every size (midpoint subdivision does not move it), so its rows
+# differ only in triangle count.
+[ -f out/scale/lucy_1.6M.ply ] || build/kiln tools subdivide $M/lucy.obj out/scale/lucy_1.6M.ply --levels 2
+[ -f out/scale/lucy_6.4M.obj ] || build/kiln tools subdivide $M/lucy.obj out/scale/lucy_6.4M.obj --levels 3
+[ -f out/scale/lucy_26M.ply ] || build/kiln tools subdivide $M/lucy.obj out/scale/lucy_26M.ply --levels 4
 [ -f out/scale/lucy_102M.ply ] || build/kiln tools subdivide $M/lucy.obj out/scale/lucy_102M.ply --levels 5
 cat > out/scale/lucy_field_100M.kiln <<KILN
 <kiln-scene>
@@ -16,6 +21,10 @@ cat > out/scale/lucy_field_100M.kiln <<KILN
 </kiln-scene>
 KILN
 first=1
-for scene in $M/igea_subdiv1_1M.ply out/scale/igea_17M.ply out/scale/lucy_102M.ply out/scale/lucy_field_100M.kiln; do
-  if [ $first = 1 ]; then build/kiln bench scale "$scene"; first=0; else build/kiln bench scale "$scene" | tail -n 1; fi
+for scene in $M/igea_subdiv1_1M.ply out/scale/igea_17M.ply out/scale/lucy_1.6M.ply out/scale/lucy_6.4M.obj \
+    out/scale/lucy_26M.ply out/scale/lucy_102M.ply out/scale/lucy_field_100M.kiln; do
+  extra=()
+  case "$scene" in *.obj) extra=(--compare-assimp) ;; esac
+  if [ $first = 1 ]; then build/kiln bench scale "$scene" "${extra[@]}"; first=0
+  else build/kiln bench scale "$scene" "${extra[@]}" | tail -n +2; fi
 done

@@ -1,0 +1,291 @@
+// A direct, multi-threaded OBJ reader for geometry-only files (v, vn, vt, f, o, g, s, comments).
+// The file is cut into chunks at line starts; a first parallel pass counts each chunk's vertices
+// and triangles (so memory is checked before anything is allocated and every chunk knows where its
+// output goes), a second parses the chunks in parallel straight into the mesh arrays. Files that
+// use materials, free-form geometry or per-corner attribute indices that differ from the position
+// index are left to Assimp (readObj returns false).
+#include <tbb/parallel_for.h>
+
+#include <atomic>
+#include <charconv>
+#include <cstdio>
+#include <string_view>
+
+#include "scene/importers.h"
+#include "scene/mapped_file.h"
+#include "scene/scene_error.h"
+
+namespace kiln {
+namespace {
+
+constexpr size_t kChunkBytes = size_t(1) << 22;
+
+struct Chunk {
+    const char* begin = nullptr;
+    const char* end = nullptr;
+    // Counted by the first pass; prefix sums turn them into output offsets.
+    uint64_t lines = 0, positions = 0, normals = 0, uvs = 0, triangles = 0;
+    uint64_t corners = 0, cornersWithUv = 0, cornersWithNormal = 0;
+    bool unsupported = false;
+    // Offsets (first line number, first vertex, ... of this chunk in the whole file).
+    uint64_t lineBase = 0, positionBase = 0, normalBase = 0, uvBase = 0, triangleBase = 0;
+};
+
+bool isBlank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
+
+const char* skipBlanks(const char* p, const char* end) {
+    while (p < end && isBlank(*p)) ++p;
+    return p;
+}
+
+const char* tokenEnd(const char* p, const char* end) {
+    while (p < end && !isBlank(*p) && *p != '\n') ++p;
+    return p;
+}
+
+// The statements the direct reader understands; anything else sends the file to Assimp.
+enum class Statement { Position, Normal, Uv, Face, Ignored, Unsupported };
+
+Statement classify(std::string_view key) {
+    if (key == "v") return Statement::Position;
+    if (key == "vn") return Statement::Normal;
+    if (key == "vt") return Statement::Uv;
+    if (key == "f") return Statement::Face;
+    if (key == "o" || key == "g" || key == "s") return Statement::Ignored;
+    return Statement::Unsupported;  // mtllib, usemtl, l, p, curv, surf, vp, ...
+}
+
+// Calls fn(statement, first byte after the keyword, line end) for every non-empty, non-comment
+// line of the chunk, and counts lines.
+template <typename Fn>
+void forEachLine(Chunk& c, Fn&& fn) {
+    const char* p = c.begin;
+    while (p < c.end) {
+        const char* nl = static_cast<const char*>(std::memchr(p, '\n', size_t(c.end - p)));
+        const char* lineEnd = nl ? nl : c.end;
+        const char* s = skipBlanks(p, lineEnd);
+        if (s < lineEnd && *s != '#') {
+            const char* k = tokenEnd(s, lineEnd);
+            fn(classify(std::string_view(s, size_t(k - s))), k, lineEnd);
+        }
+        ++c.lines;
+        p = lineEnd + 1;
+    }
+}
+
+void countChunk(Chunk& c) {
+    forEachLine(c, [&](Statement st, const char* start, const char* end) {
+        // A trailing backslash continues the line: not handled here.
+        const char* last = end;
+        while (last > start && (last[-1] == '\r' || last[-1] == ' ')) --last;
+        if (last > start && last[-1] == '\\') c.unsupported = true;
+        const char* p = start;
+        switch (st) {
+            case Statement::Position:
+                ++c.positions;
+                break;
+            case Statement::Normal:
+                ++c.normals;
+                break;
+            case Statement::Uv:
+                ++c.uvs;
+                break;
+            case Statement::Face: {
+                uint64_t n = 0;
+                for (p = skipBlanks(p, end); p < end; p = skipBlanks(p, end)) {
+                    const char* e = tokenEnd(p, end);
+                    const char* s1 = static_cast<const char*>(std::memchr(p, '/', size_t(e - p)));
+                    if (s1) {
+                        const char* s2 =
+                            static_cast<const char*>(std::memchr(s1 + 1, '/', size_t(e - s1 - 1)));
+                        c.cornersWithUv += (s2 ? s2 : e) > s1 + 1;
+                        c.cornersWithNormal += s2 && e > s2 + 1;
+                    }
+                    ++n;
+                    p = e;
+                }
+                c.corners += n;
+                c.triangles += n >= 3 ? n - 2 : 0;
+                break;
+            }
+            case Statement::Ignored:
+                break;
+            case Statement::Unsupported:
+                c.unsupported = true;
+                break;
+        }
+    });
+}
+
+class ChunkParser {
+  public:
+    ChunkParser(const std::string& path, Chunk& c, TriangleMesh& mesh, uint64_t totalPositions,
+                bool useNormals, bool useUvs)
+        : path_(path),
+          c_(c),
+          mesh_(mesh),
+          totalPositions_(totalPositions),
+          useNormals_(useNormals),
+          useUvs_(useUvs) {}
+
+    // False when a corner's normal or uv index differs from its position index.
+    bool parse() {
+        uint64_t positions = c_.positionBase, normals = c_.normalBase, uvs = c_.uvBase;
+        uint64_t triangle = c_.triangleBase;
+        bool sameIndices = true;
+        c_.lines = 0;
+        forEachLine(c_, [&](Statement st, const char* p, const char* end) {
+            switch (st) {
+                case Statement::Position:
+                    readFloats(p, end, &mesh_.positions[3 * positions++], 3, 3);
+                    break;
+                case Statement::Normal:
+                    if (useNormals_) readFloats(p, end, &mesh_.normals[3 * normals], 3, 3);
+                    ++normals;
+                    break;
+                case Statement::Uv:
+                    if (useUvs_) readFloats(p, end, &mesh_.uvs[2 * uvs], 1, 2);
+                    ++uvs;
+                    break;
+                case Statement::Face: {
+                    uint32_t first = 0, prev = 0;
+                    int n = 0;
+                    for (p = skipBlanks(p, end); p < end; p = skipBlanks(p, end)) {
+                        const char* e = tokenEnd(p, end);
+                        uint32_t idx[3] = {UINT32_MAX, UINT32_MAX, UINT32_MAX};
+                        uint64_t counts[3] = {positions, uvs, normals};
+                        for (int k = 0; k < 3 && p < e; ++k) {
+                            if (*p != '/') p = readIndex(p, e, counts[k], idx[k]);
+                            if (p < e && *p == '/') ++p;
+                        }
+                        if ((useNormals_ && idx[2] != idx[0]) || (useUvs_ && idx[1] != idx[0]))
+                            sameIndices = false;
+                        if (n >= 2) {
+                            uint32_t* out = &mesh_.indices[3 * triangle++];
+                            out[0] = first, out[1] = prev, out[2] = idx[0];
+                        }
+                        if (n == 0) first = idx[0];
+                        prev = idx[0];
+                        ++n;
+                        p = e;
+                    }
+                    if (n < 3) fail("face with fewer than 3 vertices");
+                    break;
+                }
+                default:
+                    break;
+            }
+        });
+        return sameIndices;
+    }
+
+  private:
+    [[noreturn]] void fail(const std::string& what) const {
+        throw SceneError(path_, "line " + std::to_string(c_.lineBase + c_.lines + 1) + ": " + what);
+    }
+
+    // `want` numbers, of which the first `need` must be present (vt may omit v).
+    void readFloats(const char* p, const char* end, float* out, int need, int want) {
+        for (int i = 0; i < want; ++i) {
+            p = skipBlanks(p, end);
+            if (p >= end) {
+                if (i < need) fail("expected " + std::to_string(need) + " numbers");
+                out[i] = 0;
+                continue;
+            }
+            const char* e = tokenEnd(p, end);
+            auto [next, ec] = std::from_chars(p, e, out[i]);
+            if (ec != std::errc() || next != e)
+                fail("'" + std::string(p, size_t(e - p)) + "' is not a number");
+            p = e;
+        }
+    }
+
+    // A 1-based (or negative, relative to `defined`) OBJ index into a 0-based one.
+    const char* readIndex(const char* p, const char* e, uint64_t defined, uint32_t& out) {
+        int64_t v = 0;
+        auto [next, ec] = std::from_chars(p, e, v);
+        if (ec != std::errc() || (next < e && *next != '/'))
+            fail("bad vertex index '" + std::string(p, size_t(e - p)) + "'");
+        int64_t i = v > 0 ? v - 1 : int64_t(defined) + v;
+        if (v == 0 || i < 0 || uint64_t(i) >= totalPositions_)
+            fail("vertex index " + std::to_string(v) + " out of range (" +
+                 std::to_string(totalPositions_) + " vertices)");
+        out = uint32_t(i);
+        return next;
+    }
+
+    const std::string& path_;
+    Chunk& c_;
+    TriangleMesh& mesh_;
+    uint64_t totalPositions_;
+    bool useNormals_, useUvs_;
+};
+
+}  // namespace
+
+bool readObj(const std::string& path, Scene& scene) {
+    MappedFile file(path);
+    const char* data = file.data();
+    const char* end = data + file.size();
+    std::vector<Chunk> chunks;
+    for (const char* p = data; p < end;) {
+        const char* cut = p + std::min(kChunkBytes, size_t(end - p));
+        if (cut < end) {
+            const char* nl = static_cast<const char*>(std::memchr(cut, '\n', size_t(end - cut)));
+            cut = nl ? nl + 1 : end;
+        }
+        chunks.push_back(Chunk{p, cut});
+        p = cut;
+    }
+    tbb::parallel_for(size_t(0), chunks.size(), [&](size_t i) { countChunk(chunks[i]); });
+
+    Chunk total;
+    for (Chunk& c : chunks) {
+        if (c.unsupported) return false;
+        c.lineBase = total.lines, c.positionBase = total.positions, c.normalBase = total.normals;
+        c.uvBase = total.uvs, c.triangleBase = total.triangles;
+        total.lines += c.lines, total.positions += c.positions, total.normals += c.normals;
+        total.uvs += c.uvs, total.triangles += c.triangles, total.corners += c.corners;
+        total.cornersWithUv += c.cornersWithUv, total.cornersWithNormal += c.cornersWithNormal;
+    }
+    // Attributes are kept when every corner names one; a mix goes to Assimp.
+    bool useNormals = total.corners > 0 && total.cornersWithNormal == total.corners;
+    bool useUvs = total.corners > 0 && total.cornersWithUv == total.corners;
+    if ((total.cornersWithNormal > 0 && !useNormals) || (total.cornersWithUv > 0 && !useUvs))
+        return false;
+    if (total.positions == 0) throw SceneError(path, "OBJ has no vertices ('v' lines)");
+    if (total.positions >= UINT32_MAX || total.triangles >= UINT32_MAX / 3)
+        throw SceneError(path, "more than 4 billion vertices or 1.4 billion triangles in one mesh");
+    checkMemoryFor(path, total.positions, total.triangles);
+    if (total.triangles >= 10'000'000)
+        std::fprintf(stderr, "kiln: loading %s: %llu vertices, %llu triangles\n", path.c_str(),
+                     (unsigned long long)total.positions, (unsigned long long)total.triangles);
+
+    // Normal and uv arrays are indexed like positions: only valid when the counts agree.
+    if ((useNormals && total.normals != total.positions) ||
+        (useUvs && total.uvs != total.positions))
+        return false;
+    TriangleMesh mesh;
+    mesh.name = "obj";
+    mesh.positions.resize(3 * total.positions);
+    mesh.indices.resize(3 * total.triangles);
+    if (useNormals) mesh.normals.resize(3 * total.positions);
+    if (useUvs) mesh.uvs.resize(2 * total.positions);
+    std::atomic<bool> sameIndices{true};
+    tbb::parallel_for(size_t(0), chunks.size(), [&](size_t i) {
+        ChunkParser parser(path, chunks[i], mesh, total.positions, useNormals, useUvs);
+        if (!parser.parse()) sameIndices = false;
+    });
+    if (!sameIndices) return false;
+    mesh.finalizePadding();
+    // Assimp's default for an OBJ without materials, so both readers render a file alike.
+    Material m{"DefaultMaterial"};
+    m.albedo = Color(0.6f);
+    mesh.materialIds = {uint32_t(scene.materials.size())};
+    scene.materials.push_back(m);
+    scene.meshes.push_back(std::move(mesh));
+    return true;
+}
+
+}  // namespace kiln

@@ -29,6 +29,10 @@ void AcceleratorChoice::addOptions(ArgParser& parser, bool withKind) {
     parser.option("no-robust", "", 0, "",
                   "drop RTC_SCENE_FLAG_ROBUST (faster, may leak through shared edges)",
                   [this](const std::vector<std::string>&) { embree.robust = false; });
+    parser.option("watertight", "", 0, "",
+                  "Embree traverses, kiln's double-precision test intersects triangles: no leaks "
+                  "at shared vertices either (slower)",
+                  [this](const std::vector<std::string>&) { embree.watertight = true; });
     parser.option("compact", "", 0, "", "RTC_SCENE_FLAG_COMPACT: smaller Embree BVH",
                   [this](const std::vector<std::string>&) { embree.compact = true; });
     parser.option(

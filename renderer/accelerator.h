@@ -43,7 +43,11 @@ struct EmbreeOptions {
     bool robust =
         true;  // RTC_SCENE_FLAG_ROBUST: watertight shared edges (see docs/accelerators.md)
     bool compact = false;  // RTC_SCENE_FLAG_COMPACT: smaller BVH, a little slower
-    int threads = 0;       // 0 = all
+    // Triangles as user geometry running kiln's watertight test (shapes.h) inside Embree's BVH:
+    // closes Embree's float test's cracks at shared vertices, at a measured cost
+    // (docs/robustness.md).
+    bool watertight = false;
+    int threads = 0;  // 0 = all
 };
 
 enum class BvhSplit { Sah, MeanCentroid, Midpoint };

@@ -30,15 +30,27 @@ bool embreeMemory(void*, ssize_t bytes, bool) {
     return true;
 }
 
+// Embree traverses user geometry without its robust box test (only triangles get one): the slab
+// distances then carry rounding of a few ulps of the coordinates of the box and of the ray
+// origin. User primitives' boxes are padded by 2^-20 of the scene's largest coordinate, which
+// covers ray origins up to about 8x that far out.
+float userBoundsPad(const Scene& scene) {
+    Bounds3 b = scene.worldBounds();
+    if (b.empty()) return 0;
+    Vec3 m = max(abs(b.lo), abs(b.hi));
+    return std::max({m.x, m.y, m.z}) * 0x1p-20f;
+}
+
 struct SphereData {
     const std::vector<Sphere>* spheres;
+    float pad = 0;
 };
 
 void sphereBounds(const RTCBoundsFunctionArguments* args) {
-    const Sphere& s =
-        (*static_cast<const SphereData*>(args->geometryUserPtr)->spheres)[args->primID];
+    const auto* data = static_cast<const SphereData*>(args->geometryUserPtr);
+    const Sphere& s = (*data->spheres)[args->primID];
     // Padded by a relative ulp so Embree's float box never clips the exact sphere.
-    float pad = s.radius * 1e-6f + 1e-30f;
+    float pad = s.radius * 1e-6f + data->pad + 1e-30f;
     args->bounds_o->lower_x = s.center.x - s.radius - pad;
     args->bounds_o->lower_y = s.center.y - s.radius - pad;
     args->bounds_o->lower_z = s.center.z - s.radius - pad;
@@ -85,6 +97,73 @@ void sphereOccluded(const RTCOccludedFunctionNArguments* args) {
         if (!args->valid[i]) continue;
         float t;
         if (intersectSphere(lane(args->ray, args->N, i), s.center, s.radius, t))
+            RTCRayN_tfar(args->ray, args->N, i) = -kInfinity;
+    }
+}
+
+// Triangles as user geometry (EmbreeOptions::watertight): Embree's BVH, kiln's watertight
+// double-precision test (the reference BVH's, shapes.h). Embree's own float test is watertight
+// along shared edges but can miss a ray passing within rounding of a shared vertex.
+struct WatertightMeshData {
+    const TriangleMesh* mesh;
+    float pad = 0;
+};
+
+void triangleCorners(const RTCBoundsFunctionArguments* args, Vec3& a, Vec3& b, Vec3& c) {
+    const TriangleMesh& m = *static_cast<const WatertightMeshData*>(args->geometryUserPtr)->mesh;
+    const uint32_t* idx = &m.indices[3 * size_t(args->primID)];
+    a = m.vertex(idx[0]), b = m.vertex(idx[1]), c = m.vertex(idx[2]);
+}
+
+void triangleBounds(const RTCBoundsFunctionArguments* args) {
+    Vec3 a, b, c;
+    triangleCorners(args, a, b, c);
+    Vec3 lo = min(a, min(b, c)), hi = max(a, max(b, c));
+    // The test's barycentric slack (1e-9 of an edge) may reach just past the float box: 1e-6 of
+    // the extent covers it; the traversal's rounding is covered by the scene-wide pad.
+    float scenePad = static_cast<const WatertightMeshData*>(args->geometryUserPtr)->pad;
+    Vec3 pad = (hi - lo) * 1e-6f + Vec3(scenePad + 1e-30f);
+    lo = lo - pad, hi = hi + pad;
+    args->bounds_o->lower_x = lo.x, args->bounds_o->lower_y = lo.y, args->bounds_o->lower_z = lo.z;
+    args->bounds_o->upper_x = hi.x, args->bounds_o->upper_y = hi.y, args->bounds_o->upper_z = hi.z;
+}
+
+bool watertightHit(const void* userPtr, unsigned prim, const Ray& ray, float& t, float& u,
+                   float& v) {
+    const TriangleMesh& m = *static_cast<const WatertightMeshData*>(userPtr)->mesh;
+    const uint32_t* idx = &m.indices[3 * size_t(prim)];
+    return intersectTriangle(ray, m.vertex(idx[0]), m.vertex(idx[1]), m.vertex(idx[2]), t, u, v);
+}
+
+void watertightIntersect(const RTCIntersectFunctionNArguments* args) {
+    RTCRayN* rays = RTCRayHitN_RayN(args->rayhit, args->N);
+    RTCHitN* hits = RTCRayHitN_HitN(args->rayhit, args->N);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (!args->valid[i]) continue;
+        float t, u, v;
+        if (!watertightHit(args->geometryUserPtr, args->primID, lane(rays, args->N, i), t, u, v))
+            continue;
+        // A tie (duplicate triangles) goes to the lowest (geometry, triangle), as in the
+        // reference BVH.
+        unsigned curGeom = RTCHitN_geomID(hits, args->N, i);
+        if (t == RTCRayN_tfar(rays, args->N, i) && curGeom != RTC_INVALID_GEOMETRY_ID &&
+            std::make_pair(args->geomID, args->primID) >=
+                std::make_pair(curGeom, RTCHitN_primID(hits, args->N, i)))
+            continue;
+        RTCRayN_tfar(rays, args->N, i) = t;
+        RTCHitN_u(hits, args->N, i) = u;
+        RTCHitN_v(hits, args->N, i) = v;
+        RTCHitN_primID(hits, args->N, i) = args->primID;
+        RTCHitN_geomID(hits, args->N, i) = args->geomID;
+        RTCHitN_instID(hits, args->N, i, 0) = args->context->instID[0];
+    }
+}
+
+void watertightOccluded(const RTCOccludedFunctionNArguments* args) {
+    for (unsigned i = 0; i < args->N; ++i) {
+        float t, u, v;
+        if (args->valid[i] && watertightHit(args->geometryUserPtr, args->primID,
+                                            lane(args->ray, args->N, i), t, u, v))
             RTCRayN_tfar(args->ray, args->N, i) = -kInfinity;
     }
 }
@@ -160,12 +239,15 @@ class EmbreeAccelerator final : public Accelerator {
         top_ = newScene(flags, options.quality);
 
         numMeshes_ = uint32_t(scene.meshes.size());
+        float pad = userBoundsPad(scene);
+        for (const TriangleMesh& mesh : scene.meshes) watertightData_.push_back({&mesh, pad});
         std::vector<bool> proto = scene.prototypeMask();
         std::vector<RTCScene> protoScenes(scene.meshes.size(), nullptr);
         for (uint32_t m = 0; m < numMeshes_; ++m) {
             if (scene.meshes[m].triangleCount() == 0) continue;
-            RTCGeometry g = meshGeometry(scene.meshes[m], options.quality);
-            if (scene.duplicateTriangles > 0 && !proto[m]) {
+            RTCGeometry g = options.watertight ? watertightGeometry(m, options.quality)
+                                               : meshGeometry(scene.meshes[m], options.quality);
+            if (scene.duplicateTriangles > 0 && !proto[m] && !options.watertight) {
                 rtcSetGeometryUserData(g, &filterData_);
                 rtcSetGeometryIntersectFilterFunction(g, lowestIdWinsFilter);
                 rtcCommitGeometry(g);
@@ -183,6 +265,7 @@ class EmbreeAccelerator final : public Accelerator {
         }
         if (!scene.spheres.empty()) {
             sphereData_.spheres = &scene.spheres;
+            sphereData_.pad = userBoundsPad(scene);
             RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_USER);
             rtcSetGeometryUserPrimitiveCount(g, unsigned(scene.spheres.size()));
             rtcSetGeometryUserData(g, &sphereData_);
@@ -212,6 +295,7 @@ class EmbreeAccelerator final : public Accelerator {
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         stats_.memoryBytes = uint64_t(std::max<int64_t>(0, gEmbreeBytes.load() - bytesBefore));
         stats_.description = std::string("embree ") + (options.robust ? "robust " : "") +
+                             (options.watertight ? "watertight " : "") +
                              (options.quality == EmbreeOptions::Quality::High  ? "high"
                               : options.quality == EmbreeOptions::Quality::Low ? "low"
                                                                                : "medium");
@@ -347,12 +431,25 @@ class EmbreeAccelerator final : public Accelerator {
         return g;
     }
 
+    RTCGeometry watertightGeometry(uint32_t m, EmbreeOptions::Quality q) {
+        RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_USER);
+        rtcSetGeometryUserPrimitiveCount(g, unsigned(scene_.meshes[m].triangleCount()));
+        rtcSetGeometryUserData(g, &watertightData_[m]);
+        rtcSetGeometryBoundsFunction(g, triangleBounds, nullptr);
+        rtcSetGeometryIntersectFunction(g, watertightIntersect);
+        rtcSetGeometryOccludedFunction(g, watertightOccluded);
+        rtcSetGeometryBuildQuality(g, toEmbree(q));
+        rtcCommitGeometry(g);
+        return g;
+    }
+
     const Scene& scene_;
     std::string lastError_;
     RTCDevice device_ = nullptr;
     RTCScene top_ = nullptr;
     std::vector<RTCScene> prototypes_;
     SphereData sphereData_{};
+    std::vector<WatertightMeshData> watertightData_;
     DuplicateFilterData filterData_{&scene_};
     uint32_t numMeshes_ = 0;
     AcceleratorStats stats_;

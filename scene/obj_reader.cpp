@@ -6,6 +6,7 @@
 // index are left to Assimp (readObj returns false).
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <atomic>
 #include <charconv>
 #include <cstdio>
@@ -27,6 +28,9 @@ struct Chunk {
     uint64_t lines = 0, positions = 0, normals = 0, uvs = 0, triangles = 0;
     uint64_t corners = 0, cornersWithUv = 0, cornersWithNormal = 0;
     bool unsupported = false;
+    // Each 'o' or 'g' line starts a new mesh (as Assimp does): its name and the chunk's triangle
+    // count at that point.
+    std::vector<std::pair<uint64_t, std::string>> groups;
     // Offsets (first line number, first vertex, ... of this chunk in the whole file).
     uint64_t lineBase = 0, positionBase = 0, normalBase = 0, uvBase = 0, triangleBase = 0;
 };
@@ -44,14 +48,15 @@ const char* tokenEnd(const char* p, const char* end) {
 }
 
 // The statements the direct reader understands; anything else sends the file to Assimp.
-enum class Statement { Position, Normal, Uv, Face, Ignored, Unsupported };
+enum class Statement { Position, Normal, Uv, Face, Group, Ignored, Unsupported };
 
 Statement classify(std::string_view key) {
     if (key == "v") return Statement::Position;
     if (key == "vn") return Statement::Normal;
     if (key == "vt") return Statement::Uv;
     if (key == "f") return Statement::Face;
-    if (key == "o" || key == "g" || key == "s") return Statement::Ignored;
+    if (key == "o" || key == "g") return Statement::Group;
+    if (key == "s") return Statement::Ignored;
     return Statement::Unsupported;  // mtllib, usemtl, l, p, curv, surf, vp, ...
 }
 
@@ -106,6 +111,13 @@ void countChunk(Chunk& c) {
                 }
                 c.corners += n;
                 c.triangles += n >= 3 ? n - 2 : 0;
+                break;
+            }
+            case Statement::Group: {
+                p = skipBlanks(p, end);
+                const char* e = end;
+                while (e > p && isBlank(e[-1])) --e;
+                c.groups.emplace_back(c.triangles, std::string(p, size_t(e - p)));
                 break;
             }
             case Statement::Ignored:
@@ -222,6 +234,45 @@ class ChunkParser {
     bool useNormals_, useUvs_;
 };
 
+// One mesh per group, each with the vertex range its triangles use (in OBJ files a group's
+// vertices are normally its own contiguous block). False when groups share so many vertices that
+// the copies would exceed twice the file's vertex count: Assimp then splits them by reference.
+bool splitIntoGroups(const TriangleMesh& all,
+                     const std::vector<std::pair<uint64_t, std::string>>& groups,
+                     uint64_t triangles, std::vector<TriangleMesh>& out) {
+    out.resize(groups.size());
+    std::vector<uint32_t> lo(groups.size()), hi(groups.size());
+    auto range = [&](size_t g) {
+        uint64_t end = g + 1 < groups.size() ? groups[g + 1].first : triangles;
+        return std::make_pair(groups[g].first, end);
+    };
+    tbb::parallel_for(size_t(0), groups.size(), [&](size_t g) {
+        auto [t0, t1] = range(g);
+        auto [mn, mx] = std::minmax_element(all.indices.begin() + long(3 * t0),
+                                            all.indices.begin() + long(3 * t1));
+        lo[g] = *mn, hi[g] = *mx;
+    });
+    uint64_t copied = 0;
+    for (size_t g = 0; g < groups.size(); ++g) copied += uint64_t(hi[g] - lo[g]) + 1;
+    if (copied > 2 * all.vertexCount() + 1024) return false;
+    tbb::parallel_for(size_t(0), groups.size(), [&](size_t g) {
+        auto [t0, t1] = range(g);
+        TriangleMesh& m = out[g];
+        m.name = groups[g].second;
+        auto slice = [&](const std::vector<float>& from, size_t width) {
+            return std::vector<float>(from.begin() + long(width * lo[g]),
+                                      from.begin() + long(width * (size_t(hi[g]) + 1)));
+        };
+        m.positions = slice(all.positions, 3);
+        m.positions.reserve(m.positions.size() + 1);
+        if (!all.normals.empty()) m.normals = slice(all.normals, 3);
+        if (!all.uvs.empty()) m.uvs = slice(all.uvs, 2);
+        m.indices.assign(all.indices.begin() + long(3 * t0), all.indices.begin() + long(3 * t1));
+        for (uint32_t& i : m.indices) i -= lo[g];
+    });
+    return true;
+}
+
 }  // namespace
 
 bool readObj(const std::string& path, Scene& scene) {
@@ -268,6 +319,7 @@ bool readObj(const std::string& path, Scene& scene) {
         return false;
     TriangleMesh mesh;
     mesh.name = "obj";
+    mesh.positions.reserve(3 * total.positions + 1);  // + Embree's padding float, no regrowth
     mesh.positions.resize(3 * total.positions);
     mesh.indices.resize(3 * total.triangles);
     if (useNormals) mesh.normals.resize(3 * total.positions);
@@ -278,13 +330,32 @@ bool readObj(const std::string& path, Scene& scene) {
         if (!parser.parse()) sameIndices = false;
     });
     if (!sameIndices) return false;
-    mesh.finalizePadding();
+
+    // Groups with triangles, in file order: [first triangle, name].
+    std::vector<std::pair<uint64_t, std::string>> groups = {{0, "defaultobject"}};
+    for (const Chunk& c : chunks)
+        for (const auto& [tri, name] : c.groups) groups.emplace_back(c.triangleBase + tri, name);
+    std::vector<std::pair<uint64_t, std::string>> nonEmpty;
+    for (size_t g = 0; g < groups.size(); ++g) {
+        uint64_t next = g + 1 < groups.size() ? groups[g + 1].first : total.triangles;
+        if (next > groups[g].first) nonEmpty.push_back(groups[g]);
+    }
+    std::vector<TriangleMesh> meshes;
+    if (nonEmpty.size() <= 1) {
+        if (!nonEmpty.empty()) mesh.name = nonEmpty[0].second;
+        meshes.push_back(std::move(mesh));
+    } else if (!splitIntoGroups(mesh, nonEmpty, total.triangles, meshes)) {
+        return false;
+    }
     // Assimp's default for an OBJ without materials, so both readers render a file alike.
     Material m{"DefaultMaterial"};
     m.albedo = Color(0.6f);
-    mesh.materialIds = {uint32_t(scene.materials.size())};
+    for (TriangleMesh& part : meshes) {
+        part.finalizePadding();
+        part.materialIds = {uint32_t(scene.materials.size())};
+        scene.meshes.push_back(std::move(part));
+    }
     scene.materials.push_back(m);
-    scene.meshes.push_back(std::move(mesh));
     return true;
 }
 

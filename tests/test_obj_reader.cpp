@@ -83,6 +83,31 @@ TEST(ObjReader, EveryCornerFormNegativeIndicesPolygonsAndCrlf) {
     EXPECT_TRUE(n.meshes[0].uvs.empty());
 }
 
+TEST(ObjReader, GroupsBecomeMeshesAsInAssimp) {
+    auto dir = test::scratchDir();
+    std::string path = test::writeFile(dir / "groups.obj",
+                                       "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                                       "f 1 2 3\n"
+                                       "o first\nf 1 3 4\n"
+                                       "v 0 0 1\nv 1 0 1\nv 1 1 1\n"
+                                       "g  second group\nf 5 6 7\nf -1 -2 -3\n"
+                                       "g empty\n");
+    Scene direct, viaAssimp;
+    ASSERT_TRUE(readObj(path, direct));
+    importWithAssimp(path, nullptr, viaAssimp);
+    ASSERT_EQ(direct.meshes.size(), 3u);
+    ASSERT_EQ(viaAssimp.meshes.size(), 3u);
+    for (size_t m = 0; m < 3; ++m) {
+        EXPECT_EQ(direct.meshes[m].name, viaAssimp.meshes[m].name);
+        Scene a, b;
+        a.meshes = {direct.meshes[m]}, b.meshes = {viaAssimp.meshes[m]};
+        EXPECT_EQ(cornerPositions(a), cornerPositions(b)) << m;
+    }
+    // Each group keeps only its own vertex block.
+    EXPECT_EQ(direct.meshes[2].vertexCount(), 3u);
+    EXPECT_EQ(direct.meshes[2].indices, (std::vector<uint32_t>{0, 1, 2, 2, 1, 0}));
+}
+
 TEST(ObjReader, ChunkBoundariesAndRelativeIndicesAcrossChunks) {
     // About 12 MB: several 4 MB chunks, each face written with relative indices so a wrong
     // per-chunk vertex offset shows up as a wrong triangle.

@@ -203,27 +203,33 @@ bool LightSet::sample(size_t i, const Vec3& ref, float u1, float u2, LightSample
         case LightKind::Area:
         case LightKind::MeshEmitter: {
             // One uniform number picks the triangle by area and, rescaled within its slice, the
-            // point.
-            float pdfUnused;
-            size_t t;
-            float x = e.triangleArea.sampleContinuous(u1, pdfUnused, t);
-            float v1 = std::clamp(x * float(e.triangleArea.size()) - float(t), 0.0f, 1.0f - 1e-7f);
+            // point. Written for few divisions: this runs -l times at every path vertex.
+            size_t t = 0;
+            float v1 = u1;
+            if (e.triangleArea.size() > 1) {
+                float pdfUnused;
+                float x = e.triangleArea.sampleContinuous(u1, pdfUnused, t);
+                v1 = std::clamp(x * float(e.triangleArea.size()) - float(t), 0.0f, 1.0f - 1e-7f);
+            }
+            const Vec3* tri = &e.triangles[3 * t];
+            const Vec3& n = e.normals[t];
             float b1, b2;
             uniformTriangle(v1, u2, b1, b2);
-            const Vec3* tri = &e.triangles[3 * t];
             Vec3 p = tri[0] + tri[1] * b1 + tri[2] * b2;
-            // Rounding of p0 + e1 b1 + e2 b2 (pbrt's gamma bound for a barycentric interpolation).
-            out.pError = (abs(tri[0]) + abs(tri[1] * b1) + abs(tri[2] * b2)) * gamma(7);
-            const Vec3& n = e.normals[t];
             Vec3 d = p - ref;
+            // A one-sided light sends nothing to points behind (or in) its plane.
+            if (e.oneSided && dot(d, e.side) >= 0) return false;
             float dist2 = dot(d, d);
-            if (dist2 == 0) return false;
-            out.wi = d / std::sqrt(dist2);
+            if (dist2 == 0 || e.area == 0) return false;
+            float invDist = 1.0f / std::sqrt(dist2);
+            out.wi = d * invDist;
             float cosL = std::abs(dot(n, out.wi));
-            if (cosL == 0 || e.area == 0) return false;
+            if (cosL == 0) return false;
             out.pdf = dist2 / (cosL * e.area);
             out.p = p;
-            out.Li = emitted(i, p, n, ref);
+            // Rounding of p0 + e1 b1 + e2 b2 (pbrt's gamma bound for a barycentric interpolation).
+            out.pError = (abs(tri[0]) + abs(tri[1] * b1) + abs(tri[2] * b2)) * gamma(7);
+            out.Li = l.radiance;
             return maxComponent(out.Li) > 0;
         }
         case LightKind::Point:

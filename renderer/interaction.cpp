@@ -12,6 +12,33 @@ void faceForward(SurfaceInteraction& si, const Vec3& rayDir) {
     if (dot(si.ns, si.ng) < 0) si.ns = -si.ns;
 }
 
+// The error bound of a point alone is not enough for Embree: its float intersection test reports t
+// with an error of a few ulps of the coordinates involved (a point exactly on the plane y = 0 has a
+// zero bound, yet Embree finds t = 0 there). So offsets never fall below kTraversalUlps ulps of the
+// largest coordinate; docs/accelerators.md shows the crosscheck that found it.
+constexpr float kTraversalUlps = 32.0f;
+
+float traversalError(const Vec3& p) {
+    return kTraversalUlps * std::numeric_limits<float>::epsilon() * maxComponent(abs(p));
+}
+
+// Both spawn origins: p pushed off along ng by the error bound projected on it (never below the
+// traversal error), rounded away from p so the offset survives the addition.
+void setSpawnOrigins(SurfaceInteraction& si) {
+    float d = std::max(dot(abs(si.ng), si.pError), traversalError(si.p));
+    Vec3 offset = si.ng * d;
+    si.originFront = si.p + offset, si.originBack = si.p - offset;
+    for (int i = 0; i < 3; ++i) {
+        if (offset[i] > 0) {
+            si.originFront[i] = nextFloatUp(si.originFront[i]);
+            si.originBack[i] = nextFloatDown(si.originBack[i]);
+        } else if (offset[i] < 0) {
+            si.originFront[i] = nextFloatDown(si.originFront[i]);
+            si.originBack[i] = nextFloatUp(si.originBack[i]);
+        }
+    }
+}
+
 }  // namespace
 
 SurfaceInteraction makeInteraction(const Scene& scene, const Ray& ray, const Hit& hit) {
@@ -27,9 +54,8 @@ SurfaceInteraction makeInteraction(const Scene& scene, const Ray& ray, const Hit
         si.pError = gamma(5) * (abs(s.center) + abs(n * s.radius));
         si.ng = si.ns = n;
         si.material = s.material;
-        si.u = std::atan2(n.z, n.x) / (2 * kPi) + 0.5f;
-        si.v = std::acos(std::clamp(n.y, -1.0f, 1.0f)) / kPi;
         faceForward(si, ray.dir);
+        setSpawnOrigins(si);
         return si;
     }
     const TriangleMesh& mesh = scene.meshes[hit.shape];
@@ -46,13 +72,6 @@ SurfaceInteraction makeInteraction(const Scene& scene, const Ray& ray, const Hit
         };
         Vec3 n = normalAt(idx[0]) * b0 + normalAt(idx[1]) * b1 + normalAt(idx[2]) * b2;
         if (dot(n, n) > 0) ns = n;
-    }
-    if (!mesh.uvs.empty()) {
-        si.u = mesh.uvs[2 * idx[0]] * b0 + mesh.uvs[2 * idx[1]] * b1 + mesh.uvs[2 * idx[2]] * b2;
-        si.v = mesh.uvs[2 * idx[0] + 1] * b0 + mesh.uvs[2 * idx[1] + 1] * b1 +
-               mesh.uvs[2 * idx[2] + 1] * b2;
-    } else {
-        si.u = b1, si.v = b2;
     }
     if (hit.instance != kInvalidId) {
         const Mat4& xf = scene.instances[hit.instance].objectToWorld;
@@ -81,36 +100,8 @@ SurfaceInteraction makeInteraction(const Scene& scene, const Ray& ray, const Hit
     if (!isFinite(si.ns)) si.ns = si.ng;
     si.material = mesh.materialOf(hit.prim);
     faceForward(si, ray.dir);
+    setSpawnOrigins(si);
     return si;
-}
-
-namespace {
-
-// The error bound of a point alone is not enough for Embree: its float intersection test reports t
-// with an error of a few ulps of the coordinates involved (a point exactly on the plane y = 0 has a
-// zero bound, yet Embree finds t = 0 there). So offsets never fall below kTraversalUlps ulps of the
-// largest coordinate; docs/accelerators.md shows the crosscheck that found it.
-constexpr float kTraversalUlps = 32.0f;
-
-float traversalError(const Vec3& p) {
-    return kTraversalUlps * std::numeric_limits<float>::epsilon() * maxComponent(abs(p));
-}
-
-}  // namespace
-
-Vec3 offsetRayOrigin(const SurfaceInteraction& si, const Vec3& dir) {
-    float d = std::max(dot(abs(si.ng), si.pError), traversalError(si.p));
-    Vec3 offset = si.ng * d;
-    if (dot(dir, si.ng) < 0) offset = -offset;
-    Vec3 po = si.p + offset;
-    // Round away from p so the offset survives the addition.
-    for (int i = 0; i < 3; ++i) {
-        if (offset[i] > 0)
-            po[i] = nextFloatUp(po[i]);
-        else if (offset[i] < 0)
-            po[i] = nextFloatDown(po[i]);
-    }
-    return po;
 }
 
 Ray spawnRay(const SurfaceInteraction& si, const Vec3& dir) {

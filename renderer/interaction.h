@@ -13,7 +13,9 @@ struct SurfaceInteraction {
     Vec3 ng;        // geometric normal, unit, facing the side the ray came from
     Vec3 ns;        // shading normal, unit, same hemisphere as ng
     Vec3 nsStored;  // shading normal as the file orients it (normal-shading views show this one)
-    float u = 0, v = 0;  // texture coordinates (or barycentrics when the mesh has none)
+    // Where rays leave, on the front (ng) and back side: p pushed off by the error bound, computed
+    // once here because a vertex spawns -l shadow rays and a continuation from the same two points.
+    Vec3 originFront, originBack;
     float t = 0;
     uint32_t material = 0;
     uint32_t shape = kInvalidId, prim = kInvalidId, instance = kInvalidId;
@@ -23,7 +25,9 @@ struct SurfaceInteraction {
 SurfaceInteraction makeInteraction(const Scene& scene, const Ray& ray, const Hit& hit);
 
 // Origin pushed off the surface by the error bound along the normal, on the side of dir.
-Vec3 offsetRayOrigin(const SurfaceInteraction& si, const Vec3& dir);
+inline const Vec3& offsetRayOrigin(const SurfaceInteraction& si, const Vec3& dir) {
+    return dot(dir, si.ng) < 0 ? si.originBack : si.originFront;
+}
 Ray spawnRay(const SurfaceInteraction& si, const Vec3& dir);
 // A ray to a point (shadow rays): stops short of the target by the target's error bound (and
 // Embree's distance error), so the surface the target lies on does not occlude it.

@@ -44,14 +44,12 @@ inline Vec3 cosineHemisphere(float u1, float u2) {
 inline float cosineHemispherePdf(float cosTheta) { return cosTheta > 0 ? cosTheta * kInvPi : 0.0f; }
 
 // Uniform point on a triangle as barycentrics (b1, b2) (Heitz's low-distortion map).
+// Written with selects, not a branch: the comparison is a coin flip the predictor cannot learn.
 inline void uniformTriangle(float u1, float u2, float& b1, float& b2) {
-    if (u1 < u2) {
-        b1 = u1 / 2;
-        b2 = u2 - b1;
-    } else {
-        b2 = u2 / 2;
-        b1 = u1 - b2;
-    }
+    bool lower = u1 < u2;
+    float h1 = u1 * 0.5f, h2 = u2 * 0.5f;
+    b1 = lower ? h1 : u1 - h2;
+    b2 = lower ? u2 - h1 : h2;
 }
 
 // Local shading frame around a unit normal.

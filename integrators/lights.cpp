@@ -78,6 +78,38 @@ EnvironmentMap loadEnvironment(const Light& l) {
 
 }  // namespace
 
+// Two triangles that tile a parallelogram (every CS184 area light, most quads) are sampled as one:
+// p = origin + u1 edgeX + u2 edgeY, the same uniform density by area without picking a triangle.
+void LightSet::findParallelogram(Entry& e) {
+    if (e.triangles.size() != 6) return;
+    Vec3 a[3], b[3];
+    for (int k = 0; k < 3; ++k) {
+        a[k] = k == 0 ? e.triangles[0] : e.triangles[0] + e.triangles[size_t(k)];
+        b[k] = k == 0 ? e.triangles[3] : e.triangles[3] + e.triangles[3 + size_t(k)];
+    }
+    // The shared diagonal: two corners of a equal to corners of b (up to the rounding of p0 +
+    // edge).
+    auto near = [](const Vec3& p, const Vec3& q) {
+        Vec3 d = abs(p - q), m = max(abs(p), abs(q));
+        return d.x <= 4 * gamma(1) * m.x && d.y <= 4 * gamma(1) * m.y && d.z <= 4 * gamma(1) * m.z;
+    };
+    int sharedA[2], sharedB[2], n = 0;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            if (near(a[i], b[j]) && n < 2) sharedA[n] = i, sharedB[n] = j, ++n;
+    if (n != 2) return;
+    Vec3 x = a[3 - sharedA[0] - sharedA[1]], y = b[3 - sharedB[0] - sharedB[1]];
+    Vec3 s1 = a[sharedA[0]], s2 = a[sharedA[1]];
+    // Opposite corners of a parallelogram sum to the same point.
+    Vec3 deviation = abs(x + y - s1 - s2), scale = abs(x) + abs(y) + abs(s1) + abs(s2);
+    if (deviation.x > 8 * gamma(1) * scale.x || deviation.y > 8 * gamma(1) * scale.y ||
+        deviation.z > 8 * gamma(1) * scale.z)
+        return;
+    e.parallelogram = true;
+    e.origin = x, e.edgeX = s1 - x, e.edgeY = s2 - x;
+    e.originError = deviation;  // how far a sampled point may lie from the real triangles
+}
+
 Vec3 EnvironmentMap::direction(float u, float v) {
     float phi = (u - 0.5f) * 2 * kPi, theta = v * kPi;
     float s = std::sin(theta);
@@ -133,6 +165,7 @@ LightSet::LightSet(const Scene& scene) {
                 Vec3 n = cross(e.triangles[t + 1], e.triangles[t + 2]);
                 e.normals.push_back(dot(n, n) > 0 ? normalize(n) : Vec3(0, 1, 0));
             }
+            findParallelogram(e);
             e.oneSided = l.kind == LightKind::Area;
             e.side = normalize(l.direction);
         } else if (l.kind == LightKind::Environment) {
@@ -202,20 +235,33 @@ bool LightSet::sample(size_t i, const Vec3& ref, float u1, float u2, LightSample
     switch (l.kind) {
         case LightKind::Area:
         case LightKind::MeshEmitter: {
-            // One uniform number picks the triangle by area and, rescaled within its slice, the
-            // point. Written for few divisions: this runs -l times at every path vertex.
-            size_t t = 0;
-            float v1 = u1;
-            if (e.triangleArea.size() > 1) {
-                float pdfUnused;
-                float x = e.triangleArea.sampleContinuous(u1, pdfUnused, t);
-                v1 = std::clamp(x * float(e.triangleArea.size()) - float(t), 0.0f, 1.0f - 1e-7f);
+            // Uniform by area. Written for few divisions and branches: this runs -l times at every
+            // path vertex.
+            Vec3 p, pError, n;
+            if (e.parallelogram) {
+                p = e.origin + e.edgeX * u1 + e.edgeY * u2;
+                pError = (abs(e.origin) + abs(e.edgeX * u1) + abs(e.edgeY * u2)) * gamma(7) +
+                         e.originError;
+                n = e.normals[0];
+            } else {
+                // One number picks the triangle by area and, rescaled within its slice, the point.
+                size_t t = 0;
+                float v1 = u1;
+                if (e.triangleArea.size() > 1) {
+                    float pdfUnused;
+                    float x = e.triangleArea.sampleContinuous(u1, pdfUnused, t);
+                    v1 =
+                        std::clamp(x * float(e.triangleArea.size()) - float(t), 0.0f, 1.0f - 1e-7f);
+                }
+                const Vec3* tri = &e.triangles[3 * t];
+                float b1, b2;
+                uniformTriangle(v1, u2, b1, b2);
+                p = tri[0] + tri[1] * b1 + tri[2] * b2;
+                // Rounding of p0 + e1 b1 + e2 b2 (pbrt's gamma bound for a barycentric
+                // interpolation).
+                pError = (abs(tri[0]) + abs(tri[1] * b1) + abs(tri[2] * b2)) * gamma(7);
+                n = e.normals[t];
             }
-            const Vec3* tri = &e.triangles[3 * t];
-            const Vec3& n = e.normals[t];
-            float b1, b2;
-            uniformTriangle(v1, u2, b1, b2);
-            Vec3 p = tri[0] + tri[1] * b1 + tri[2] * b2;
             Vec3 d = p - ref;
             // A one-sided light sends nothing to points behind (or in) its plane.
             if (e.oneSided && dot(d, e.side) >= 0) return false;
@@ -227,8 +273,7 @@ bool LightSet::sample(size_t i, const Vec3& ref, float u1, float u2, LightSample
             if (cosL == 0) return false;
             out.pdf = dist2 / (cosL * e.area);
             out.p = p;
-            // Rounding of p0 + e1 b1 + e2 b2 (pbrt's gamma bound for a barycentric interpolation).
-            out.pError = (abs(tri[0]) + abs(tri[1] * b1) + abs(tri[2] * b2)) * gamma(7);
+            out.pError = pError;
             out.Li = l.radiance;
             return maxComponent(out.Li) > 0;
         }

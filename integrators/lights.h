@@ -71,12 +71,16 @@ class LightSet {
         std::vector<Vec3> triangles;  // p0, edge1, edge2 per triangle
         std::vector<Vec3> normals;    // unit geometric normal per triangle
         Distribution1D triangleArea;
+        // Two triangles tiling a parallelogram: sampled directly (findParallelogram).
+        bool parallelogram = false;
+        Vec3 origin, edgeX, edgeY, originError;
         float area = 0;
         bool oneSided = false;
         Vec3 side;  // emitting side for one-sided lights
         EnvironmentMap env;
     };
     float power(const Entry& e, float sceneRadius) const;
+    static void findParallelogram(Entry& e);
     std::vector<Entry> lights_;
     std::vector<int> meshLight_;
     std::vector<size_t> infinite_;

@@ -286,7 +286,8 @@ bool readObj(const std::string& path, Scene& scene) {
             const char* nl = static_cast<const char*>(std::memchr(cut, '\n', size_t(end - cut)));
             cut = nl ? nl + 1 : end;
         }
-        chunks.push_back(Chunk{p, cut});
+        chunks.emplace_back();
+        chunks.back().begin = p, chunks.back().end = cut;
         p = cut;
     }
     tbb::parallel_for(size_t(0), chunks.size(), [&](size_t i) { countChunk(chunks[i]); });

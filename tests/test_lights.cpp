@@ -68,23 +68,49 @@ TEST(LightSampling, RectangleAreaLight) {
     EXPECT_FALSE(lights.sample(0, Vec3(0, 2, 0), 0.3f, 0.6f, ls));
 }
 
-TEST(LightSampling, EmissiveMeshByArea) {
-    // A planar fan around an off-centre point: triangles of very different areas, picked by area.
+// A scene whose only light is one emissive mesh; `tris` gets its triangles as corner lists.
+Scene emitterScene(std::vector<float> positions, std::vector<uint32_t> indices,
+                   std::vector<Vec3>& tris) {
     TriangleMesh m;
-    m.positions = {0, 0, 0, 2, 0, 0, 2, 0, 1, 0, 0, 1, 0.1f, 0, 0.05f};
-    m.indices = {4, 0, 1, 4, 1, 2, 4, 2, 3, 4, 3, 0};
+    m.positions = std::move(positions);
+    m.indices = std::move(indices);
     m.materialIds = {0};
     m.finalizePadding();
     Scene s = test::sceneWith(m);
     s.materials[0].kind = MaterialKind::Emission;
     s.materials[0].emission = Color(3.0f);
     addEmissiveMeshLights(s);
-    ASSERT_EQ(s.lights.size(), 1u);
-    LightSet lights(s);
-    std::vector<Vec3> tris;
+    EXPECT_EQ(s.lights.size(), 1u);
     for (uint32_t idx : s.meshes[0].indices) tris.push_back(s.meshes[0].vertex(idx));
+    return s;
+}
+
+TEST(LightSampling, EmissiveMeshByArea) {
+    // A planar fan around an off-centre point: triangles of very different areas, picked by area.
+    std::vector<Vec3> tris;
+    Scene s = emitterScene({0, 0, 0, 2, 0, 0, 2, 0, 1, 0, 0, 1, 0.1f, 0, 0.05f},
+                           {4, 0, 1, 4, 1, 2, 4, 2, 3, 4, 3, 0}, tris);
+    LightSet lights(s);
     expectLightMatchesPdf(lights, 0, Vec3(0.7f, 1.2f, 0.4f), tris, "mesh, from above");
     expectLightMatchesPdf(lights, 0, Vec3(0.7f, -0.5f, 2.0f), tris, "mesh, from below (two-sided)");
+}
+
+TEST(LightSampling, TwoTriangleEmittersParallelogramOrNot) {
+    // Two triangles: a sheared parallelogram (sampled as one) and a kite of unequal halves (must
+    // not be: a parallelogram sample would land outside it and fail the test).
+    struct Case {
+        std::vector<float> positions;
+        const char* what;
+    } cases[] = {
+        {{0, 0, 0, 2, 0, 0.3f, 2.5f, 0, 1.3f, 0.5f, 0, 1}, "sheared parallelogram"},
+        {{0, 0, 0, 2, 0, 0, 2.2f, 0, 1.5f, 0, 0, 0.4f}, "kite"},
+    };
+    for (const Case& c : cases) {
+        std::vector<Vec3> tris;
+        Scene s = emitterScene(c.positions, {0, 1, 2, 0, 2, 3}, tris);
+        LightSet lights(s);
+        expectLightMatchesPdf(lights, 0, Vec3(0.9f, 1.1f, 0.4f), tris, c.what);
+    }
 }
 
 TEST(LightSampling, AmbientHemisphere) {

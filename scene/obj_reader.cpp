@@ -68,10 +68,13 @@ void forEachLine(Chunk& c, Fn&& fn) {
     while (p < c.end) {
         const char* nl = static_cast<const char*>(std::memchr(p, '\n', size_t(c.end - p)));
         const char* lineEnd = nl ? nl : c.end;
-        const char* s = skipBlanks(p, lineEnd);
-        if (s < lineEnd && *s != '#') {
-            const char* k = tokenEnd(s, lineEnd);
-            fn(classify(std::string_view(s, size_t(k - s))), k, lineEnd);
+        // A comment may also end a statement ("f 1 2 3 # top").
+        const char* hash = static_cast<const char*>(std::memchr(p, '#', size_t(lineEnd - p)));
+        const char* statementEnd = hash ? hash : lineEnd;
+        const char* s = skipBlanks(p, statementEnd);
+        if (s < statementEnd) {
+            const char* k = tokenEnd(s, statementEnd);
+            fn(classify(std::string_view(s, size_t(k - s))), k, statementEnd);
         }
         ++c.lines;
         p = lineEnd + 1;

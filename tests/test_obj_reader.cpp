@@ -56,7 +56,8 @@ TEST(ObjReader, EveryCornerFormNegativeIndicesPolygonsAndCrlf) {
                                        "f 1 2 3 4\r\n"
                                        "v 2 0 0\r\n"
                                        "s off\r\n"
-                                       "f\t-1 -4   -3 -2 1\r\n");
+                                       "f\t-1 -4   -3 -2 1 # a pentagon\r\n"
+                                       "# no newline at the end");
     Scene s;
     ASSERT_TRUE(readObj(path, s));
     const TriangleMesh& m = s.meshes[0];

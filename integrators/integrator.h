@@ -2,6 +2,7 @@
 #pragma once
 
 #include <memory>
+#include <span>
 #include <string>
 
 #include "renderer/accelerator.h"
@@ -13,6 +14,14 @@ namespace kiln {
 
 struct RayCounter {
     uint64_t rays = 0;
+};
+
+// One camera sample on its way through an integrator: its ray, its random numbers and what it
+// records. Integrators take them in batches so rays of neighbouring samples travel as packets.
+struct CameraSample {
+    Ray ray;
+    Sampler sampler;
+    SampleRecord record;
 };
 
 class Integrator {
@@ -27,6 +36,11 @@ class Integrator {
         r.reset(aovs_);
         Li(ray, sampler, counter, r);
         return r.L;
+    }
+    // A batch of camera samples (records already reset). The default traces them one by one; the
+    // path integrator traces them together, a bounce at a time.
+    virtual void Li(std::span<CameraSample> batch, RayCounter& counter) const {
+        for (CameraSample& s : batch) Li(s.ray, s.sampler, counter, s.record);
     }
     virtual const char* name() const = 0;
     void setAovs(const AovRequest& aovs) { aovs_ = aovs; }

@@ -45,7 +45,15 @@ void PathIntegrator::usePlan(const RenderPlan& plan) {
 
 void PathIntegrator::Li(const Ray& ray, Sampler& sampler, RayCounter& counter,
                         SampleRecord& record) const {
-    (this->*trace_)(ray, sampler, counter, record);
+    // A batch of one: the same code, so a replayed sample is the sample the render traced.
+    CameraSample one{ray, sampler, record};
+    (this->*trace_)(std::span<CameraSample>(&one, 1), counter);
+    sampler = one.sampler;
+    record = one.record;
+}
+
+void PathIntegrator::Li(std::span<CameraSample> batch, RayCounter& counter) const {
+    (this->*trace_)(batch, counter);
 }
 
 float PathIntegrator::misWeight(float nf, float fPdf, float ng, float gPdf) const {
@@ -91,153 +99,229 @@ class LambertBsdf {
 
 }  // namespace
 
-template <bool DiffuseOnly, bool Infinite, bool DeltaLightsOnly, bool SplitLight>
-void PathIntegrator::trace(const Ray& cameraRay, Sampler& sampler, RayCounter& counter,
-                           SampleRecord& rec) const {
-    Color& L = rec.L;
-    Color beta(1.0f);
-    const bool splitLight = SplitLight && aovs_.splitsLight();
-    Lobe firstLobe = Lobe::Diffuse;  // how the path left its first vertex (for the lobe AOVs)
-    // Light that bounced `bounce` times; with accumulation off only the maxDepth-th bounce is kept.
-    // Every contribution lands in exactly one of emission / direct / indirect, so they sum to the
-    // beauty.
-    auto add = [&](int bounce, const Color& c, Lobe lobe) {
-        if (!opt_.accumulateBounces && bounce != opt_.maxDepth) return;
-        L += c;
-        if constexpr (!SplitLight) return;
-        if (!splitLight) return;
-        if (bounce == 0)
-            rec.emission += c;
-        else if (bounce == 1)
-            rec.direct += c;
-        else
-            rec.indirect += c;
-        if (bounce >= 1) rec.lobes[bounce == 1 ? 0 : 1][int(lobe)] += c;
-        if (bounce >= 1 && bounce <= aovs_.bounceLayers) rec.bounces[bounce - 1] += c;
-    };
-    const float nLight = float(opt_.lightSamples);
-    const bool useNee = opt_.sampling != DirectSampling::Hemisphere && lights_.size() > 0;
-    Ray ray = cameraRay;
+// Light that bounced `bounce` times; with accumulation off only the maxDepth-th bounce is kept.
+// Every contribution lands in exactly one of emission / direct / indirect, so they sum to the
+// beauty.
+template <bool SplitLight>
+void PathIntegrator::addLight(SampleRecord& rec, int bounce, const Color& c, Lobe lobe) const {
+    if (!opt_.accumulateBounces && bounce != opt_.maxDepth) return;
+    rec.L += c;
+    if constexpr (!SplitLight) return;
+    if (!aovs_.splitsLight()) return;
+    if (bounce == 0)
+        rec.emission += c;
+    else if (bounce == 1)
+        rec.direct += c;
+    else
+        rec.indirect += c;
+    if (bounce >= 1) rec.lobes[bounce == 1 ? 0 : 1][int(lobe)] += c;
+    if (bounce >= 1 && bounce <= aovs_.bounceLayers) rec.bounces[bounce - 1] += c;
+}
+
+namespace {
+
+// What a path carries from one vertex to the next.
+struct PathState {
+    Ray ray;
+    Color beta{1.0f};
     bool specular = true;  // the previous vertex was the camera or a delta lobe: nothing else could
                            // see the light
     float prevPdf = 0;
-    Vec3 prevP = ray.origin;
+    Vec3 prevP;
+    Lobe firstLobe = Lobe::Diffuse;  // how the path left its first vertex (for the lobe AOVs)
+};
 
-    // Weight of emission found by following the BSDF-sampled ray, against NEE having sampled light
-    // li.
-    auto emissionWeight = [&](int li, const Vec3& dir, const Vec3& x, const Vec3& n) {
-        if constexpr (DeltaLightsOnly)
-            return 1.0f;  // no light can be hit: emission here is unweighted
-        if (specular || li < 0 || !useNee) return 1.0f;
-        if (opt_.sampling == DirectSampling::Light) return 0.0f;
-        float pl = lights_.selectPmf(size_t(li)) * lights_.pdf(size_t(li), prevP, dir, x, n);
-        return misWeight(1, prevPdf, nLight, pl);
-    };
+// A next-event estimate waiting for its shadow ray: added to its path's record if unoccluded.
+struct PendingLight {
+    uint32_t path;
+    int bounce;
+    Lobe lobe;
+    Color contribution;
+};
 
-    for (int bounce = 0;; ++bounce) {
-        Hit hit;
-        ++counter.rays;
-        if (!accel_.intersect(ray, hit)) {
-            if constexpr (Infinite) {
-                Vec3 dir = normalize(ray.dir);
-                for (size_t i : lights_.infiniteLights()) {
-                    Color Le = lights_.escaped(i, dir, bounce == 0);
-                    if (maxComponent(Le) > 0)
-                        add(bounce, beta * Le * emissionWeight(int(i), dir, Vec3(0.0f), Vec3(0.0f)),
-                            firstLobe);
+// Scratch reused by every batch a thread traces.
+struct BatchScratch {
+    std::vector<PathState> paths;
+    std::vector<uint32_t> active, next;
+    std::vector<Ray> rays, shadowRays;
+    std::vector<Hit> hits;
+    std::vector<PendingLight> pending;
+    std::vector<uint8_t> occluded;
+};
+
+}  // namespace
+
+// Wavefront over a batch: every live path's next ray is traced together (Embree packets), then
+// every path is shaded, its next-event shadow rays queued; the queue is traced together and the
+// unoccluded estimates added. Each path still draws its random numbers and adds its light in the
+// same order as a path traced alone, so the image does not depend on how samples are batched.
+template <bool DiffuseOnly, bool Infinite, bool DeltaLightsOnly, bool SplitLight>
+void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) const {
+    thread_local BatchScratch scratch;
+    BatchScratch& w = scratch;
+    w.paths.assign(batch.size(), PathState{});
+    w.active.clear();
+    for (uint32_t i = 0; i < batch.size(); ++i) {
+        w.paths[i].ray = batch[i].ray;
+        w.paths[i].prevP = batch[i].ray.origin;
+        w.active.push_back(i);
+    }
+    const float nLight = float(opt_.lightSamples);
+    const bool useNee = opt_.sampling != DirectSampling::Hemisphere && lights_.size() > 0;
+
+    for (int bounce = 0; !w.active.empty(); ++bounce) {
+        w.rays.clear();
+        for (uint32_t i : w.active) w.rays.push_back(w.paths[i].ray);
+        w.hits.resize(w.rays.size());
+        accel_.intersect(std::span<const Ray>(w.rays), std::span<Hit>(w.hits));
+        counter.rays += w.rays.size();
+        w.next.clear();
+        w.pending.clear();
+        w.shadowRays.clear();
+
+        for (size_t j = 0; j < w.active.size(); ++j) {
+            uint32_t pi = w.active[j];
+            PathState& st = w.paths[pi];
+            Sampler& sampler = batch[pi].sampler;
+            SampleRecord& rec = batch[pi].record;
+            const Ray& ray = w.rays[j];
+            const Hit& hit = w.hits[j];
+
+            // Weight of emission found by following the BSDF-sampled ray, against NEE having
+            // sampled light li.
+            auto emissionWeight = [&](int li, const Vec3& dir, const Vec3& x, const Vec3& n) {
+                if constexpr (DeltaLightsOnly)
+                    return 1.0f;  // no light can be hit: emission here is unweighted
+                if (st.specular || li < 0 || !useNee) return 1.0f;
+                if (opt_.sampling == DirectSampling::Light) return 0.0f;
+                float pl =
+                    lights_.selectPmf(size_t(li)) * lights_.pdf(size_t(li), st.prevP, dir, x, n);
+                return misWeight(1, st.prevPdf, nLight, pl);
+            };
+
+            if (!hit.valid()) {
+                if constexpr (Infinite) {
+                    Vec3 dir = normalize(ray.dir);
+                    for (size_t i : lights_.infiniteLights()) {
+                        Color Le = lights_.escaped(i, dir, bounce == 0);
+                        if (maxComponent(Le) > 0)
+                            addLight<SplitLight>(
+                                rec, bounce,
+                                st.beta * Le * emissionWeight(int(i), dir, Vec3(0.0f), Vec3(0.0f)),
+                                st.firstLobe);
+                    }
+                }
+                continue;
+            }
+            SurfaceInteraction si = makeInteraction(scene_, ray, hit);
+            const Material& mat = scene_.materials[si.material];
+            if (bounce == 0) recordSurface(ray, hit, si, rec);
+            if (maxComponent(mat.emission) > 0) {
+                int li = (hit.shape != kSphereShape && hit.instance == kInvalidId)
+                             ? lights_.lightOfMesh(hit.shape)
+                             : -1;
+                Color Le =
+                    li >= 0 ? lights_.emitted(size_t(li), si.p, si.ng, ray.origin) : mat.emission;
+                addLight<SplitLight>(
+                    rec, bounce, st.beta * Le * emissionWeight(li, normalize(ray.dir), si.p, si.ng),
+                    st.firstLobe);
+            }
+            if (bounce >= opt_.maxDepth) continue;
+            std::conditional_t<DiffuseOnly, LambertBsdf, Bsdf> bsdf(mat, opt_.microfacet);
+            if (bsdf.isBlack()) continue;
+            // A shading normal bent so far that the viewer is below its tangent plane would make
+            // the surface black: shade such a vertex with the geometric normal instead (on the
+            // stored normal's side).
+            Vec3 woWorld = -normalize(ray.dir);
+            Vec3 shadingN = si.nsStored;
+            if (dot(woWorld, si.ns) <= 0) shadingN = dot(si.ns, si.nsStored) >= 0 ? si.ng : -si.ng;
+            Frame frame(shadingN);
+            Vec3 wo = frame.toLocal(woWorld);
+
+            // Next-event estimation: lightSamples lights chosen by power, their shadow rays queued.
+            if (useNee && !bsdf.isDelta() &&
+                (opt_.accumulateBounces || bounce + 1 == opt_.maxDepth)) {
+                for (int k = 0; k < opt_.lightSamples; ++k) {
+                    float pmf;
+                    size_t li = lights_.select(sampler.next1D(), pmf);
+                    float u1 = sampler.next1D(), u2 = sampler.next1D();
+                    LightSample ls;
+                    if (!lights_.sample(li, si.p, u1, u2, ls) || pmf == 0) continue;
+                    Vec3 wi = frame.toLocal(ls.wi);
+                    Color f = bsdf.eval(wo, wi) * std::abs(wi.z);
+                    // Geometric side check: no light from behind the actual surface through a bent
+                    // normal.
+                    if (maxComponent(f) <= 0 || (dot(ls.wi, si.ng) <= 0 && !bsdf.hasTransmission()))
+                        continue;
+                    float pl = pmf * ls.pdf;
+                    float weight = 1.0f;
+                    if constexpr (!DeltaLightsOnly)
+                        if (!ls.delta && opt_.sampling != DirectSampling::Light &&
+                            lights_.hittable(li))
+                            weight = misWeight(nLight, pl, 1, bsdf.pdf(wo, wi));
+                    w.shadowRays.push_back(ls.infinite ? spawnRay(si, ls.wi)
+                                                       : spawnRayTo(si, ls.p, ls.pError));
+                    w.pending.push_back({pi, bounce + 1,
+                                         bounce == 0 ? lobeOf(mat.kind, false) : st.firstLobe,
+                                         st.beta * f * ls.Li * (weight / (pl * nLight))});
                 }
             }
-            break;
-        }
-        SurfaceInteraction si = makeInteraction(scene_, ray, hit);
-        const Material& mat = scene_.materials[si.material];
-        if (bounce == 0) recordSurface(ray, hit, si, rec);
-        if (maxComponent(mat.emission) > 0) {
-            int li = (hit.shape != kSphereShape && hit.instance == kInvalidId)
-                         ? lights_.lightOfMesh(hit.shape)
-                         : -1;
-            Color Le =
-                li >= 0 ? lights_.emitted(size_t(li), si.p, si.ng, ray.origin) : mat.emission;
-            add(bounce, beta * Le * emissionWeight(li, normalize(ray.dir), si.p, si.ng), firstLobe);
-        }
-        if (bounce >= opt_.maxDepth) break;
-        std::conditional_t<DiffuseOnly, LambertBsdf, Bsdf> bsdf(mat, opt_.microfacet);
-        if (bsdf.isBlack()) break;
-        // A shading normal bent so far that the viewer is below its tangent plane would make the
-        // surface black: shade such a vertex with the geometric normal instead (on the stored
-        // normal's side).
-        Vec3 woWorld = -normalize(ray.dir);
-        Vec3 shadingN = si.nsStored;
-        if (dot(woWorld, si.ns) <= 0) shadingN = dot(si.ns, si.nsStored) >= 0 ? si.ng : -si.ng;
-        Frame frame(shadingN);
-        Vec3 wo = frame.toLocal(woWorld);
 
-        // Next-event estimation: lightSamples lights chosen by power.
-        if (useNee && !bsdf.isDelta() && (opt_.accumulateBounces || bounce + 1 == opt_.maxDepth)) {
-            for (int k = 0; k < opt_.lightSamples; ++k) {
-                float pmf;
-                size_t li = lights_.select(sampler.next1D(), pmf);
-                float u1 = sampler.next1D(), u2 = sampler.next1D();
-                LightSample ls;
-                if (!lights_.sample(li, si.p, u1, u2, ls) || pmf == 0) continue;
-                Vec3 wi = frame.toLocal(ls.wi);
-                Color f = bsdf.eval(wo, wi) * std::abs(wi.z);
-                // Geometric side check: no light from behind the actual surface through a bent
-                // normal.
-                if (maxComponent(f) <= 0 || (dot(ls.wi, si.ng) <= 0 && !bsdf.hasTransmission()))
-                    continue;
-                Ray shadow = ls.infinite ? spawnRay(si, ls.wi) : spawnRayTo(si, ls.p, ls.pError);
-                ++counter.rays;
-                if (accel_.occluded(shadow)) continue;
-                float pl = pmf * ls.pdf;
-                float w = 1.0f;
-                if constexpr (!DeltaLightsOnly)
-                    if (!ls.delta && opt_.sampling != DirectSampling::Light && lights_.hittable(li))
-                        w = misWeight(nLight, pl, 1, bsdf.pdf(wo, wi));
-                add(bounce + 1, beta * f * ls.Li * (w / (pl * nLight)),
-                    bounce == 0 ? lobeOf(mat.kind, false) : firstLobe);
+            // Continue the path. With only delta lights and no emitters, a ray after the last
+            // bounce could find nothing: not traced.
+            if constexpr (DeltaLightsOnly)
+                if (bounce + 1 >= opt_.maxDepth) continue;
+            BsdfSample bs;
+            if (opt_.sampling == DirectSampling::Hemisphere && !bsdf.isDelta()) {
+                Vec3 wi = uniformHemisphere(sampler.next1D(), sampler.next1D());
+                sampler.next1D();
+                if (wo.z < 0) wi.z = -wi.z;
+                bs.wi = wi;
+                bs.pdf = uniformHemispherePdf();
+                bs.f = bsdf.eval(wo, wi);
+            } else {
+                float uc = sampler.next1D(), u1 = sampler.next1D(), u2 = sampler.next1D();
+                if (!bsdf.sample(wo, uc, u1, u2, bs)) continue;
+            }
+            if (bs.pdf <= 0 || maxComponent(bs.f) <= 0) continue;
+            // The shading frame may send a reflection below the real surface, or a refraction back
+            // out of it: following either would leak light through thin walls.
+            Vec3 wiWorld = frame.toWorld(bs.wi);
+            if ((dot(wiWorld, si.ng) > 0) == bs.transmission) continue;
+            if (bounce == 0) st.firstLobe = lobeOf(mat.kind, bs.transmission);
+            st.beta *= bs.f * (std::abs(bs.wi.z) / bs.pdf);
+            st.specular = bs.delta;
+            st.prevPdf = bs.pdf;
+            st.prevP = si.p;
+
+            // Russian roulette: unbiased, the survivors carry 1 / continuation.
+            float rr = sampler.next1D();
+            if (opt_.roulette == Roulette::Throughput && bounce + 1 >= opt_.rouletteMinBounces) {
+                float q = std::min(1.0f, maxComponent(st.beta));
+                if (rr >= q) continue;
+                st.beta = st.beta / q;
+            } else if (opt_.roulette == Roulette::Fixed && bounce >= 1) {
+                if (rr >= opt_.fixedContinuation) continue;
+                st.beta = st.beta / opt_.fixedContinuation;
+            }
+            if (!isFinite(st.beta) || maxComponent(st.beta) <= 0) continue;
+            st.ray = spawnRay(si, wiWorld);
+            w.next.push_back(pi);
+        }
+
+        // The queued next-event estimates, traced together; in queue order, which is each path's
+        // own order.
+        if (!w.shadowRays.empty()) {
+            w.occluded.resize(w.shadowRays.size());
+            accel_.occluded(std::span<const Ray>(w.shadowRays), std::span<uint8_t>(w.occluded));
+            counter.rays += w.shadowRays.size();
+            for (size_t k = 0; k < w.pending.size(); ++k) {
+                if (w.occluded[k]) continue;
+                const PendingLight& p = w.pending[k];
+                addLight<SplitLight>(batch[p.path].record, p.bounce, p.contribution, p.lobe);
             }
         }
-
-        // Continue the path. With only delta lights and no emitters, a ray after the last bounce
-        // could find nothing: not traced.
-        if constexpr (DeltaLightsOnly)
-            if (bounce + 1 >= opt_.maxDepth) break;
-        BsdfSample bs;
-        if (opt_.sampling == DirectSampling::Hemisphere && !bsdf.isDelta()) {
-            Vec3 wi = uniformHemisphere(sampler.next1D(), sampler.next1D());
-            sampler.next1D();
-            if (wo.z < 0) wi.z = -wi.z;
-            bs.wi = wi;
-            bs.pdf = uniformHemispherePdf();
-            bs.f = bsdf.eval(wo, wi);
-        } else {
-            float uc = sampler.next1D(), u1 = sampler.next1D(), u2 = sampler.next1D();
-            if (!bsdf.sample(wo, uc, u1, u2, bs)) break;
-        }
-        if (bs.pdf <= 0 || maxComponent(bs.f) <= 0) break;
-        // The shading frame may send a reflection below the real surface, or a refraction back out
-        // of it: following either would leak light through thin walls.
-        Vec3 wiWorld = frame.toWorld(bs.wi);
-        if ((dot(wiWorld, si.ng) > 0) == bs.transmission) break;
-        if (bounce == 0) firstLobe = lobeOf(mat.kind, bs.transmission);
-        beta *= bs.f * (std::abs(bs.wi.z) / bs.pdf);
-        specular = bs.delta;
-        prevPdf = bs.pdf;
-        prevP = si.p;
-
-        // Russian roulette: unbiased, the survivors carry 1 / continuation.
-        float rr = sampler.next1D();
-        if (opt_.roulette == Roulette::Throughput && bounce + 1 >= opt_.rouletteMinBounces) {
-            float q = std::min(1.0f, maxComponent(beta));
-            if (rr >= q) break;
-            beta = beta / q;
-        } else if (opt_.roulette == Roulette::Fixed && bounce >= 1) {
-            if (rr >= opt_.fixedContinuation) break;
-            beta = beta / opt_.fixedContinuation;
-        }
-        if (!isFinite(beta) || maxComponent(beta) <= 0) break;
-        ray = spawnRay(si, wiWorld);
+        w.active.swap(w.next);
     }
 }
 

@@ -31,6 +31,7 @@ class PathIntegrator final : public Integrator {
     using Integrator::Li;
     void Li(const Ray& ray, Sampler& sampler, RayCounter& counter,
             SampleRecord& record) const override;
+    void Li(std::span<CameraSample> batch, RayCounter& counter) const override;
     const char* name() const override { return "path"; }
     const PathOptions& options() const { return opt_; }
     const LightSet& lights() const { return lights_; }
@@ -40,9 +41,10 @@ class PathIntegrator final : public Integrator {
 
   private:
     template <bool DiffuseOnly, bool Infinite, bool DeltaLightsOnly, bool SplitLight>
-    void trace(const Ray& ray, Sampler& sampler, RayCounter& counter, SampleRecord& record) const;
-    using TraceFn = void (PathIntegrator::*)(const Ray&, Sampler&, RayCounter&,
-                                             SampleRecord&) const;
+    void trace(std::span<CameraSample> batch, RayCounter& counter) const;
+    using TraceFn = void (PathIntegrator::*)(std::span<CameraSample>, RayCounter&) const;
+    template <bool SplitLight>
+    void addLight(SampleRecord& rec, int bounce, const Color& c, Lobe lobe) const;
     TraceFn trace_;
     float misWeight(float nf, float fPdf, float ng, float gPdf) const;
     PathOptions opt_;

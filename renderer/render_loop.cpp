@@ -22,16 +22,18 @@ std::atomic<bool>& renderCancelFlag() {
 
 namespace {
 
-SampleRecord trace(const CameraModel& camera, const Integrator& integrator, const AovRequest& aovs,
-                   uint64_t seed, int width, int x, int y, int s, RayCounter& counter) {
+// Camera samples a render traces per integrator call: enough for full 16-wide packets after
+// paths die off, few enough that the batch stays in cache.
+constexpr size_t kBatchSamples = 256;
+
+CameraSample cameraSample(const CameraModel& camera, const AovRequest& aovs, uint64_t seed,
+                          int width, int x, int y, int s) {
     Sampler sampler(seed, uint64_t(y) * uint64_t(width) + uint64_t(x), uint64_t(s));
     float jx = sampler.next1D(), jy = sampler.next1D();
     float lu = sampler.next1D(), lv = sampler.next1D();
-    Ray ray = camera.generateRay(float(x) + jx, float(y) + jy, lu, lv);
-    SampleRecord record;
-    record.reset(aovs);
-    integrator.Li(ray, sampler, counter, record);
-    return record;
+    CameraSample cs{camera.generateRay(float(x) + jx, float(y) + jy, lu, lv), sampler, {}};
+    cs.record.reset(aovs);
+    return cs;
 }
 
 }  // namespace
@@ -41,7 +43,9 @@ SampleRecord traceSample(const Scene& scene, const Integrator& integrator,
                          RayCounter& counter) {
     CameraModel camera(scene.camera, settings.width, settings.height);
     AovRequest all = AovRequest::parse("all", kMaxBounceLayers);
-    return trace(camera, integrator, all, settings.seed, settings.width, x, y, sample, counter);
+    CameraSample cs = cameraSample(camera, all, settings.seed, settings.width, x, y, sample);
+    integrator.Li(std::span<CameraSample>(&cs, 1), counter);
+    return cs.record;
 }
 
 RenderStats renderImage(const Scene& scene, const Integrator& integrator,
@@ -72,25 +76,38 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator,
         int x1 = std::min(x0 + tile, settings.width), y1 = std::min(y0 + tile, settings.height);
         RayCounter counter;
         uint64_t work = 0, badCount = 0;
-        for (int y = y0; y < y1 && !cancel.load(std::memory_order_relaxed); ++y)
-            for (int x = x0; x < x1; ++x) {
-                uint64_t pixelIndex = uint64_t(y) * settings.width + x;
-                if (!converged.empty() && converged[pixelIndex]) {
-                    work += uint64_t(sampleCount);
-                    continue;
-                }
-                for (int s = firstSample; s < firstSample + sampleCount; ++s) {
-                    SampleRecord record = trace(camera, integrator, film.layout().request(),
-                                                settings.seed, settings.width, x, y, s, counter);
-                    if (film.add(x, y, record)) continue;
+        std::vector<CameraSample> batch;
+        std::vector<std::pair<int, int>> pixels;  // of the batch, in order
+        batch.reserve(kBatchSamples + size_t(sampleCount));
+        // Whole pixels per batch, samples in order, so the film sums each pixel as before.
+        auto flush = [&] {
+            integrator.Li(std::span<CameraSample>(batch), counter);
+            size_t k = 0;
+            for (auto [x, y] : pixels) {
+                for (int s = firstSample; s < firstSample + sampleCount; ++s, ++k) {
+                    if (film.add(x, y, batch[k].record)) continue;
                     // Non-finite: dropped from the image, counted, and kept for replay.
                     ++badCount;
                     std::lock_guard lock(badMutex);
                     bad.push_back({x, y, s});
                 }
-                work += uint64_t(sampleCount);
-                if (!converged.empty() && converges(x, y)) converged[pixelIndex] = 1;
+                if (!converged.empty() && converges(x, y))
+                    converged[uint64_t(y) * settings.width + x] = 1;
             }
+            batch.clear();
+            pixels.clear();
+        };
+        for (int y = y0; y < y1 && !cancel.load(std::memory_order_relaxed); ++y)
+            for (int x = x0; x < x1; ++x) {
+                work += uint64_t(sampleCount);
+                if (!converged.empty() && converged[uint64_t(y) * settings.width + x]) continue;
+                for (int s = firstSample; s < firstSample + sampleCount; ++s)
+                    batch.push_back(cameraSample(camera, film.layout().request(), settings.seed,
+                                                 settings.width, x, y, s));
+                pixels.emplace_back(x, y);
+                if (batch.size() >= kBatchSamples) flush();
+            }
+        if (!batch.empty()) flush();
         progress.add(work, counter.rays);
         if (badCount) nonFinite += badCount;
     };

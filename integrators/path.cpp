@@ -56,11 +56,6 @@ void PathIntegrator::Li(std::span<CameraSample> batch, RayCounter& counter) cons
     (this->*trace_)(batch, counter);
 }
 
-float PathIntegrator::misWeight(float nf, float fPdf, float ng, float gPdf) const {
-    return opt_.powerHeuristic ? powerHeuristic(nf, fPdf, ng, gPdf)
-                               : balanceHeuristic(nf, fPdf, ng, gPdf);
-}
-
 namespace {
 
 Lobe lobeOf(MaterialKind kind, bool transmission) {
@@ -160,6 +155,8 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
     thread_local BatchScratch scratch;
     BatchScratch& w = scratch;
     w.paths.assign(batch.size(), PathState{});
+    w.pending.reserve(batch.size() * size_t(opt_.lightSamples));
+    w.shadowRays.reserve(batch.size() * size_t(opt_.lightSamples));
     w.active.clear();
     for (uint32_t i = 0; i < batch.size(); ++i) {
         w.paths[i].ray = batch[i].ray;

@@ -7,6 +7,7 @@
 #include "integrators/integrator.h"
 #include "integrators/lights.h"
 #include "integrators/render_plan.h"
+#include "renderer/warp.h"
 
 namespace kiln {
 
@@ -46,7 +47,10 @@ class PathIntegrator final : public Integrator {
     template <bool SplitLight>
     void addLight(SampleRecord& rec, int bounce, const Color& c, Lobe lobe) const;
     TraceFn trace_;
-    float misWeight(float nf, float fPdf, float ng, float gPdf) const;
+    float misWeight(float nf, float fPdf, float ng, float gPdf) const {
+        return opt_.powerHeuristic ? powerHeuristic(nf, fPdf, ng, gPdf)
+                                   : balanceHeuristic(nf, fPdf, ng, gPdf);
+    }
     PathOptions opt_;
     LightSet lights_;
 };

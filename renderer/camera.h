@@ -20,6 +20,7 @@ class CameraModel {
     Camera cam_;
     int width_, height_;
     float hFov_, vFov_, tanX_, tanY_;
+    float xScale_, yScale_;  // raster to [-1, 1]: 2 / width, 2 / height
     Vec3 right_, up_, forward_;
 };
 

@@ -26,12 +26,15 @@ namespace {
 // paths die off, few enough that the batch stays in cache.
 constexpr size_t kBatchSamples = 256;
 
-CameraSample cameraSample(const CameraModel& camera, const AovRequest& aovs, uint64_t seed,
-                          int width, int x, int y, int s) {
+// Appends the camera sample of pixel (x, y), sample s, built in place.
+CameraSample& addCameraSample(std::vector<CameraSample>& batch, const CameraModel& camera,
+                              const AovRequest& aovs, uint64_t seed, int width, int x, int y,
+                              int s) {
     Sampler sampler(seed, uint64_t(y) * uint64_t(width) + uint64_t(x), uint64_t(s));
     float jx = sampler.next1D(), jy = sampler.next1D();
     float lu = sampler.next1D(), lv = sampler.next1D();
-    CameraSample cs{camera.generateRay(float(x) + jx, float(y) + jy, lu, lv), sampler, {}};
+    CameraSample& cs = batch.emplace_back(camera.generateRay(float(x) + jx, float(y) + jy, lu, lv),
+                                          sampler, SampleRecord{});
     cs.record.reset(aovs);
     return cs;
 }
@@ -43,9 +46,10 @@ SampleRecord traceSample(const Scene& scene, const Integrator& integrator,
                          RayCounter& counter) {
     CameraModel camera(scene.camera, settings.width, settings.height);
     AovRequest all = AovRequest::parse("all", kMaxBounceLayers);
-    CameraSample cs = cameraSample(camera, all, settings.seed, settings.width, x, y, sample);
-    integrator.Li(std::span<CameraSample>(&cs, 1), counter);
-    return cs.record;
+    std::vector<CameraSample> one;
+    addCameraSample(one, camera, all, settings.seed, settings.width, x, y, sample);
+    integrator.Li(std::span<CameraSample>(one), counter);
+    return one[0].record;
 }
 
 RenderStats renderImage(const Scene& scene, const Integrator& integrator,
@@ -102,8 +106,8 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator,
                 work += uint64_t(sampleCount);
                 if (!converged.empty() && converged[uint64_t(y) * settings.width + x]) continue;
                 for (int s = firstSample; s < firstSample + sampleCount; ++s)
-                    batch.push_back(cameraSample(camera, film.layout().request(), settings.seed,
-                                                 settings.width, x, y, s));
+                    addCameraSample(batch, camera, film.layout().request(), settings.seed,
+                                    settings.width, x, y, s);
                 pixels.emplace_back(x, y);
                 if (batch.size() >= kBatchSamples) flush();
             }

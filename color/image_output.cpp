@@ -48,6 +48,10 @@ void writeExr(const std::string& path, const Film& film, const Metadata& metadat
          variance = layout.request().has(AovKind::Variance);
     int nc = 4 + int(layout.channels().size()) + int(samples) + int(variance);
     OIIO::ImageSpec spec(film.width(), film.height(), nc, OIIO::TypeDesc::FLOAT);
+    // A render region is the data window inside the full image's display window.
+    spec.x = film.originX(), spec.y = film.originY();
+    spec.full_x = 0, spec.full_y = 0;
+    spec.full_width = film.fullWidth(), spec.full_height = film.fullHeight();
     spec.channelnames = {"R", "G", "B", "A"};
     OIIO::TypeDesc colourType = options.half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT;
     spec.channelformats.assign(4, colourType);
@@ -91,7 +95,7 @@ void writeExr(const std::string& path, const Film& film, const Metadata& metadat
             for (size_t a = 0; a < layout.channels().size(); ++a) px[k++] = film.aov(x, y, a);
             if (samples) px[k++] = float(film.samples(x, y));
             if (variance) px[k++] = float(film.luminanceVariance(x, y));
-            buf.setpixel(x, y, px.data(), nc);
+            buf.setpixel(x + film.originX(), y + film.originY(), px.data(), nc);
         }
     std::string tmp = path + ".tmp";
     // Write under another name and rename, so a reader never sees a half-written EXR.

@@ -30,6 +30,7 @@ struct RenderOptions {
     std::string aovList = "default";
     ExrOptions exr;
     bool heatMap = false;
+    double crop[4] = {0, 1, 0, 1};  // --crop X0 X1 Y0 Y1
 };
 
 double seconds(std::chrono::steady_clock::time_point since) {
@@ -51,6 +52,18 @@ int runRender(const std::vector<std::string>& args) {
                       o.settings.width = ArgParser::toInt("-r", v[0], 1, 32768);
                       o.settings.height = ArgParser::toInt("-r", v[1], 1, 32768);
                   });
+    parser.option(
+        "crop", "", 4, "X0 X1 Y0 Y1",
+        "render only this window of the image, as fractions of its width and height (pbrt's "
+        "crop window); the EXR keeps the full image as its display window",
+        [&](const std::vector<std::string>& v) {
+            for (int i = 0; i < 4; ++i) o.crop[i] = ArgParser::toDouble("--crop", v[size_t(i)]);
+            if (!(o.crop[0] >= 0 && o.crop[0] < o.crop[1] && o.crop[1] <= 1 && o.crop[2] >= 0 &&
+                  o.crop[2] < o.crop[3] && o.crop[3] <= 1))
+                throw UsageError(
+                    "--crop takes X0 X1 Y0 Y1 with 0 <= X0 < X1 <= 1 and 0 <= Y0 < "
+                    "Y1 <= 1");
+        });
     parser.intOption("spp", "s", "camera samples per pixel (default 1)", o.settings.spp, 1,
                      1 << 20);
     parser.intOption("threads", "t", "worker threads (default: all cores)", o.settings.threads, 1,
@@ -210,6 +223,18 @@ int runRender(const std::vector<std::string>& args) {
     if (pos.size() != 1)
         throw UsageError("needs exactly one scene file (see 'kiln render --help')");
     o.settings.progress = !quiet;
+    if (o.crop[0] > 0 || o.crop[1] < 1 || o.crop[2] > 0 || o.crop[3] < 1) {
+        // pbrt's rule: pixel bounds are the ceilings of the scaled fractions.
+        auto at = [](double f, int n) { return int(std::ceil(f * double(n))); };
+        o.settings.regionX0 = at(o.crop[0], o.settings.width);
+        o.settings.regionX1 = at(o.crop[1], o.settings.width);
+        o.settings.regionY0 = at(o.crop[2], o.settings.height);
+        o.settings.regionY1 = at(o.crop[3], o.settings.height);
+        if (o.settings.regionX1 <= o.settings.regionX0 ||
+            o.settings.regionY1 <= o.settings.regionY0)
+            throw UsageError("--crop window holds no pixel at " + std::to_string(o.settings.width) +
+                             "x" + std::to_string(o.settings.height));
+    }
 
     try {
         checkDisplayView(o.display, o.view);
@@ -289,7 +314,8 @@ int runRender(const std::vector<std::string>& args) {
 
     renderCancelFlag().store(false);
     auto previous = std::signal(SIGINT, onInterrupt);
-    Film film(o.settings.width, o.settings.height, aovs);
+    Film film(o.settings.filmWidth(), o.settings.filmHeight(), aovs);
+    film.setRegion(o.settings.regionX0, o.settings.regionY0, o.settings.width, o.settings.height);
     RenderStats stats = renderImage(scene, *integrator, o.settings, film);
     std::signal(SIGINT, previous);
 
@@ -301,7 +327,7 @@ int runRender(const std::vector<std::string>& args) {
         {"accelerator", accel->stats().description},
         {"spp", std::to_string(o.settings.spp)},
         {"mean_spp",
-         std::to_string(double(stats.samples) / (double(o.settings.width) * o.settings.height))},
+         std::to_string(double(stats.samples) / (double(film.width()) * film.height()))},
         {"seed", std::to_string(o.settings.seed)},
         {"resolution", std::to_string(o.settings.width) + "x" + std::to_string(o.settings.height)},
         {"render_seconds", std::to_string(stats.seconds)},

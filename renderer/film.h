@@ -15,6 +15,15 @@ class Film {
     Film(int width, int height, const AovRequest& aovs = {});
     int width() const { return width_; }
     int height() const { return height_; }
+    // A film that holds a region of a larger image: where its pixel (0, 0) sits in that image (the
+    // EXR's data window inside its display window).
+    void setRegion(int originX, int originY, int fullWidth, int fullHeight) {
+        originX_ = originX, originY_ = originY, fullWidth_ = fullWidth, fullHeight_ = fullHeight;
+    }
+    int originX() const { return originX_; }
+    int originY() const { return originY_; }
+    int fullWidth() const { return fullWidth_ > 0 ? fullWidth_ : width_; }
+    int fullHeight() const { return fullHeight_ > 0 ? fullHeight_ : height_; }
     const AovLayout& layout() const { return layout_; }
 
     // Non-finite samples are counted (the caller reports them) and never enter the image.
@@ -43,6 +52,7 @@ class Film {
   private:
     size_t index(int x, int y) const { return size_t(y) * size_t(width_) + size_t(x); }
     int width_, height_;
+    int originX_ = 0, originY_ = 0, fullWidth_ = 0, fullHeight_ = 0;
     AovLayout layout_;
     std::vector<Vec3d> sum_;
     std::vector<double> lum_, lumSq_;

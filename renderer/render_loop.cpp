@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <mutex>
+#include <stdexcept>
 #include <tuple>
 
 #include "renderer/camera.h"
@@ -56,9 +57,15 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator,
                         const RenderSettings& settings, Film& film) {
     RenderStats stats;
     CameraModel camera(scene.camera, settings.width, settings.height);
+    // Tiles cover the film (the render region); cameras and samplers see whole-image pixels.
+    const int fw = settings.filmWidth(), fh = settings.filmHeight();
+    const int ox = settings.regionX1 > 0 ? settings.regionX0 : 0;
+    const int oy = settings.regionX1 > 0 ? settings.regionY0 : 0;
+    if (film.width() != fw || film.height() != fh)
+        throw std::logic_error("renderImage: film size differs from the render region");
     int tile = std::max(1, settings.tileSize);
-    int tilesX = (settings.width + tile - 1) / tile, tilesY = (settings.height + tile - 1) / tile;
-    uint64_t pixels = uint64_t(settings.width) * settings.height;
+    int tilesX = (fw + tile - 1) / tile, tilesY = (fh + tile - 1) / tile;
+    uint64_t pixels = uint64_t(fw) * uint64_t(fh);
     Progress progress("render", pixels * uint64_t(settings.spp), settings.progress);
     std::atomic<uint64_t> nonFinite{0};
     std::mutex badMutex;
@@ -77,7 +84,7 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator,
 
     auto renderTile = [&](int tileIndex, int firstSample, int sampleCount) {
         int x0 = (tileIndex % tilesX) * tile, y0 = (tileIndex / tilesX) * tile;
-        int x1 = std::min(x0 + tile, settings.width), y1 = std::min(y0 + tile, settings.height);
+        int x1 = std::min(x0 + tile, fw), y1 = std::min(y0 + tile, fh);
         RayCounter counter;
         uint64_t work = 0, badCount = 0;
         std::vector<CameraSample> batch;
@@ -90,13 +97,13 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator,
             for (auto [x, y] : pixels) {
                 for (int s = firstSample; s < firstSample + sampleCount; ++s, ++k) {
                     if (film.add(x, y, batch[k].record)) continue;
-                    // Non-finite: dropped from the image, counted, and kept for replay.
+                    // Non-finite: dropped from the image, counted, and kept for replay (in
+                    // whole-image pixels, as --pixel takes them).
                     ++badCount;
                     std::lock_guard lock(badMutex);
-                    bad.push_back({x, y, s});
+                    bad.push_back({x + ox, y + oy, s});
                 }
-                if (!converged.empty() && converges(x, y))
-                    converged[uint64_t(y) * settings.width + x] = 1;
+                if (!converged.empty() && converges(x, y)) converged[uint64_t(y) * fw + x] = 1;
             }
             batch.clear();
             pixels.clear();
@@ -104,10 +111,10 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator,
         for (int y = y0; y < y1 && !cancel.load(std::memory_order_relaxed); ++y)
             for (int x = x0; x < x1; ++x) {
                 work += uint64_t(sampleCount);
-                if (!converged.empty() && converged[uint64_t(y) * settings.width + x]) continue;
+                if (!converged.empty() && converged[uint64_t(y) * fw + x]) continue;
                 for (int s = firstSample; s < firstSample + sampleCount; ++s)
                     addCameraSample(batch, camera, film.layout().request(), settings.seed,
-                                    settings.width, x, y, s);
+                                    settings.width, x + ox, y + oy, s);
                 pixels.emplace_back(x, y);
                 if (batch.size() >= kBatchSamples) flush();
             }

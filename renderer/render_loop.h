@@ -13,6 +13,12 @@ namespace kiln {
 
 struct RenderSettings {
     int width = 800, height = 600;
+    // Render region (pbrt's crop window): pixels [x0, x1) x [y0, y1) of the width x height image.
+    // The film holds just those; a pixel renders exactly as it would in the whole image. x1 = 0:
+    // the whole image.
+    int regionX0 = 0, regionY0 = 0, regionX1 = 0, regionY1 = 0;
+    int filmWidth() const { return regionX1 > 0 ? regionX1 - regionX0 : width; }
+    int filmHeight() const { return regionX1 > 0 ? regionY1 - regionY0 : height; }
     int spp = 1;
     int threads = 0;  // 0 = all cores
     int tileSize = 32;

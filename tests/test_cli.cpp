@@ -1,4 +1,5 @@
 // The kiln executable end to end: help, bad flags, bad files, outputs and exit codes.
+#include <OpenImageIO/imageio.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -135,6 +136,50 @@ TEST(Cli, PlanIsPrintedRecordedAndOverridable) {
                               .c_str()),
               0);
     EXPECT_EQ(runKiln("render x.dae --plan fastest").code, 2);
+}
+
+TEST(Cli, CropRendersExactlyThosePixelsOfTheWholeImage) {
+    // The course's 480x360 view is the central 60 % of its 800x600 one: --crop 0.2 0.8 0.2 0.8.
+    auto dir = test::scratchDir();
+    std::string scene = test::cs184("sky/CBspheres_lambertian.dae");
+    std::string common = " -r 40 30 -s 3 -m 3 -q --aov none -t 2 ";
+    ASSERT_EQ(runKiln("render " + scene + common + "-o " + (dir / "whole").string()).code, 0);
+    CliRun crop = runKiln("render " + scene + common + "--crop 0.2 0.8 0.2 0.8 -o " +
+                          (dir / "crop").string());
+    ASSERT_EQ(crop.code, 0) << crop.err;
+    auto read = [](const std::filesystem::path& p, OIIO::ImageSpec& spec) {
+        auto in = OIIO::ImageInput::open(p.string());
+        EXPECT_TRUE(in) << p;
+        spec = in->spec();
+        std::vector<float> px(size_t(spec.width) * spec.height * spec.nchannels);
+        in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data());
+        return px;
+    };
+    OIIO::ImageSpec ws, cs;
+    std::vector<float> whole = read(dir / "whole.exr", ws), part = read(dir / "crop.exr", cs);
+    // pbrt's rule: ceil(0.2 * 40) = 8 .. ceil(0.8 * 40) = 32; ceil(6) = 6 .. ceil(24) = 24.
+    EXPECT_EQ(cs.width, 24);
+    EXPECT_EQ(cs.height, 18);
+    EXPECT_EQ(cs.x, 8);
+    EXPECT_EQ(cs.y, 6);
+    EXPECT_EQ(cs.full_width, 40);
+    EXPECT_EQ(cs.full_height, 30);
+    int nc = ws.nchannels;
+    ASSERT_EQ(cs.nchannels, nc);
+    int differ = 0;
+    for (int y = 0; y < cs.height; ++y)
+        for (int x = 0; x < cs.width; ++x)
+            for (int c = 0; c < nc; ++c)
+                differ += part[(size_t(y) * cs.width + x) * nc + c] !=
+                          whole[(size_t(y + 6) * ws.width + x + 8) * nc + c];
+    EXPECT_EQ(differ, 0) << "a cropped pixel must be the same sample for sample";
+    for (const char* bad :
+         {"--crop 0.5 0.5 0 1", "--crop 0 1 -0.1 1", "--crop 0 1 0 x", "--crop 0 1.5 0 1"}) {
+        CliRun r =
+            runKiln("render " + scene + " -r 8 8 -q -o " + (dir / "bad").string() + " " + bad);
+        EXPECT_EQ(r.code, 2) << bad;
+        EXPECT_EQ(lines(r.err), 1) << bad << ": " << r.err;
+    }
 }
 
 TEST(Cli, InfoJsonAndCrosscheck) {

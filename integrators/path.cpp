@@ -170,7 +170,17 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
         w.rays.clear();
         for (uint32_t i : w.active) w.rays.push_back(w.paths[i].ray);
         w.hits.resize(w.rays.size());
-        accel_.intersect(std::span<const Ray>(w.rays), std::span<Hit>(w.hits));
+        // Camera rays are coherent and go as packets; after a bounce, rays scatter and Embree's
+        // single-ray traversal is faster (measured: packets of diffuse bounce rays took 1.5-1.8x as
+        // long per ray). Shadow rays, below, gain from packets either way.
+        if (bounce == 0) {
+            accel_.intersect(std::span<const Ray>(w.rays), std::span<Hit>(w.hits));
+        } else {
+            for (size_t j = 0; j < w.rays.size(); ++j) {
+                w.hits[j] = Hit{};
+                accel_.intersect(w.rays[j], w.hits[j]);
+            }
+        }
         counter.rays += w.rays.size();
         w.next.clear();
         w.pending.clear();

@@ -115,9 +115,8 @@ void PathIntegrator::addLight(SampleRecord& rec, int bounce, const Color& c, Lob
 
 namespace {
 
-// What a path carries from one vertex to the next.
+// What a path carries from one vertex to the next (its next ray waits in BatchScratch::nextRays).
 struct PathState {
-    Ray ray;
     Color beta{1.0f};
     bool specular = true;  // the previous vertex was the camera or a delta lobe: nothing else could
                            // see the light
@@ -137,8 +136,8 @@ struct PendingLight {
 // Scratch reused by every batch a thread traces.
 struct BatchScratch {
     std::vector<PathState> paths;
-    std::vector<uint32_t> active, next;
-    std::vector<Ray> rays, shadowRays;
+    std::vector<uint32_t> active, next;  // live paths, and their rays in the same order
+    std::vector<Ray> rays, nextRays, shadowRays;
     std::vector<Hit> hits;
     std::vector<PendingLight> pending;
     std::vector<uint8_t> occluded;
@@ -158,17 +157,16 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
     w.pending.reserve(batch.size() * size_t(opt_.lightSamples));
     w.shadowRays.reserve(batch.size() * size_t(opt_.lightSamples));
     w.active.clear();
+    w.rays.clear();
     for (uint32_t i = 0; i < batch.size(); ++i) {
-        w.paths[i].ray = batch[i].ray;
         w.paths[i].prevP = batch[i].ray.origin;
         w.active.push_back(i);
+        w.rays.push_back(batch[i].ray);
     }
     const float nLight = float(opt_.lightSamples);
     const bool useNee = opt_.sampling != DirectSampling::Hemisphere && lights_.size() > 0;
 
     for (int bounce = 0; !w.active.empty(); ++bounce) {
-        w.rays.clear();
-        for (uint32_t i : w.active) w.rays.push_back(w.paths[i].ray);
         w.hits.resize(w.rays.size());
         // Camera rays are coherent and go as packets; after a bounce, rays scatter and Embree's
         // single-ray traversal is faster (measured: packets of diffuse bounce rays took 1.5-1.8x as
@@ -183,6 +181,7 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
         }
         counter.rays += w.rays.size();
         w.next.clear();
+        w.nextRays.clear();
         w.pending.clear();
         w.shadowRays.clear();
 
@@ -312,8 +311,8 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
                 st.beta = st.beta / opt_.fixedContinuation;
             }
             if (!isFinite(st.beta) || maxComponent(st.beta) <= 0) continue;
-            st.ray = spawnRay(si, wiWorld);
             w.next.push_back(pi);
+            w.nextRays.push_back(spawnRay(si, wiWorld));
         }
 
         // The queued next-event estimates, traced together; in queue order, which is each path's
@@ -329,6 +328,7 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
             }
         }
         w.active.swap(w.next);
+        w.rays.swap(w.nextRays);
     }
 }
 

@@ -28,16 +28,14 @@ namespace {
 constexpr size_t kBatchSamples = 256;
 
 // Appends the camera sample of pixel (x, y), sample s, built in place.
-CameraSample& addCameraSample(std::vector<CameraSample>& batch, const CameraModel& camera,
-                              const AovRequest& aovs, uint64_t seed, int width, int x, int y,
-                              int s) {
+void addCameraSample(std::vector<CameraSample>& batch, const CameraModel& camera,
+                     const AovRequest& aovs, uint64_t seed, int width, int x, int y, int s) {
     Sampler sampler(seed, uint64_t(y) * uint64_t(width) + uint64_t(x), uint64_t(s));
     float jx = sampler.next1D(), jy = sampler.next1D();
     float lu = sampler.next1D(), lv = sampler.next1D();
     CameraSample& cs = batch.emplace_back(camera.generateRay(float(x) + jx, float(y) + jy, lu, lv),
                                           sampler, SampleRecord{});
     cs.record.reset(aovs);
-    return cs;
 }
 
 }  // namespace

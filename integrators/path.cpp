@@ -10,6 +10,7 @@ PathIntegrator::PathIntegrator(const Scene& scene, const Accelerator& accel,
                                const PathOptions& options)
     : Integrator(scene, accel), opt_(options), lights_(scene) {
     opt_.lightSamples = std::max(1, opt_.lightSamples);
+    eachDeltaLightOnce_ = lights_.size() > 0 && lights_.allDelta();
     trace_ =
         &PathIntegrator::trace<false, true, false, true>;  // general until a plan says otherwise
 }
@@ -154,8 +155,9 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
     thread_local BatchScratch scratch;
     BatchScratch& w = scratch;
     w.paths.assign(batch.size(), PathState{});
-    w.pending.reserve(batch.size() * size_t(opt_.lightSamples));
-    w.shadowRays.reserve(batch.size() * size_t(opt_.lightSamples));
+    size_t perVertex = eachDeltaLightOnce_ ? lights_.size() : size_t(opt_.lightSamples);
+    w.pending.reserve(batch.size() * perVertex);
+    w.shadowRays.reserve(batch.size() * perVertex);
     w.active.clear();
     w.rays.clear();
     for (uint32_t i = 0; i < batch.size(); ++i) {
@@ -244,13 +246,20 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
             Frame frame(shadingN);
             Vec3 wo = frame.toLocal(woWorld);
 
-            // Next-event estimation: lightSamples lights chosen by power, their shadow rays queued.
+            // Next-event estimation, shadow rays queued: -l lights chosen by power, or, when every
+            // light is a delta light, each light once (CS184's "a point light gets one sample":
+            // more samples of a point would repeat the same ray).
             if (useNee && !bsdf.isDelta() &&
                 (opt_.accumulateBounces || bounce + 1 == opt_.maxDepth)) {
-                for (int k = 0; k < opt_.lightSamples; ++k) {
-                    float pmf;
-                    size_t li = lights_.select(sampler.next1D(), pmf);
-                    float u1 = sampler.next1D(), u2 = sampler.next1D();
+                const int samples = eachDeltaLightOnce_ ? int(lights_.size()) : opt_.lightSamples;
+                const float perSample = eachDeltaLightOnce_ ? 1.0f : nLight;
+                for (int k = 0; k < samples; ++k) {
+                    float pmf = 1.0f, u1 = 0.5f, u2 = 0.5f;
+                    size_t li = size_t(k);
+                    if (!eachDeltaLightOnce_) {
+                        li = lights_.select(sampler.next1D(), pmf);
+                        u1 = sampler.next1D(), u2 = sampler.next1D();
+                    }
                     LightSample ls;
                     if (!lights_.sample(li, si.p, u1, u2, ls) || pmf == 0) continue;
                     Vec3 wi = frame.toLocal(ls.wi);
@@ -269,7 +278,7 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
                                                        : spawnRayTo(si, ls.p, ls.pError));
                     w.pending.push_back({pi, bounce + 1,
                                          bounce == 0 ? lobeOf(mat.kind, false) : st.firstLobe,
-                                         st.beta * f * ls.Li * (weight / (pl * nLight))});
+                                         st.beta * f * ls.Li * (weight / (pl * perSample))});
                 }
             }
 

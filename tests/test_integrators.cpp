@@ -182,6 +182,40 @@ TEST(PathRender, BitIdenticalWhateverTheThreads) {
         for (int x = 0; x < 40; ++x) ASSERT_EQ(fa.pixel(x, y), fb.pixel(x, y)) << x << "," << y;
 }
 
+TEST(PathRender, DeltaLightsTakeOneSampleEach) {
+    // cow.dae (a directional light) plus two point lights: NEE takes each delta light once
+    // (CS184: "a point light gets one sample"), so -l changes neither the image nor the work, and
+    // every light is seen at every vertex rather than one picked by power.
+    Scene s = loadScene(test::cs184("meshedit/cow.dae"));
+    for (float x : {-1.0f, 1.5f}) {
+        Light point;
+        point.kind = LightKind::Point;
+        point.position = Vec3(x, 1.0f, 1.0f);
+        point.radiance = Color(2.0f);
+        s.lights.push_back(point);
+    }
+    ASSERT_EQ(s.lights.size(), 3u);
+    auto accel = makeEmbreeAccelerator(s);
+    RenderStats stats[2];
+    Film films[2] = {Film(40, 30), Film(40, 30)};
+    for (int k = 0; k < 2; ++k) {
+        PathOptions opt;
+        opt.lightSamples = k == 0 ? 1 : 8;
+        PathIntegrator integrator(s, *accel, opt);
+        RenderSettings settings = small(40, 30, 4);
+        settings.progress = false;
+        stats[k] = renderImage(s, integrator, settings, films[k]);
+    }
+    EXPECT_EQ(stats[0].rays, stats[1].rays);
+    int lit = 0;
+    for (int y = 0; y < 30; ++y)
+        for (int x = 0; x < 40; ++x) {
+            ASSERT_EQ(films[0].pixel(x, y), films[1].pixel(x, y)) << x << "," << y;
+            lit += maxComponent(films[0].pixel(x, y)) > 0;
+        }
+    EXPECT_GT(lit, 100);
+}
+
 TEST(PathRender, ABatchTracesEachSampleAsItWouldAlone) {
     // The wavefront traces a batch a bounce at a time, shadow rays queued: every record (beauty and
     // all AOVs) must equal the sample traced on its own, on a scene with glass, a mirror ball, an

@@ -60,6 +60,53 @@ TEST(Subdivision, BinaryPlyRoundTrip) {
                   grid.vertex(uint32_t(v)));
 }
 
+// A binary PLY of a w x h grid whose faces are triangle records, except face `quadAt` (a quad made
+// of the next two triangles, when below the count) and an out-of-range index at face `badAt`.
+std::string gridPly(const std::filesystem::path& path, const TriangleMesh& grid, size_t quadAt,
+                    size_t badAt) {
+    size_t faces = grid.triangleCount() - (quadAt < grid.triangleCount() ? 1 : 0);
+    std::string out = "ply\nformat binary_little_endian 1.0\nelement vertex " +
+                      std::to_string(grid.vertexCount()) +
+                      "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
+                      std::to_string(faces) +
+                      "\nproperty list uchar int vertex_indices\nend_header\n";
+    out.append(reinterpret_cast<const char*>(grid.positions.data()), 12 * grid.vertexCount());
+    for (size_t t = 0, f = 0; t < grid.triangleCount(); ++t, ++f) {
+        const uint32_t* idx = &grid.indices[3 * t];
+        if (f == quadAt) {  // gridMesh's triangle pairs are (a b c) (a c d): one quad a b c d
+            uint32_t quad[4] = {idx[0], idx[1], idx[2], grid.indices[3 * t + 5]};
+            out.push_back(4);
+            out.append(reinterpret_cast<const char*>(quad), 16);
+            ++t;
+            continue;
+        }
+        uint32_t tri[3] = {idx[0], idx[1], f == badAt ? uint32_t(grid.vertexCount()) : idx[2]};
+        out.push_back(3);
+        out.append(reinterpret_cast<const char*>(tri), 12);
+    }
+    return test::writeFile(path, out);
+}
+
+TEST(PlyFastPath, ParallelRecordsHandOverToTheGeneralReaderAndNameBadFaces) {
+    // 320 x 320 cells: 204,800 triangle records, several parallel ranges.
+    TriangleMesh grid = test::gridMesh(320, 320, 0.01f);
+    auto dir = test::scratchDir();
+    Scene all = loadScene(gridPly(dir / "all.ply", grid, SIZE_MAX, SIZE_MAX));
+    EXPECT_EQ(all.meshes[0].indices, grid.indices);
+    // A quad at face 150,000: the fast path stops there, the general reader fan-triangulates it
+    // into the same two triangles and reads on.
+    Scene mixed = loadScene(gridPly(dir / "mixed.ply", grid, 150000, SIZE_MAX));
+    EXPECT_EQ(mixed.meshes[0].indices, grid.indices);
+    try {
+        loadScene(gridPly(dir / "bad.ply", grid, SIZE_MAX, 123457));
+        ADD_FAILURE() << "no error";
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("face 123457 has vertex index 103041 out of range"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
 TEST(KilnScene, CornellLucyPlacesTheMeshByPathInsideTheBox) {
     Scene s = loadScene(test::repo("scenes/cornell_lucy.kiln"));
     SceneSummary sum = summarize(s);

@@ -87,8 +87,8 @@ std::string gridPly(const std::filesystem::path& path, const TriangleMesh& grid,
     return test::writeFile(path, out);
 }
 
-TEST(PlyFastPath, ParallelRecordsHandOverToTheGeneralReaderAndNameBadFaces) {
-    // 320 x 320 cells: 204,800 triangle records, several parallel ranges.
+TEST(PlyFastPath, HandsOverToTheGeneralReaderAtAQuadAndNamesBadFaces) {
+    // 320 x 320 cells: 204,800 triangle records.
     TriangleMesh grid = test::gridMesh(320, 320, 0.01f);
     auto dir = test::scratchDir();
     Scene all = loadScene(gridPly(dir / "all.ply", grid, SIZE_MAX, SIZE_MAX));

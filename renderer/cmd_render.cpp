@@ -315,7 +315,8 @@ int runRender(const std::vector<std::string>& args) {
     renderCancelFlag().store(false);
     auto previous = std::signal(SIGINT, onInterrupt);
     Film film(o.settings.filmWidth(), o.settings.filmHeight(), aovs);
-    film.setRegion(o.settings.regionX0, o.settings.regionY0, o.settings.width, o.settings.height);
+    film.setRegion(o.settings.filmOriginX(), o.settings.filmOriginY(), o.settings.width,
+                   o.settings.height);
     RenderStats stats = renderImage(scene, *integrator, o.settings, film);
     std::signal(SIGINT, previous);
 

@@ -57,8 +57,7 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator,
     CameraModel camera(scene.camera, settings.width, settings.height);
     // Tiles cover the film (the render region); cameras and samplers see whole-image pixels.
     const int fw = settings.filmWidth(), fh = settings.filmHeight();
-    const int ox = settings.regionX1 > 0 ? settings.regionX0 : 0;
-    const int oy = settings.regionX1 > 0 ? settings.regionY0 : 0;
+    const int ox = settings.filmOriginX(), oy = settings.filmOriginY();
     if (film.width() != fw || film.height() != fh)
         throw std::logic_error("renderImage: film size differs from the render region");
     int tile = std::max(1, settings.tileSize);

@@ -17,8 +17,13 @@ struct RenderSettings {
     // The film holds just those; a pixel renders exactly as it would in the whole image. x1 = 0:
     // the whole image.
     int regionX0 = 0, regionY0 = 0, regionX1 = 0, regionY1 = 0;
-    int filmWidth() const { return regionX1 > 0 ? regionX1 - regionX0 : width; }
-    int filmHeight() const { return regionX1 > 0 ? regionY1 - regionY0 : height; }
+    bool hasRegion() const { return regionX1 > 0; }
+    int filmWidth() const { return hasRegion() ? regionX1 - regionX0 : width; }
+    int filmHeight() const { return hasRegion() ? regionY1 - regionY0 : height; }
+    int filmOriginX() const {
+        return hasRegion() ? regionX0 : 0;
+    }  // film pixel (0, 0) in the image
+    int filmOriginY() const { return hasRegion() ? regionY0 : 0; }
     int spp = 1;
     int threads = 0;  // 0 = all cores
     int tileSize = 32;

@@ -10,7 +10,11 @@ PathIntegrator::PathIntegrator(const Scene& scene, const Accelerator& accel,
                                const PathOptions& options)
     : Integrator(scene, accel), opt_(options), lights_(scene) {
     opt_.lightSamples = std::max(1, opt_.lightSamples);
-    eachDeltaLightOnce_ = lights_.size() > 0 && lights_.allDelta();
+    // Up to 64 delta lights, as the course does; beyond that (a many-light scene) a shadow ray per
+    // light per vertex would swamp the render, and -l picks by power instead.
+    constexpr size_t kMaxDeltaLightsTakenEach = 64;
+    eachDeltaLightOnce_ =
+        lights_.size() > 0 && lights_.size() <= kMaxDeltaLightsTakenEach && lights_.allDelta();
     trace_ =
         &PathIntegrator::trace<false, true, false, true>;  // general until a plan says otherwise
 }

@@ -53,7 +53,7 @@ class PathIntegrator final : public Integrator {
     }
     PathOptions opt_;
     LightSet lights_;
-    bool eachDeltaLightOnce_ = false;  // every light is a delta light: NEE takes each once
+    bool eachDeltaLightOnce_ = false;  // only (a few) delta lights: NEE takes each once
 };
 
 }  // namespace kiln

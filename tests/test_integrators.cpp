@@ -214,6 +214,28 @@ TEST(PathRender, DeltaLightsTakeOneSampleEach) {
             lit += maxComponent(films[0].pixel(x, y)) > 0;
         }
     EXPECT_GT(lit, 100);
+
+    // Past 64 delta lights, -l picks by power again: a shadow ray per light per vertex would
+    // swamp a many-light scene.
+    for (int i = 0; i < 70; ++i) {
+        Light point;
+        point.kind = LightKind::Point;
+        point.position = Vec3(-2.0f + 0.05f * float(i), 1.5f, 1.0f);
+        point.radiance = Color(0.05f);
+        s.lights.push_back(point);
+    }
+    uint64_t rays[2];
+    for (int k = 0; k < 2; ++k) {
+        PathOptions opt;
+        opt.lightSamples = k == 0 ? 1 : 8;
+        PathIntegrator integrator(s, *accel, opt);
+        RenderSettings settings = small(40, 30, 4);
+        settings.progress = false;
+        Film film(40, 30);
+        rays[k] = renderImage(s, integrator, settings, film).rays;
+    }
+    // Taking each light once would make the counts equal, whatever -l.
+    EXPECT_LT(rays[0], rays[1]) << "-l 8 should trace more shadow rays than -l 1";
 }
 
 TEST(PathRender, ABatchTracesEachSampleAsItWouldAlone) {

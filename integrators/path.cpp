@@ -1,6 +1,5 @@
 #include "integrators/path.h"
 
-#include <optional>
 #include <type_traits>
 
 #include "renderer/interaction.h"
@@ -258,18 +257,12 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
                 (opt_.accumulateBounces || bounce + 1 == opt_.maxDepth)) {
                 const int samples = eachDeltaLightOnce_ ? int(lights_.size()) : opt_.lightSamples;
                 const float perSample = eachDeltaLightOnce_ ? 1.0f : nLight;
-                // -l samples stratified together: light choice and point on the light each cover
-                // their range once (a Latin hypercube), so fewer samples land in the same spot.
-                std::optional<LatinHypercube3> strata;
-                if (!eachDeltaLightOnce_ && samples > 1) strata.emplace(uint32_t(samples), sampler);
                 for (int k = 0; k < samples; ++k) {
                     float pmf = 1.0f, u1 = 0.5f, u2 = 0.5f;
                     size_t li = size_t(k);
                     if (!eachDeltaLightOnce_) {
-                        float uc = sampler.next1D();
+                        li = lights_.select(sampler.next1D(), pmf);
                         u1 = sampler.next1D(), u2 = sampler.next1D();
-                        if (strata) strata->point(uint32_t(k), uc, u1, u2, uc, u1, u2);
-                        li = lights_.select(uc, pmf);
                     }
                     LightSample ls;
                     if (!lights_.sample(li, si.p, u1, u2, ls) || pmf == 0) continue;

@@ -45,46 +45,6 @@ TEST(Sampler, PureFunctionOfSeedPixelSampleDimension) {
     }
 }
 
-TEST(Sampler, HashedPermutationIsABijectionPerSeed) {
-    for (uint32_t n : {1u, 2u, 3u, 4u, 7u, 16u, 100u, 1000u}) {
-        std::vector<int> seen(n, 0);
-        for (uint32_t i = 0; i < n; ++i) ++seen[permuteIndex(i, n, 0x1234567u)];
-        for (uint32_t v = 0; v < n; ++v) ASSERT_EQ(seen[v], 1) << n << " " << v;
-    }
-    // Different seeds give different orders.
-    int differ = 0;
-    for (uint32_t i = 0; i < 16; ++i) differ += permuteIndex(i, 16, 1u) != permuteIndex(i, 16, 2u);
-    EXPECT_GT(differ, 8);
-}
-
-TEST(Sampler, LatinHypercubeCoversEveryStratumOnceInEachCoordinate) {
-    for (uint32_t n : {2u, 3u, 4u, 9u, 64u}) {
-        for (uint64_t trial = 0; trial < 50; ++trial) {
-            Sampler s(3, trial, n);
-            LatinHypercube3 set(n, s);
-            std::vector<int> seen[3] = {std::vector<int>(n), std::vector<int>(n),
-                                        std::vector<int>(n)};
-            for (uint32_t k = 0; k < n; ++k) {
-                float p[3];
-                set.point(k, s.next1D(), s.next1D(), s.next1D(), p[0], p[1], p[2]);
-                for (int d = 0; d < 3; ++d) {
-                    ASSERT_GE(p[d], 0.0f);
-                    ASSERT_LT(p[d], 1.0f);
-                    ++seen[d][size_t(p[d] * float(n))];
-                }
-            }
-            for (int d = 0; d < 3; ++d)
-                for (uint32_t v = 0; v < n; ++v) ASSERT_EQ(seen[d][v], 1) << n << " dim " << d;
-        }
-    }
-    // The top of the last stratum stays below 1 despite float rounding.
-    Sampler s(1, 2, 3);
-    LatinHypercube3 set(3, s);
-    float x, y, z;
-    set.point(2, 0x1.fffffep-1f, 0x1.fffffep-1f, 0x1.fffffep-1f, x, y, z);
-    EXPECT_LT(x, 1.0f);
-}
-
 TEST(Sampler, UniformByChiSquare) {
     // 64 bins, 640,000 draws over many pixels/samples/dimensions. Under uniformity the statistic is
     // chi-square with 63 degrees of freedom; 1e-6 significance corresponds to about 130.

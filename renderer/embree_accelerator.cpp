@@ -109,15 +109,15 @@ struct WatertightMeshData {
     float pad = 0;
 };
 
-void triangleCorners(const RTCBoundsFunctionArguments* args, Vec3& a, Vec3& b, Vec3& c) {
-    const TriangleMesh& m = *static_cast<const WatertightMeshData*>(args->geometryUserPtr)->mesh;
-    const uint32_t* idx = &m.indices[3 * size_t(args->primID)];
+void triangleCorners(const void* userPtr, unsigned prim, Vec3& a, Vec3& b, Vec3& c) {
+    const TriangleMesh& m = *static_cast<const WatertightMeshData*>(userPtr)->mesh;
+    const uint32_t* idx = &m.indices[3 * size_t(prim)];
     a = m.vertex(idx[0]), b = m.vertex(idx[1]), c = m.vertex(idx[2]);
 }
 
 void triangleBounds(const RTCBoundsFunctionArguments* args) {
     Vec3 a, b, c;
-    triangleCorners(args, a, b, c);
+    triangleCorners(args->geometryUserPtr, args->primID, a, b, c);
     Vec3 lo = min(a, min(b, c)), hi = max(a, max(b, c));
     // The test's barycentric slack (1e-9 of an edge) may reach just past the float box: 1e-6 of
     // the extent covers it; the traversal's rounding is covered by the scene-wide pad.
@@ -130,9 +130,9 @@ void triangleBounds(const RTCBoundsFunctionArguments* args) {
 
 bool watertightHit(const void* userPtr, unsigned prim, const Ray& ray, float& t, float& u,
                    float& v) {
-    const TriangleMesh& m = *static_cast<const WatertightMeshData*>(userPtr)->mesh;
-    const uint32_t* idx = &m.indices[3 * size_t(prim)];
-    return intersectTriangle(ray, m.vertex(idx[0]), m.vertex(idx[1]), m.vertex(idx[2]), t, u, v);
+    Vec3 a, b, c;
+    triangleCorners(userPtr, prim, a, b, c);
+    return intersectTriangle(ray, a, b, c, t, u, v);
 }
 
 void watertightIntersect(const RTCIntersectFunctionNArguments* args) {

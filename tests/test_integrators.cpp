@@ -187,25 +187,27 @@ TEST(PathRender, DeltaLightsTakeOneSampleEach) {
     // (CS184: "a point light gets one sample"), so -l changes neither the image nor the work, and
     // every light is seen at every vertex rather than one picked by power.
     Scene s = loadScene(test::cs184("meshedit/cow.dae"));
-    for (float x : {-1.0f, 1.5f}) {
+    auto addPointLight = [&](const Vec3& position, float radiance) {
         Light point;
         point.kind = LightKind::Point;
-        point.position = Vec3(x, 1.0f, 1.0f);
-        point.radiance = Color(2.0f);
+        point.position = position;
+        point.radiance = Color(radiance);
         s.lights.push_back(point);
-    }
+    };
+    addPointLight(Vec3(-1.0f, 1.0f, 1.0f), 2.0f);
+    addPointLight(Vec3(1.5f, 1.0f, 1.0f), 2.0f);
     ASSERT_EQ(s.lights.size(), 3u);
     auto accel = makeEmbreeAccelerator(s);
-    RenderStats stats[2];
-    Film films[2] = {Film(40, 30), Film(40, 30)};
-    for (int k = 0; k < 2; ++k) {
+    auto render = [&](int lightSamples, Film& film) {
         PathOptions opt;
-        opt.lightSamples = k == 0 ? 1 : 8;
+        opt.lightSamples = lightSamples;
         PathIntegrator integrator(s, *accel, opt);
         RenderSettings settings = small(40, 30, 4);
         settings.progress = false;
-        stats[k] = renderImage(s, integrator, settings, films[k]);
-    }
+        return renderImage(s, integrator, settings, film);
+    };
+    Film films[2] = {Film(40, 30), Film(40, 30)};
+    RenderStats stats[2] = {render(1, films[0]), render(8, films[1])};
     EXPECT_EQ(stats[0].rays, stats[1].rays);
     int lit = 0;
     for (int y = 0; y < 30; ++y)
@@ -217,25 +219,11 @@ TEST(PathRender, DeltaLightsTakeOneSampleEach) {
 
     // Past 64 delta lights, -l picks by power again: a shadow ray per light per vertex would
     // swamp a many-light scene.
-    for (int i = 0; i < 70; ++i) {
-        Light point;
-        point.kind = LightKind::Point;
-        point.position = Vec3(-2.0f + 0.05f * float(i), 1.5f, 1.0f);
-        point.radiance = Color(0.05f);
-        s.lights.push_back(point);
-    }
-    uint64_t rays[2];
-    for (int k = 0; k < 2; ++k) {
-        PathOptions opt;
-        opt.lightSamples = k == 0 ? 1 : 8;
-        PathIntegrator integrator(s, *accel, opt);
-        RenderSettings settings = small(40, 30, 4);
-        settings.progress = false;
-        Film film(40, 30);
-        rays[k] = renderImage(s, integrator, settings, film).rays;
-    }
+    for (int i = 0; i < 70; ++i) addPointLight(Vec3(-2.0f + 0.05f * float(i), 1.5f, 1.0f), 0.05f);
+    Film few(40, 30), many(40, 30);
     // Taking each light once would make the counts equal, whatever -l.
-    EXPECT_LT(rays[0], rays[1]) << "-l 8 should trace more shadow rays than -l 1";
+    EXPECT_LT(render(1, few).rays, render(8, many).rays)
+        << "-l 8 should trace more shadow rays than -l 1";
 }
 
 TEST(PathRender, ABatchTracesEachSampleAsItWouldAlone) {

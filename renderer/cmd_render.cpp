@@ -11,6 +11,7 @@
 #include "renderer/accel_options.h"
 #include "renderer/camera.h"
 #include "renderer/commands.h"
+#include "renderer/recording_accelerator.h"
 #include "renderer/render_loop.h"
 #include "scene/scene_loader.h"
 
@@ -35,6 +36,40 @@ struct RenderOptions {
 
 double seconds(std::chrono::steady_clock::time_point since) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
+}
+
+// The render again, every traversal call recorded, then the recorded calls traced alone: the
+// part of the render time no shading speed-up can remove.
+void printTraversalFloor(const Scene& scene, const Accelerator& accel, const RenderOptions& o,
+                         const AovRequest& aovs, const RenderPlan& plan, const RenderStats& first) {
+    RecordingAccelerator recorder(accel);
+    std::unique_ptr<Integrator> integrator = makeIntegrator(o.integrator, scene, recorder, o.path);
+    integrator->setAovs(aovs);
+    if (auto* path = dynamic_cast<PathIntegrator*>(integrator.get())) path->usePlan(plan);
+    RenderSettings settings = o.settings;
+    settings.progress = false;
+    Film film(settings.filmWidth(), settings.filmHeight(), aovs);
+    film.setRegion(settings.filmOriginX(), settings.filmOriginY(), settings.width, settings.height);
+    RenderStats again = renderImage(scene, *integrator, settings, film);
+    if (again.interrupted) return;
+    ReplayStats replay = recorder.replay(settings.threads);
+    if (replay.rays != again.rays || replay.hits != recorder.recordedHits())
+        throw std::logic_error("traversal floor: the replay traced other rays than the render");
+    std::fprintf(stderr,
+                 "kiln: traversal floor: the render's %llu rays traced again alone, in the same "
+                 "calls: %.3fs (%.2f Mrays/s) against the render's %.3fs: traversal %.0f %%, "
+                 "shading, sampling and film %.0f %%\n",
+                 (unsigned long long)replay.rays, replay.seconds,
+                 double(replay.rays) / replay.seconds * 1e-6, first.seconds,
+                 100.0 * replay.seconds / first.seconds,
+                 100.0 * (1.0 - replay.seconds / first.seconds));
+    const char* kinds[4] = {"closest hit, one ray at a time", "closest hit, packets",
+                            "occlusion, one ray at a time", "occlusion, packets"};
+    for (size_t k = 0; k < 4; ++k)
+        if (replay.raysOf[k])
+            std::fprintf(stderr, "kiln:   %-32s %11llu rays %7.1f ns per ray per thread\n",
+                         kinds[k], (unsigned long long)replay.raysOf[k],
+                         replay.threadSeconds[k] / double(replay.raysOf[k]) * 1e9);
 }
 
 }  // namespace
@@ -215,6 +250,12 @@ int runRender(const std::vector<std::string>& args) {
                      1 << 30);
     bool quiet = false;
     parser.flag("quiet", "q", "no progress bar", quiet);
+    bool traversalFloor = false;
+    parser.flag("traversal-floor", "",
+                "benchmark: after the render, render again recording every ray, trace the "
+                "recorded rays alone in the same calls, and print how much of the render time "
+                "traversal is (needs 32 bytes of memory per ray)",
+                traversalFloor);
     std::vector<std::string> pos = parser.parse(args);
     if (parser.helpRequested()) {
         std::fputs(parser.helpText().c_str(), stdout);
@@ -398,6 +439,7 @@ int runRender(const std::vector<std::string>& args) {
             "kiln: interrupted: wrote the image so far (per-pixel sample counts in the EXR)\n");
         return 130;
     }
+    if (traversalFloor) printTraversalFloor(scene, *accel, o, aovs, plan, stats);
     return 0;
 }
 

@@ -5,6 +5,8 @@
 
 #include "color/image_output.h"
 #include "integrators/normals.h"
+#include "integrators/path.h"
+#include "renderer/recording_accelerator.h"
 #include "renderer/render_loop.h"
 #include "scene/scene_loader.h"
 #include "test_support.h"
@@ -148,6 +150,45 @@ TEST(ImageOutput, StandardViewIsTheSrgbCurve) {
     EXPECT_NEAR(displayTransform(1.0f), 1.0f, 1e-5f);
     EXPECT_NEAR(displayTransform(0.002f), 0.002f * 12.92f, 1e-5f);  // the linear toe
     EXPECT_NEAR(displayTransform(0.18f, "sRGB", "Raw"), 0.18f, 1e-6f);
+}
+
+TEST(TraversalFloor, ReplaysExactlyTheCallsOfTheRender) {
+    // The recorder must not change the render, must hold every ray the render counted, and its
+    // replay must make the same calls with the same answers: otherwise the floor it times is
+    // some other workload.
+    Scene s = loadScene(test::cs184("sky/CBspheres.dae"));
+    auto accel = makeEmbreeAccelerator(s);
+    RecordingAccelerator recorder(*accel);
+    RenderSettings settings;
+    settings.width = 40, settings.height = 30, settings.spp = 4, settings.threads = 2;
+    settings.progress = false;
+    PathOptions opt;
+    opt.lightSamples = 2;
+    auto render = [&](const Accelerator& a, RenderStats& stats) {
+        PathIntegrator integrator(s, a, opt);
+        Film film(settings.width, settings.height);
+        stats = renderImage(s, integrator, settings, film);
+        return film;
+    };
+    RenderStats plain, recorded;
+    Film a = render(*accel, plain), b = render(recorder, recorded);
+    for (int y = 0; y < settings.height; ++y)
+        for (int x = 0; x < settings.width; ++x) ASSERT_EQ(a.pixel(x, y), b.pixel(x, y));
+    EXPECT_EQ(recorded.rays, plain.rays);
+    EXPECT_EQ(recorder.recordedRays(), recorded.rays);
+
+    ReplayStats replay = recorder.replay(2);
+    EXPECT_EQ(replay.rays, recorded.rays);
+    EXPECT_EQ(replay.hits, recorder.recordedHits());
+    EXPECT_GT(replay.hits, 0u);
+    // Camera rays went as packets, one per sample; bounce rays one at a time; shadow rays as
+    // packets.
+    EXPECT_EQ(replay.raysOf[size_t(TraversalCall::IntersectBatch)], recorded.samples);
+    EXPECT_GT(replay.raysOf[size_t(TraversalCall::Intersect1)], 0u);
+    EXPECT_GT(replay.raysOf[size_t(TraversalCall::OccludedBatch)], 0u);
+    EXPECT_EQ(replay.raysOf[0] + replay.raysOf[size_t(TraversalCall::IntersectBatch)] +
+                  replay.raysOf[2] + replay.raysOf[3],
+              replay.rays);
 }
 
 }  // namespace

@@ -191,7 +191,15 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
         w.pending.clear();
         w.shadowRays.clear();
 
+        // Mesh data of hits a few ahead requested from memory while this one is shaded.
+        constexpr size_t kIndicesAhead = 16, kVerticesAhead = 8;
+        for (size_t j = 0; j < std::min(kIndicesAhead, w.hits.size()); ++j)
+            prefetchHitIndices(scene_, w.hits[j]);
         for (size_t j = 0; j < w.active.size(); ++j) {
+            if (j + kIndicesAhead < w.hits.size())
+                prefetchHitIndices(scene_, w.hits[j + kIndicesAhead]);
+            if (j + kVerticesAhead < w.hits.size())
+                prefetchHitVertices(scene_, w.hits[j + kVerticesAhead]);
             uint32_t pi = w.active[j];
             PathState& st = w.paths[pi];
             Sampler& sampler = batch[pi].sampler;

@@ -41,6 +41,21 @@ void setSpawnOrigins(SurfaceInteraction& si) {
 
 }  // namespace
 
+void prefetchHitIndices(const Scene& scene, const Hit& hit) {
+    if (!hit.valid() || hit.shape == kSphereShape) return;
+    __builtin_prefetch(&scene.meshes[hit.shape].indices[3 * size_t(hit.prim)]);
+}
+
+void prefetchHitVertices(const Scene& scene, const Hit& hit) {
+    if (!hit.valid() || hit.shape == kSphereShape) return;
+    const TriangleMesh& mesh = scene.meshes[hit.shape];
+    const uint32_t* idx = &mesh.indices[3 * size_t(hit.prim)];
+    for (int k = 0; k < 3; ++k) {
+        __builtin_prefetch(&mesh.positions[3 * size_t(idx[k])]);
+        if (!mesh.normals.empty()) __builtin_prefetch(&mesh.normals[3 * size_t(idx[k])]);
+    }
+}
+
 SurfaceInteraction makeInteraction(const Scene& scene, const Ray& ray, const Hit& hit) {
     SurfaceInteraction si;
     si.t = hit.t;

@@ -24,6 +24,12 @@ struct SurfaceInteraction {
 
 SurfaceInteraction makeInteraction(const Scene& scene, const Ray& ray, const Hit& hit);
 
+// What makeInteraction will read for a triangle hit, requested ahead from memory: on meshes far
+// larger than the caches each hit's indices and vertices are misses. Stage 1 fetches the index
+// triple; stage 2 (some hits later, once the indices have arrived) the vertices and normals.
+void prefetchHitIndices(const Scene& scene, const Hit& hit);
+void prefetchHitVertices(const Scene& scene, const Hit& hit);
+
 // Origin pushed off the surface by the error bound along the normal, on the side of dir.
 inline const Vec3& offsetRayOrigin(const SurfaceInteraction& si, const Vec3& dir) {
     return dot(dir, si.ng) < 0 ? si.originBack : si.originFront;

@@ -13,6 +13,7 @@
 #include "renderer/commands.h"
 #include "renderer/recording_accelerator.h"
 #include "renderer/render_loop.h"
+#include "scene/importers.h"
 #include "scene/scene_loader.h"
 
 namespace kiln {
@@ -42,6 +43,20 @@ double seconds(std::chrono::steady_clock::time_point since) {
 // part of the render time no shading speed-up can remove.
 void printTraversalFloor(const Scene& scene, const Accelerator& accel, const RenderOptions& o,
                          const AovRequest& aovs, const RenderPlan& plan, const RenderStats& first) {
+    // The second render traces exactly the first one's rays (samples are deterministic), so what
+    // recording needs is known before it starts: the rays plus an eighth for the call records and
+    // the chunks' slack.
+    uint64_t need = first.rays * sizeof(Ray) / 8 * 9, available = availableMemoryBytes();
+    if (need > available) {
+        char text[200];
+        std::snprintf(
+            text, sizeof text,
+            "--traversal-floor: recording the render's %llu rays needs %.1f MiB, %.1f MiB "
+            "available (the image is written; fewer samples or a --crop fit)",
+            (unsigned long long)first.rays, double(need) / (1 << 20),
+            double(available) / (1 << 20));
+        throw UsageError(text);
+    }
     RecordingAccelerator recorder(accel);
     std::unique_ptr<Integrator> integrator = makeIntegrator(o.integrator, scene, recorder, o.path);
     integrator->setAovs(aovs);
@@ -51,7 +66,6 @@ void printTraversalFloor(const Scene& scene, const Accelerator& accel, const Ren
     Film film(settings.filmWidth(), settings.filmHeight(), aovs);
     film.setRegion(settings.filmOriginX(), settings.filmOriginY(), settings.width, settings.height);
     RenderStats again = renderImage(scene, *integrator, settings, film);
-    if (again.interrupted) return;
     ReplayStats replay = recorder.replay(settings.threads);
     if (replay.rays != again.rays || replay.hits != recorder.recordedHits())
         throw std::logic_error("traversal floor: the replay traced other rays than the render");

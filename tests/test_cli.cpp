@@ -92,6 +92,32 @@ TEST(Cli, RenderWritesExrAndPngAndReportsStats) {
     EXPECT_TRUE(std::filesystem::exists(dir / "cs.exr"));
 }
 
+TEST(Cli, TraversalFloorReportsTheRendersRaysOrRefusesBeforeRecordingTooMany) {
+    auto dir = test::scratchDir();
+    std::string render = "render " + test::repo("scenes/cornell.dae") + " -r 32 24 -s 4 -q -o " +
+                         (dir / "floor").string() + " --traversal-floor";
+    CliRun r = runKiln(render);
+    ASSERT_EQ(r.code, 0) << r.err;
+    // The floor names the render's own ray count.
+    size_t at = r.err.find(" samples, ");
+    ASSERT_NE(at, std::string::npos) << r.err;
+    std::string rays = r.err.substr(at + 10, r.err.find(" rays", at) - at - 10);
+    EXPECT_NE(r.err.find("the render's " + rays + " rays traced again alone"), std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find("occlusion, packets"), std::string::npos) << r.err;
+    // Too little memory to record them: the image is still written, then a one-line error.
+    std::filesystem::remove(dir / "floor.exr");
+    ::setenv("KILN_MEMORY_LIMIT", "1000", 1);
+    CliRun small = runKiln(render);
+    ::unsetenv("KILN_MEMORY_LIMIT");
+    EXPECT_EQ(small.code, 2) << small.err;
+    EXPECT_TRUE(std::filesystem::exists(dir / "floor.exr"));
+    EXPECT_NE(small.err.find("--traversal-floor: recording the render's " + rays + " rays needs"),
+              std::string::npos)
+        << small.err;
+    EXPECT_EQ(small.err.find("traced again alone"), std::string::npos);
+}
+
 TEST(Cli, OutputOptions) {
     auto dir = test::scratchDir();
     std::string scene = test::repo("scenes/cornell.dae");

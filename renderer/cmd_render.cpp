@@ -77,8 +77,9 @@ void printTraversalFloor(const Scene& scene, const Accelerator& accel, const Ren
                  double(replay.rays) / replay.seconds * 1e-6, first.seconds,
                  100.0 * replay.seconds / first.seconds,
                  100.0 * (1.0 - replay.seconds / first.seconds));
-    const char* kinds[4] = {"closest hit, one ray at a time", "closest hit, packets",
-                            "occlusion, one ray at a time", "occlusion, packets"};
+    // Batched calls are 16-wide packets in Embree's default mode, loops of single rays otherwise.
+    const char* kinds[4] = {"closest hit, one ray per call", "closest hit, batched",
+                            "occlusion, one ray per call", "occlusion, batched"};
     for (size_t k = 0; k < 4; ++k)
         if (replay.raysOf[k])
             std::fprintf(stderr, "kiln:   %-32s %11llu rays %7.1f ns per ray per thread\n",

@@ -104,7 +104,7 @@ TEST(Cli, TraversalFloorReportsTheRendersRaysOrRefusesBeforeRecordingTooMany) {
     std::string rays = r.err.substr(at + 10, r.err.find(" rays", at) - at - 10);
     EXPECT_NE(r.err.find("the render's " + rays + " rays traced again alone"), std::string::npos)
         << r.err;
-    EXPECT_NE(r.err.find("occlusion, packets"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("occlusion, batched"), std::string::npos) << r.err;
     // Too little memory to record them: the image is still written, then a one-line error.
     std::filesystem::remove(dir / "floor.exr");
     ::setenv("KILN_MEMORY_LIMIT", "1000", 1);

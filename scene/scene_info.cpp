@@ -12,8 +12,14 @@ std::string num(double v) {
     std::snprintf(buf, sizeof buf, "%.9g", v);
     return buf;
 }
-std::string vec(const Vec3d& v) { return "[" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + "]"; }
-std::string vec(const Vec3& v) { return "[" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + "]"; }
+// One snprintf, not string concatenation, which GCC 12 warns about falsely (-Wrestrict).
+std::string vec3(double x, double y, double z) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "[%.9g, %.9g, %.9g]", x, y, z);
+    return buf;
+}
+std::string vec(const Vec3d& v) { return vec3(v.x, v.y, v.z); }
+std::string vec(const Vec3& v) { return vec3(v.x, v.y, v.z); }
 std::string quote(const std::string& s) {
     std::string out = "\"";
     for (char c : s) {

@@ -37,6 +37,14 @@ CliRun runKiln(const std::string& args) {
 
 int lines(const std::string& s) { return int(std::count(s.begin(), s.end(), '\n')); }
 
+// A tiny render of scene with one bad option: exit code 2 and a one-line error.
+void expectOneLineRefusal(const std::string& scene, const std::filesystem::path& dir,
+                          const std::string& bad) {
+    CliRun r = runKiln("render " + scene + " -r 8 8 -q -o " + (dir / "bad").string() + " " + bad);
+    EXPECT_EQ(r.code, 2) << bad;
+    EXPECT_EQ(lines(r.err), 1) << bad << ": " << r.err;
+}
+
 TEST(Cli, HelpDocumentsEveryCommandAndOption) {
     CliRun top = runKiln("--help");
     EXPECT_EQ(top.code, 0);
@@ -123,10 +131,7 @@ TEST(Cli, OutputOptions) {
     std::string scene = test::repo("scenes/cornell.dae");
     for (const char* bad :
          {"--aov sparkle", "--view Filmic", "--display P3", "--compression lzma"}) {
-        CliRun r =
-            runKiln("render " + scene + " -r 8 8 -q -o " + (dir / "bad").string() + " " + bad);
-        EXPECT_EQ(r.code, 2) << bad;
-        EXPECT_EQ(lines(r.err), 1) << bad << ": " << r.err;
+        expectOneLineRefusal(scene, dir, bad);
         EXPECT_FALSE(std::filesystem::exists(dir / "bad.exr")) << bad;  // refused before rendering
     }
     CliRun ok = runKiln("render " + scene +
@@ -201,10 +206,7 @@ TEST(Cli, CropRendersExactlyThosePixelsOfTheWholeImage) {
     EXPECT_EQ(differ, 0) << "a cropped pixel must be the same sample for sample";
     for (const char* bad :
          {"--crop 0.5 0.5 0 1", "--crop 0 1 -0.1 1", "--crop 0 1 0 x", "--crop 0 1.5 0 1"}) {
-        CliRun r =
-            runKiln("render " + scene + " -r 8 8 -q -o " + (dir / "bad").string() + " " + bad);
-        EXPECT_EQ(r.code, 2) << bad;
-        EXPECT_EQ(lines(r.err), 1) << bad << ": " << r.err;
+        expectOneLineRefusal(scene, dir, bad);
     }
 }
 

@@ -115,9 +115,10 @@ TEST(Cli, TraversalFloorReportsTheRendersRaysOrRefusesBeforeRecordingTooMany) {
     EXPECT_NE(r.err.find("occlusion, batched"), std::string::npos) << r.err;
     // Too little memory to record them: the image is still written, then a one-line error.
     std::filesystem::remove(dir / "floor.exr");
-    ::setenv("KILN_MEMORY_LIMIT", "1000", 1);
-    CliRun small = runKiln(render);
-    ::unsetenv("KILN_MEMORY_LIMIT");
+    CliRun small = [&] {
+        test::ScopedMemoryLimit limit("1000");
+        return runKiln(render);
+    }();
     EXPECT_EQ(small.code, 2) << small.err;
     EXPECT_TRUE(std::filesystem::exists(dir / "floor.exr"));
     EXPECT_NE(small.err.find("--traversal-floor: recording the render's " + rays + " rays needs"),

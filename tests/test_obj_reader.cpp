@@ -208,7 +208,7 @@ TEST(ObjReader, BadInputNamesFileAndLine) {
 }
 
 TEST(ObjReader, MemoryEstimateRefusesBeforeAllocating) {
-    ::setenv("KILN_MEMORY_LIMIT", "1000000", 1);  // 1 MB
+    test::ScopedMemoryLimit limit("1000000");  // 1 MB
     try {
         loadScene(test::shared("meshes/lucy.obj"));
         ADD_FAILURE() << "no error";
@@ -216,7 +216,6 @@ TEST(ObjReader, MemoryEstimateRefusesBeforeAllocating) {
         EXPECT_NE(std::string(e.what()).find("would need about"), std::string::npos) << e.what();
         EXPECT_NE(std::string(e.what()).find("99970 faces"), std::string::npos) << e.what();
     }
-    ::unsetenv("KILN_MEMORY_LIMIT");
 }
 
 TEST(ObjReader, WriterRoundTrips) {

@@ -195,15 +195,17 @@ TEST(KilnScene, BadInputIsOneLine) {
 }
 
 TEST(MemoryEstimate, RefusesBeforeAllocating) {
-    ::setenv("KILN_MEMORY_LIMIT", "1000000", 1);  // 1 MB
-    try {
-        loadScene(test::shared("meshes/igea_subdiv1_1M.ply"));
-        ADD_FAILURE() << "no error";
-    } catch (const SceneError& e) {
-        EXPECT_NE(std::string(e.what()).find("would need about"), std::string::npos) << e.what();
-        EXPECT_NE(std::string(e.what()).find("1074744 faces"), std::string::npos) << e.what();
+    {
+        test::ScopedMemoryLimit limit("1000000");  // 1 MB
+        try {
+            loadScene(test::shared("meshes/igea_subdiv1_1M.ply"));
+            ADD_FAILURE() << "no error";
+        } catch (const SceneError& e) {
+            EXPECT_NE(std::string(e.what()).find("would need about"), std::string::npos)
+                << e.what();
+            EXPECT_NE(std::string(e.what()).find("1074744 faces"), std::string::npos) << e.what();
+        }
     }
-    ::unsetenv("KILN_MEMORY_LIMIT");
     EXPECT_NO_THROW(checkMemoryFor("x", 1000, 2000));
 }
 

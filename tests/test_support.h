@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -30,6 +31,15 @@ inline std::filesystem::path scratchDir() {
     std::filesystem::create_directories(dir);
     return dir;
 }
+
+// $KILN_MEMORY_LIMIT set for one scope and cleared however the scope is left, so a failing test
+// cannot leave the limit on for the tests after it.
+struct ScopedMemoryLimit {
+    explicit ScopedMemoryLimit(const char* bytes) { ::setenv("KILN_MEMORY_LIMIT", bytes, 1); }
+    ~ScopedMemoryLimit() { ::unsetenv("KILN_MEMORY_LIMIT"); }
+    ScopedMemoryLimit(const ScopedMemoryLimit&) = delete;
+    ScopedMemoryLimit& operator=(const ScopedMemoryLimit&) = delete;
+};
 
 inline std::string writeFile(const std::filesystem::path& path, const std::string& text) {
     std::ofstream(path, std::ios::binary) << text;

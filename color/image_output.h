@@ -5,7 +5,7 @@
 #include <map>
 #include <string>
 
-#include "renderer/film.h"
+#include "renderer/film/film.h"
 
 namespace kiln {
 

@@ -4,7 +4,7 @@
 #pragma once
 
 #include "integrators/microfacet.h"
-#include "renderer/warp.h"
+#include "renderer/core/warp.h"
 #include "scene/scene.h"
 
 namespace kiln {

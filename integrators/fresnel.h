@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "renderer/math.h"
+#include "renderer/core/math.h"
 
 namespace kiln {
 

@@ -5,7 +5,7 @@
 #include "integrators/fresnel.h"
 #include "integrators/normals.h"
 #include "integrators/path.h"
-#include "renderer/interaction.h"
+#include "renderer/geometry/interaction.h"
 
 namespace kiln {
 
@@ -40,14 +40,12 @@ void Integrator::recordSurface(const Ray& ray, const Hit& hit, const SurfaceInte
     r.objectId = float(hit.shape == kSphereShape ? scene_.meshes.size() + hit.prim : hit.shape);
 }
 
-const char* integratorNames() { return "path, normals"; }
-
-std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Scene& scene,
-                                           const Accelerator& accel, const PathOptions& options) {
-    if (name == "path") return std::make_unique<PathIntegrator>(scene, accel, options);
-    if (name == "normals") return std::make_unique<NormalsIntegrator>(scene, accel);
-    throw std::invalid_argument("unknown integrator '" + name + "' (known: " + integratorNames() +
-                                ")");
+std::unique_ptr<Integrator> makeIntegrator(IntegratorKind kind, const Scene& scene,
+                                           const Accelerator& accel, const PathOptions& options,
+                                           const RenderPlan& plan) {
+    if (kind == IntegratorKind::Normals)
+        return std::make_unique<NormalsIntegrator>(scene, accel, plan.aovs);
+    return std::make_unique<PathIntegrator>(scene, accel, options, plan);
 }
 
 }  // namespace kiln

@@ -5,9 +5,9 @@
 #include <span>
 #include <string>
 
-#include "renderer/accelerator.h"
-#include "renderer/aov.h"
-#include "renderer/sampler.h"
+#include "renderer/accel/accelerator.h"
+#include "renderer/core/sampler.h"
+#include "renderer/film/aov.h"
 #include "scene/scene.h"
 
 namespace kiln {
@@ -26,9 +26,11 @@ struct CameraSample {
 
 class Integrator {
   public:
-    Integrator(const Scene& scene, const Accelerator& accel) : scene_(scene), accel_(accel) {}
+    // aovs: what every camera sample records beside the beauty (fixed for the integrator's life).
+    Integrator(const Scene& scene, const Accelerator& accel, const AovRequest& aovs = {})
+        : scene_(scene), accel_(accel), aovs_(aovs) {}
     virtual ~Integrator() = default;
-    // Radiance along a camera ray into record.L, and the AOVs requested by setAovs().
+    // Radiance along a camera ray into record.L, and the AOVs requested at construction.
     virtual void Li(const Ray& ray, Sampler& sampler, RayCounter& counter,
                     SampleRecord& record) const = 0;
     Color Li(const Ray& ray, Sampler& sampler, RayCounter& counter) const {
@@ -43,7 +45,7 @@ class Integrator {
         for (CameraSample& s : batch) Li(s.ray, s.sampler, counter, s.record);
     }
     virtual const char* name() const = 0;
-    void setAovs(const AovRequest& aovs) { aovs_ = aovs; }
+    const AovRequest& aovs() const { return aovs_; }
 
   protected:
     // First-visible-surface AOVs (albedo, N, P, Z, ids), shared by every integrator.
@@ -52,14 +54,7 @@ class Integrator {
 
     const Scene& scene_;
     const Accelerator& accel_;
-    AovRequest aovs_;
+    const AovRequest aovs_;
 };
-
-struct PathOptions;
-
-// Names: "path" (the default), "normals". Throws std::invalid_argument for an unknown name.
-std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Scene& scene,
-                                           const Accelerator& accel, const PathOptions& options);
-const char* integratorNames();
 
 }  // namespace kiln

@@ -1,13 +1,9 @@
 #include "integrators/lights.h"
 
-#include <OpenImageIO/imageio.h>
-#include <OpenImageIO/strutil.h>
-
 #include <cmath>
 #include <stdexcept>
 
-#include "color/chromaticities.h"
-#include "renderer/warp.h"
+#include "renderer/core/warp.h"
 
 namespace kiln {
 namespace {
@@ -25,51 +21,23 @@ float spotFalloff(const Light& l, const Vec3& wFromLight) {
 EnvironmentMap loadEnvironment(const Light& l) {
     EnvironmentMap env;
     env.scale = l.environmentScale;
-    if (l.environmentPath.empty()) {
+    if (!l.environmentImage) {
         env.constant = l.radiance;
         return env;
     }
-    auto in = OIIO::ImageInput::open(l.environmentPath);
-    if (!in)
-        throw std::runtime_error(l.environmentPath +
-                                 ": cannot read environment map: " + OIIO::geterror());
-    const OIIO::ImageSpec& spec = in->spec();
-    env.width = spec.width, env.height = spec.height;
-    std::vector<float> data(size_t(spec.width) * spec.height * spec.nchannels);
-    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, data.data()))
-        throw std::runtime_error(l.environmentPath +
-                                 ": cannot read environment map: " + in->geterror());
-    // Convert to the working space from what the file states: EXR chromaticities (e.g. a D50
-    // white), or an sRGB-encoded 8-bit image. Without either, the file is taken as linear Rec.709.
-    Mat3 toWorking = {{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
-    if (const OIIO::ParamValue* chroma =
-            spec.find_attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8))) {
-        Chromaticities c;
-        for (int i = 0; i < 8; ++i) c[size_t(i)] = static_cast<const float*>(chroma->data())[i];
-        if (!sameChromaticities(c, kRec709D65)) toWorking = toWorkingSpace(c);
-    }
-    bool srgbEncoded = spec.format.basetype == OIIO::TypeDesc::UINT8 ||
-                       OIIO::Strutil::iequals(spec.get_string_attribute("oiio:ColorSpace"), "sRGB");
-    auto decode = [](float v) {
-        return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
-    };
+    const RgbImage& image = *l.environmentImage;
+    env.width = image.width, env.height = image.height;
     env.pixels.resize(size_t(env.width) * env.height);
     std::vector<float> weight(env.pixels.size());
     for (int y = 0; y < env.height; ++y) {
         float sinTheta = std::sin(kPi * (float(y) + 0.5f) / float(env.height));
         for (int x = 0; x < env.width; ++x) {
-            const float* p = &data[(size_t(y) * env.width + x) * spec.nchannels];
-            Color c = Color(p[0], p[1], p[2]);
-            if (srgbEncoded) c = Color(decode(c.x), decode(c.y), decode(c.z));
-            c = Color(
-                    float(toWorking[0][0] * c.x + toWorking[0][1] * c.y + toWorking[0][2] * c.z),
-                    float(toWorking[1][0] * c.x + toWorking[1][1] * c.y + toWorking[1][2] * c.z),
-                    float(toWorking[2][0] * c.x + toWorking[2][1] * c.y + toWorking[2][2] * c.z)) *
-                env.scale;
+            size_t i = size_t(y) * env.width + x;
+            Color c = image.pixels[i] * env.scale;
             if (!isFinite(c)) c = Color(0.0f);
             c = max(c, Color(0.0f));
-            env.pixels[size_t(y) * env.width + x] = c;
-            weight[size_t(y) * env.width + x] = maxComponent(c) * sinTheta;
+            env.pixels[i] = c;
+            weight[i] = maxComponent(c) * sinTheta;
         }
     }
     env.distribution = Distribution2D(weight, size_t(env.width), size_t(env.height));
@@ -135,7 +103,7 @@ Color EnvironmentMap::lookup(const Vec3& dir) const {
 LightSet::LightSet(const Scene& scene) {
     std::vector<bool> proto = scene.prototypeMask();
     meshLight_.assign(scene.meshes.size(), -1);
-    Bounds3 b = scene.worldBounds();
+    Bounds3 b = scene.storedBounds();
     float radius = b.empty() ? 1.0f : 0.5f * length(b.diagonal());
     for (const Light& l : scene.lights) {
         Entry e;

@@ -3,8 +3,8 @@
 
 #include <vector>
 
-#include "integrators/distribution.h"
-#include "renderer/interaction.h"
+#include "renderer/core/distribution.h"
+#include "renderer/geometry/interaction.h"
 #include "scene/scene.h"
 
 namespace kiln {

@@ -4,11 +4,17 @@
 
 #include <cmath>
 
-#include "renderer/warp.h"
+#include "renderer/core/enum_names.h"
+#include "renderer/core/warp.h"
 
 namespace kiln {
 
 enum class MicrofacetModel { Beckmann, GGX };
+template <>
+struct EnumNames<MicrofacetModel> {
+    static constexpr std::pair<MicrofacetModel, const char*> table[] = {
+        {MicrofacetModel::Beckmann, "beckmann"}, {MicrofacetModel::GGX, "ggx"}};
+};
 
 struct Microfacet {
     MicrofacetModel model = MicrofacetModel::Beckmann;

@@ -1,6 +1,6 @@
 #include "integrators/normals.h"
 
-#include "renderer/interaction.h"
+#include "renderer/geometry/interaction.h"
 
 namespace kiln {
 

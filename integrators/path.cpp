@@ -2,28 +2,23 @@
 
 #include <type_traits>
 
-#include "renderer/interaction.h"
+#include "renderer/geometry/interaction.h"
 
 namespace kiln {
 
 PathIntegrator::PathIntegrator(const Scene& scene, const Accelerator& accel,
-                               const PathOptions& options)
-    : Integrator(scene, accel), opt_(options), lights_(scene) {
+                               const PathOptions& options, const RenderPlan& plan)
+    : Integrator(scene, accel, plan.aovs), trace_(pathFor(plan)), opt_(options), lights_(scene) {
     opt_.lightSamples = std::max(1, opt_.lightSamples);
     // Up to 64 delta lights, as the course does; beyond that (a many-light scene) a shadow ray per
     // light per vertex would swamp the render, and -l picks by power instead.
     constexpr size_t kMaxDeltaLightsTakenEach = 64;
     eachDeltaLightOnce_ =
         lights_.size() > 0 && lights_.size() <= kMaxDeltaLightsTakenEach && lights_.allDelta();
-    trace_ =
-        &PathIntegrator::trace<false, true, false, true>;  // general until a plan says otherwise
 }
 
-void PathIntegrator::usePlan(const RenderPlan& plan) {
-    if (plan.general) {
-        trace_ = &PathIntegrator::trace<false, true, false, true>;
-        return;
-    }
+PathIntegrator::TraceFn PathIntegrator::pathFor(const RenderPlan& plan) {
+    if (plan.general) return &PathIntegrator::trace<false, true, false, true>;
     bool diffuse = plan.diffuseOnly, infinite = plan.infiniteLights;
     bool deltaOnly = plan.deltaLightsOnly && !plan.emitters && !plan.infiniteLights;
     bool split = plan.aovs.splitsLight();
@@ -45,7 +40,7 @@ void PathIntegrator::usePlan(const RenderPlan& plan) {
            &PathIntegrator::trace<true, true, false, true>},
           {&PathIntegrator::trace<true, true, true, false>,
            &PathIntegrator::trace<true, true, true, true>}}}};
-    trace_ = kTable[diffuse][infinite][deltaOnly][split];
+    return kTable[diffuse][infinite][deltaOnly][split];
 }
 
 void PathIntegrator::Li(const Ray& ray, Sampler& sampler, RayCounter& counter,

@@ -7,12 +7,32 @@
 #include "integrators/integrator.h"
 #include "integrators/lights.h"
 #include "integrators/render_plan.h"
-#include "renderer/warp.h"
+#include "renderer/core/enum_names.h"
+#include "renderer/core/warp.h"
 
 namespace kiln {
 
 enum class DirectSampling { Hemisphere, Light, Mis };
 enum class Roulette { Off, Throughput, Fixed };
+enum class IntegratorKind { Path, Normals };
+
+template <>
+struct EnumNames<DirectSampling> {
+    static constexpr std::pair<DirectSampling, const char*> table[] = {
+        {DirectSampling::Mis, "mis"},
+        {DirectSampling::Light, "light"},
+        {DirectSampling::Hemisphere, "hemisphere"}};
+};
+template <>
+struct EnumNames<Roulette> {
+    static constexpr std::pair<Roulette, const char*> table[] = {
+        {Roulette::Throughput, "throughput"}, {Roulette::Fixed, "fixed"}, {Roulette::Off, "off"}};
+};
+template <>
+struct EnumNames<IntegratorKind> {
+    static constexpr std::pair<IntegratorKind, const char*> table[] = {
+        {IntegratorKind::Path, "path"}, {IntegratorKind::Normals, "normals"}};
+};
 
 struct PathOptions {
     int maxDepth = 5;
@@ -27,8 +47,12 @@ struct PathOptions {
 };
 
 class PathIntegrator final : public Integrator {
+    using TraceFn = void (PathIntegrator::*)(std::span<CameraSample>, RayCounter&) const;
+
   public:
-    PathIntegrator(const Scene& scene, const Accelerator& accel, const PathOptions& options);
+    // The path specialised for the plan (plan.general: every feature on), recording plan.aovs.
+    PathIntegrator(const Scene& scene, const Accelerator& accel, const PathOptions& options,
+                   const RenderPlan& plan = generalPlan());
     using Integrator::Li;
     void Li(const Ray& ray, Sampler& sampler, RayCounter& counter,
             SampleRecord& record) const override;
@@ -36,17 +60,14 @@ class PathIntegrator final : public Integrator {
     const char* name() const override { return "path"; }
     const PathOptions& options() const { return opt_; }
     const LightSet& lights() const { return lights_; }
-    // Chooses the path specialised for the plan (the general one until called, or with
-    // plan.general).
-    void usePlan(const RenderPlan& plan);
 
   private:
+    static TraceFn pathFor(const RenderPlan& plan);
     template <bool DiffuseOnly, bool Infinite, bool DeltaLightsOnly, bool SplitLight>
     void trace(std::span<CameraSample> batch, RayCounter& counter) const;
-    using TraceFn = void (PathIntegrator::*)(std::span<CameraSample>, RayCounter&) const;
     template <bool SplitLight>
     void addLight(SampleRecord& rec, int bounce, const Color& c, Lobe lobe) const;
-    TraceFn trace_;
+    TraceFn trace_;  // chosen once, for the plan
     float misWeight(float nf, float fPdf, float ng, float gPdf) const {
         return opt_.powerHeuristic ? powerHeuristic(nf, fPdf, ng, gPdf)
                                    : balanceHeuristic(nf, fPdf, ng, gPdf);
@@ -55,5 +76,10 @@ class PathIntegrator final : public Integrator {
     LightSet lights_;
     bool eachDeltaLightOnce_ = false;  // only (a few) delta lights: NEE takes each once
 };
+
+// The integrator of that kind, complete: specialised for the plan, recording plan.aovs.
+std::unique_ptr<Integrator> makeIntegrator(IntegratorKind kind, const Scene& scene,
+                                           const Accelerator& accel, const PathOptions& options,
+                                           const RenderPlan& plan);
 
 }  // namespace kiln

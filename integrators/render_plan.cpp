@@ -2,10 +2,10 @@
 
 #include <set>
 
-#include "renderer/camera.h"
-#include "renderer/interaction.h"
-#include "renderer/sampler.h"
-#include "renderer/warp.h"
+#include "renderer/core/sampler.h"
+#include "renderer/core/warp.h"
+#include "renderer/geometry/camera.h"
+#include "renderer/geometry/interaction.h"
 
 namespace kiln {
 namespace {
@@ -31,10 +31,17 @@ float escapeFraction(const Scene& scene, const Accelerator& accel) {
 
 }  // namespace
 
-RenderPlan planFor(const Scene& scene, const Accelerator& accel, const AovRequest& aovs,
-                   bool general) {
+RenderPlan generalPlan(const AovRequest& aovs) {
     RenderPlan p;
-    p.general = general;
+    p.general = true;
+    p.aovs = aovs;
+    return p;
+}
+
+RenderPlan planFor(const Scene& scene, const Accelerator& accel, const AovRequest& aovs,
+                   PlanMode mode) {
+    RenderPlan p;
+    p.general = mode == PlanMode::General;
     p.aovs = aovs;
     std::set<uint32_t> used;
     for (const TriangleMesh& m : scene.meshes)
@@ -71,6 +78,7 @@ RenderPlan planFor(const Scene& scene, const Accelerator& accel, const AovReques
     auto say = [&](const std::string& decision, const std::string& reason) {
         p.decisions.push_back(decision + ": " + reason);
     };
+    const bool general = p.general;
     if (general) say("general path", "--plan general: every feature on, as a baseline");
     say(p.diffuseOnly && !general ? "Lambert-only shading (no Fresnel, no specular code)"
                                   : "full BSDF set",

@@ -5,11 +5,20 @@
 #include <string>
 #include <vector>
 
-#include "renderer/accelerator.h"
-#include "renderer/aov.h"
+#include "renderer/accel/accelerator.h"
+#include "renderer/core/enum_names.h"
+#include "renderer/film/aov.h"
 #include "scene/scene.h"
 
 namespace kiln {
+
+// auto: the path specialised for what the scene holds; general: every feature on.
+enum class PlanMode { Auto, General };
+template <>
+struct EnumNames<PlanMode> {
+    static constexpr std::pair<PlanMode, const char*> table[] = {{PlanMode::Auto, "auto"},
+                                                                 {PlanMode::General, "general"}};
+};
 
 struct RenderPlan {
     // What the scene holds.
@@ -36,8 +45,12 @@ struct RenderPlan {
     std::string compact() const;  // one line for the EXR header
 };
 
+// Every feature on, whatever a scene holds: the baseline specialisations are checked against, and
+// what an integrator built without analysis runs.
+RenderPlan generalPlan(const AovRequest& aovs = {});
+
 // Scene analysis; accel is used to probe whether the scene is closed.
 RenderPlan planFor(const Scene& scene, const Accelerator& accel, const AovRequest& aovs,
-                   bool general = false);
+                   PlanMode mode = PlanMode::Auto);
 
 }  // namespace kiln

@@ -11,7 +11,7 @@
 #include <stdexcept>
 #include <tuple>
 
-#include "renderer/camera.h"
+#include "renderer/geometry/camera.h"
 #include "renderer/progress.h"
 
 namespace kiln {

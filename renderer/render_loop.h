@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "integrators/integrator.h"
-#include "renderer/film.h"
+#include "renderer/film/film.h"
 
 namespace kiln {
 

@@ -5,7 +5,7 @@
 namespace kiln {
 
 void applyCs184Framing(Scene& scene) {
-    Bounds3 b = scene.worldBounds();
+    Bounds3 b = scene.storedBounds();
     if (b.empty()) return;
     Vec3 target = b.centroid();
     float distance = 1.5f * length(b.diagonal());
@@ -18,7 +18,7 @@ void applyCs184Framing(Scene& scene) {
 }
 
 void applyDefaultFraming(Scene& scene) {
-    Bounds3 b = scene.worldBounds();
+    Bounds3 b = scene.storedBounds();
     if (b.empty()) return;
     Camera& cam = scene.camera;
     cam.hFovDeg = 40.0f;

@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "renderer/core/memory.h"
 #include "scene/cgl_extras.h"
 #include "scene/scene.h"
 
@@ -20,8 +21,6 @@ void importFile(const std::string& path, Scene& scene);
 // camera.
 void readKilnScene(const std::string& path, Scene& scene);
 
-// Memory the loader may use: MemAvailable, or $KILN_MEMORY_LIMIT (bytes) when set.
-uint64_t availableMemoryBytes();
 // Throws SceneError, before any allocation, when a mesh of these counts would not fit.
 void checkMemoryFor(const std::string& path, uint64_t vertices, uint64_t triangles);
 

@@ -153,19 +153,6 @@ class Cursor {
 
 }  // namespace
 
-uint64_t availableMemoryBytes() {
-    if (const char* limit = std::getenv("KILN_MEMORY_LIMIT"); limit && *limit)
-        return std::strtoull(limit, nullptr, 10);
-    std::ifstream meminfo("/proc/meminfo");
-    std::string key;
-    uint64_t kb = 0;
-    while (meminfo >> key >> kb) {
-        if (key == "MemAvailable:") return kb * 1024;
-        meminfo.ignore(256, '\n');
-    }
-    return UINT64_MAX;
-}
-
 void checkMemoryFor(const std::string& path, uint64_t vertices, uint64_t triangles) {
     // Scene model: 12 bytes per vertex position (+12 normals at most), 12 per triangle; Embree's
     // BVH measured 64 bytes per triangle on igea_subdiv1_1M (kiln info), 80 leaves room for the

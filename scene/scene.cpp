@@ -52,7 +52,7 @@ std::vector<bool> Scene::prototypeMask() const {
     return mask;
 }
 
-Bounds3 Scene::worldBounds() const {
+Bounds3 Scene::storedBounds() const {
     Bounds3 b;
     std::vector<bool> proto = prototypeMask();
     for (size_t m = 0; m < meshes.size(); ++m) {

@@ -3,10 +3,12 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
-#include "renderer/math.h"
+#include "color/image_input.h"
+#include "renderer/core/math.h"
 
 namespace kiln {
 
@@ -43,7 +45,8 @@ struct Light {
     float spotInnerDeg = 30.0f, spotOuterDeg = 45.0f;
     uint32_t mesh = 0;            // mesh emitter, or an area light's geometry when hasMesh
     bool hasMesh = false;         // area light whose rectangle is an emissive mesh of the scene
-    std::string environmentPath;  // lat-long EXR/HDR
+    std::string environmentPath;  // lat-long EXR/HDR, as named
+    std::shared_ptr<const RgbImage> environmentImage;  // its pixels in the working space
     float environmentScale = 1.0f;
 };
 
@@ -124,7 +127,8 @@ struct Scene {
     bool duplicatesChecked = true;    // false above the loader's size limit for that check
 
     std::vector<bool> prototypeMask() const;  // meshes drawn only through instances
-    Bounds3 worldBounds() const;
+    // Bounds in stored (recentred) coordinates; worldBoundsOf() in scene_info.h adds origin back.
+    Bounds3 storedBounds() const;
     uint64_t uniqueTriangles() const;     // stored triangles
     uint64_t instancedTriangles() const;  // triangles as rendered (instances expanded)
 };

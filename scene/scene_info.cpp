@@ -39,7 +39,7 @@ std::string quote(const std::string& s) {
 
 // Bounds in world coordinates (the scene is stored relative to Scene::origin).
 Bounds3 worldBoundsOf(const Scene& scene) {
-    Bounds3 b = scene.worldBounds();
+    Bounds3 b = scene.storedBounds();
     if (b.empty()) return b;
     return {Vec3(Vec3d(b.lo) + scene.origin), Vec3(Vec3d(b.hi) + scene.origin)};
 }

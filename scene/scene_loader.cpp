@@ -111,7 +111,7 @@ uint64_t countDuplicateTriangles(const Scene& scene) {
 }
 
 void recenterScene(Scene& scene) {
-    Bounds3 b = scene.worldBounds();
+    Bounds3 b = scene.storedBounds();
     if (b.empty()) return;
     Vec3 c = b.centroid();
     // Only worth it (and only exact) when the scene sits far from the origin relative to its size.
@@ -181,8 +181,8 @@ Scene loadScene(const std::string& path, const LoadOptions& options) {
     if (!options.environmentMap.empty()) {
         if (!std::filesystem::exists(options.environmentMap))
             throw SceneError(options.environmentMap, "no such environment map");
-        checkEnvironmentMap(options.environmentMap, scene.warnings);
         Light env;
+        env.environmentImage = loadEnvironmentMap(options.environmentMap, scene.warnings);
         env.name = "environment";
         env.kind = LightKind::Environment;
         env.environmentPath = options.environmentMap;

@@ -26,7 +26,9 @@ void validateScene(const Scene& scene);
 void addDefaultLightRig(Scene& scene);
 
 // Opens a lat-long environment map to check it (SceneError if unreadable); warns if it is not 2:1.
-void checkEnvironmentMap(const std::string& path, std::vector<std::string>& warnings);
+// Reads and checks an environment map (a clear SceneError before any rendering).
+std::shared_ptr<const RgbImage> loadEnvironmentMap(const std::string& path,
+                                                   std::vector<std::string>& warnings);
 
 // Adds a light for every mesh whose material emits (sampled by area at render time).
 void addEmissiveMeshLights(Scene& scene);

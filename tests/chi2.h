@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "renderer/math.h"
-#include "renderer/sampler.h"
+#include "renderer/core/math.h"
+#include "renderer/core/sampler.h"
 
 namespace kiln::test {
 

@@ -2,13 +2,13 @@
 // watertightness.
 #include <cmath>
 
-#include "renderer/bvh.h"
-#include "renderer/crosscheck.h"
-#include "renderer/interaction.h"
-#include "renderer/ray_sets.h"
-#include "renderer/reference_bvh.h"
-#include "renderer/sampler.h"
-#include "renderer/shapes.h"
+#include "renderer/accel/bvh.h"
+#include "renderer/accel/reference_bvh.h"
+#include "renderer/core/sampler.h"
+#include "renderer/geometry/interaction.h"
+#include "renderer/geometry/shapes.h"
+#include "renderer/validation/crosscheck.h"
+#include "renderer/validation/ray_sets.h"
 #include "scene/scene_loader.h"
 #include "test_support.h"
 

@@ -2,7 +2,7 @@
 // sweep.
 #include <fstream>
 
-#include "renderer/accuracy.h"
+#include "renderer/validation/accuracy.h"
 #include "test_support.h"
 
 namespace kiln {

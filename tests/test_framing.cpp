@@ -1,7 +1,7 @@
 // Camera framing and field of view as the CS184 program does them.
 #include <cmath>
 
-#include "renderer/camera.h"
+#include "renderer/geometry/camera.h"
 #include "scene/framing.h"
 #include "scene/scene_loader.h"
 #include "test_support.h"
@@ -26,7 +26,7 @@ TEST(Framing, FovWidenedToTheImageAspect) {
 
 TEST(Framing, CourseRulePlacesTheCameraOnTheFileDirection) {
     Scene s = loadScene(test::cs184("sky/CBspheres_lambertian.dae"));
-    Bounds3 b = s.worldBounds();
+    Bounds3 b = s.storedBounds();
     Vec3 expected = b.centroid() + Vec3(0, 0, 1) * (1.5f * length(b.diagonal()));
     EXPECT_NEAR(s.camera.position.x, expected.x, 1e-5f);
     EXPECT_NEAR(s.camera.position.y, expected.y, 1e-5f);

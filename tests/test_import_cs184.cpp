@@ -170,7 +170,7 @@ TEST(Cs184Extras, CBgemsLoadsDespiteItsShortCameraMatrix) {
 
 TEST(Cs184Extras, CornellBoxSpansTheCourseBounds) {
     Scene s = loadScene(cs184("sky/CBempty.dae"));
-    Bounds3 b = s.worldBounds();
+    Bounds3 b = s.storedBounds();
     EXPECT_NEAR(b.lo.x, -1, 1e-5);
     EXPECT_NEAR(b.hi.x, 1, 1e-5);
     EXPECT_NEAR(b.lo.y, 0, 1e-5);

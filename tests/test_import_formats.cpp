@@ -16,7 +16,7 @@ TEST(AssimpFormats, GltfMeshPlacedThreeTimesBecomesInstances) {
     EXPECT_EQ(sum.uniqueTriangles, 1u);
     EXPECT_EQ(sum.triangles, 3u);
     EXPECT_EQ(sum.instances, 3u);
-    Bounds3 b = s.worldBounds();
+    Bounds3 b = s.storedBounds();
     EXPECT_NEAR(b.lo.x, 0, 1e-6);
     EXPECT_NEAR(b.hi.x, 6, 1e-6);  // the instance at x = 5
     EXPECT_NEAR(b.hi.y, 7, 1e-6);  // the scaled instance at y = 5 spans up to 5 + 2

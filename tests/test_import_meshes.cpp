@@ -28,7 +28,7 @@ TEST_P(MeshImport, CountsCameraAndLights) {
     EXPECT_FALSE(s.hasFileCamera);
     // Default rig: a key light and a sky fill; default framing looks at the bounds' centre.
     EXPECT_EQ(sum.lights, (std::map<std::string, int>{{"ambient", 1}, {"directional", 1}}));
-    Bounds3 b = s.worldBounds();
+    Bounds3 b = s.storedBounds();
     Vec3 toCentre = normalize(b.centroid() - s.camera.position);
     EXPECT_GT(dot(toCentre, s.camera.forward), 0.9999f);
     EXPECT_GT(length(b.centroid() - s.camera.position), 0.5f * length(b.diagonal()));

@@ -2,7 +2,7 @@
 // agree, roulette without bias, CS184 depth semantics, adaptive sampling and determinism.
 // Tolerances come from the estimator's own sample variance (5 standard errors).
 #include "integrators/path.h"
-#include "renderer/camera.h"
+#include "renderer/geometry/camera.h"
 #include "renderer/render_loop.h"
 #include "scene/scene_loader.h"
 #include "test_support.h"
@@ -32,11 +32,10 @@ ImageEstimate estimate(const Film& film) {
 
 Film renderPath(const Scene& s, const PathOptions& opt, RenderSettings settings) {
     auto accel = makeEmbreeAccelerator(s);
-    PathIntegrator integrator(s, *accel, opt);
-    Film film(settings.width, settings.height);
-    settings.progress = false;
-    renderImage(s, integrator, settings, film);
-    return film;
+    RenderJobOptions o = test::jobOptions(settings.width, settings.height, settings.spp, opt);
+    o.settings = settings;
+    o.settings.progress = false;
+    return test::renderJob(s, *accel, o);
 }
 
 RenderSettings small(int w, int h, int spp, uint64_t seed = 0) {
@@ -201,10 +200,9 @@ TEST(PathRender, DeltaLightsTakeOneSampleEach) {
     auto render = [&](int lightSamples, Film& film) {
         PathOptions opt;
         opt.lightSamples = lightSamples;
-        PathIntegrator integrator(s, *accel, opt);
-        RenderSettings settings = small(40, 30, 4);
-        settings.progress = false;
-        return renderImage(s, integrator, settings, film);
+        RenderStats stats;
+        film = test::renderJob(s, *accel, test::jobOptions(40, 30, 4, opt), &stats);
+        return stats;
     };
     Film films[2] = {Film(40, 30), Film(40, 30)};
     RenderStats stats[2] = {render(1, films[0]), render(8, films[1])};
@@ -234,9 +232,8 @@ TEST(PathRender, ABatchTracesEachSampleAsItWouldAlone) {
     auto accel = makeEmbreeAccelerator(s);
     PathOptions opt;
     opt.lightSamples = 3;
-    PathIntegrator integrator(s, *accel, opt);
     AovRequest all = AovRequest::parse("all", 4);
-    integrator.setAovs(all);
+    PathIntegrator integrator(s, *accel, opt, generalPlan(all));
     CameraModel camera(s.camera, 48, 36);
     std::vector<CameraSample> batch;
     for (int i = 0; i < 300; ++i) {

@@ -155,6 +155,7 @@ TEST(LightSampling, EnvironmentMapImportance) {
     Light l;
     l.kind = LightKind::Environment;
     l.environmentPath = path;
+    l.environmentImage = std::make_shared<const RgbImage>(readWorkingSpaceImage(path));
     s.lights.push_back(l);
     LightSet lights(s);
     // Histogram in the map's own spherical coordinates (pole = +Y, phi = 0 at -Z) so bins align

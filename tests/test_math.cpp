@@ -1,8 +1,8 @@
 // Math, bounds, transforms and the counter-based sampler.
 #include <cmath>
 
-#include "renderer/math.h"
-#include "renderer/sampler.h"
+#include "renderer/core/math.h"
+#include "renderer/core/sampler.h"
 #include "test_support.h"
 
 namespace kiln {

@@ -17,13 +17,7 @@ Film render(const std::string& scenePath, const AovRequest& aovs, int maxDepth =
     auto accel = makeEmbreeAccelerator(s);
     PathOptions opt;
     opt.maxDepth = maxDepth;
-    PathIntegrator integrator(s, *accel, opt);
-    integrator.setAovs(aovs);
-    RenderSettings settings;
-    settings.width = 48, settings.height = 36, settings.spp = spp, settings.progress = false;
-    Film film(settings.width, settings.height, aovs);
-    renderImage(s, integrator, settings, film);
-    return film;
+    return test::renderJob(s, *accel, test::jobOptions(48, 36, spp, opt, aovs));
 }
 
 size_t channel(const Film& f, const std::string& name) {
@@ -217,6 +211,8 @@ TEST(ColourManagement, EnvironmentMapsAreConvertedOnLoad) {
     Light env;
     env.kind = LightKind::Environment;
     env.environmentPath = test::shared("envmaps/city.exr");
+    env.environmentImage =
+        std::make_shared<const RgbImage>(readWorkingSpaceImage(env.environmentPath));
     s.lights.push_back(env);
     LightSet lights(s);
     auto in = OIIO::ImageInput::open(env.environmentPath);

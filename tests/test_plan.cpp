@@ -56,15 +56,12 @@ INSTANTIATE_TEST_SUITE_P(
         return n;
     });
 
-Film render(const Scene& s, const Accelerator& accel, const PathOptions& opt,
-            const RenderPlan& plan, uint64_t* rays = nullptr) {
-    PathIntegrator integrator(s, accel, opt);
-    integrator.setAovs(plan.aovs);
-    integrator.usePlan(plan);
-    RenderSettings settings;
-    settings.width = 40, settings.height = 30, settings.spp = 8, settings.progress = false;
-    Film film(40, 30, plan.aovs);
-    RenderStats stats = renderImage(s, integrator, settings, film);
+Film render(const Scene& s, const Accelerator& accel, const PathOptions& opt, PlanMode mode,
+            const AovRequest& aovs = {}, uint64_t* rays = nullptr) {
+    RenderJobOptions o = test::jobOptions(40, 30, 8, opt, aovs);
+    o.plan = mode;
+    RenderStats stats;
+    Film film = test::renderJob(s, accel, o, &stats);
     if (rays) *rays = stats.rays;
     return film;
 }
@@ -87,8 +84,8 @@ TEST(SpecialisedPaths, GiveTheGeneralPathsImage) {
         PathOptions opt;
         opt.maxDepth = c.depth;
         AovRequest aovs = AovRequest::parse(c.aovs, c.depth);
-        RenderPlan special = planFor(s, *accel, aovs), general = planFor(s, *accel, aovs, true);
-        Film a = render(s, *accel, opt, special), b = render(s, *accel, opt, general);
+        Film a = render(s, *accel, opt, PlanMode::Auto, aovs),
+             b = render(s, *accel, opt, PlanMode::General, aovs);
         double sum = 0;
         for (int y = 0; y < 30; ++y)
             for (int x = 0; x < 40; ++x) {
@@ -106,8 +103,8 @@ TEST(SpecialisedPaths, DeltaLightsOnlySkipsTheUselessLastRay) {
     PathOptions opt;
     opt.maxDepth = 1;
     uint64_t special = 0, general = 0;
-    render(s, *accel, opt, planFor(s, *accel, AovRequest{}), &special);
-    render(s, *accel, opt, planFor(s, *accel, AovRequest{}, true), &general);
+    render(s, *accel, opt, PlanMode::Auto, {}, &special);
+    render(s, *accel, opt, PlanMode::General, {}, &general);
     EXPECT_LT(special,
               general);  // camera + shadow rays only; the general path also traces a continuation
 }

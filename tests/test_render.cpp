@@ -6,7 +6,7 @@
 #include "color/image_output.h"
 #include "integrators/normals.h"
 #include "integrators/path.h"
-#include "renderer/recording_accelerator.h"
+#include "renderer/accel/recording_accelerator.h"
 #include "renderer/render_loop.h"
 #include "scene/scene_loader.h"
 #include "test_support.h"
@@ -164,14 +164,14 @@ TEST(TraversalFloor, ReplaysExactlyTheCallsOfTheRender) {
     settings.progress = false;
     PathOptions opt;
     opt.lightSamples = 2;
-    auto render = [&](const Accelerator& a, RenderStats& stats) {
-        PathIntegrator integrator(s, a, opt);
-        Film film(settings.width, settings.height);
-        stats = renderImage(s, integrator, settings, film);
-        return film;
-    };
+    RenderJobOptions o = test::jobOptions(settings.width, settings.height, settings.spp, opt);
+    o.settings = settings;
+    // As --traversal-floor does: the same job (its plan analysed once) traced through the recorder.
+    RenderJob job(s, *accel, o), again(job, recorder);
     RenderStats plain, recorded;
-    Film a = render(*accel, plain), b = render(recorder, recorded);
+    Film a = job.makeFilm(), b = again.makeFilm();
+    plain = job.render(a);
+    recorded = again.render(b);
     for (int y = 0; y < settings.height; ++y)
         for (int x = 0; x < settings.width; ++x) ASSERT_EQ(a.pixel(x, y), b.pixel(x, y));
     EXPECT_EQ(recorded.rays, plain.rays);

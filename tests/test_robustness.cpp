@@ -5,10 +5,10 @@
 
 #include "integrators/lights.h"
 #include "integrators/path.h"
-#include "renderer/crosscheck.h"
-#include "renderer/interaction.h"
+#include "renderer/core/sampler.h"
+#include "renderer/geometry/interaction.h"
 #include "renderer/render_loop.h"
-#include "renderer/sampler.h"
+#include "renderer/validation/crosscheck.h"
 #include "scene/scene_loader.h"
 #include "test_support.h"
 
@@ -39,12 +39,7 @@ Film renderScene(const Scene& s, int w, int h, int spp, PathOptions opt = {},
                  AcceleratorKind kind = AcceleratorKind::Embree) {
     auto accel =
         kind == AcceleratorKind::Embree ? makeEmbreeAccelerator(s) : makeReferenceAccelerator(s);
-    PathIntegrator integrator(s, *accel, opt);
-    RenderSettings settings;
-    settings.width = w, settings.height = h, settings.spp = spp, settings.progress = false;
-    Film film(w, h);
-    renderImage(s, integrator, settings, film);
-    return film;
+    return test::renderJob(s, *accel, test::jobOptions(w, h, spp, opt));
 }
 
 // --- Watertightness
@@ -501,11 +496,8 @@ TEST(ExtremeValues, TinyAndHugeRadianceAndZeroAreaLights) {
         for (Light& l : s.lights) l.radiance = Color(radiance);
         for (Material& m : s.materials) m.emission = m.emission * (radiance / 10.0f);
         auto accel = makeEmbreeAccelerator(s);
-        PathIntegrator integrator(s, *accel, PathOptions{});
-        RenderSettings settings;
-        settings.width = 24, settings.height = 18, settings.spp = 4, settings.progress = false;
-        Film f(24, 18);
-        RenderStats stats = renderImage(s, integrator, settings, f);
+        RenderStats stats;
+        Film f = test::renderJob(s, *accel, test::jobOptions(24, 18, 4), &stats);
         for (int y = 0; y < 18; ++y)
             for (int x = 0; x < 24; ++x) ASSERT_TRUE(isFinite(f.pixel(x, y)));
         EXPECT_LE(stats.nonFiniteSamples, 0u) << radiance;

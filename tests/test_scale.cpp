@@ -149,12 +149,7 @@ TEST(KilnScene, InstancedAndFlattenedRenderTheSameImage) {
     EXPECT_EQ(summarize(flat).triangles, 6u * 69451u);
     auto render = [](const Scene& s) {
         auto accel = makeEmbreeAccelerator(s);
-        PathIntegrator integrator(s, *accel, PathOptions{});
-        RenderSettings settings;
-        settings.width = 32, settings.height = 24, settings.spp = 32, settings.progress = false;
-        Film film(32, 24);
-        renderImage(s, integrator, settings, film);
-        return film;
+        return test::renderJob(s, *accel, test::jobOptions(32, 24, 32));
     };
     Film a = render(inst), b = render(flat);
     int blocks = 0, mismatched = 0;

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <string>
 
+#include "renderer/render_job.h"
 #include "scene/scene.h"
 
 namespace kiln::test {
@@ -40,6 +41,27 @@ struct ScopedMemoryLimit {
     ScopedMemoryLimit(const ScopedMemoryLimit&) = delete;
     ScopedMemoryLimit& operator=(const ScopedMemoryLimit&) = delete;
 };
+
+// The options of a quiet w x h render at spp, beauty only unless aovs say more.
+inline RenderJobOptions jobOptions(int w, int h, int spp, const PathOptions& path = {},
+                                   const AovRequest& aovs = {}) {
+    RenderJobOptions o;
+    o.path = path;
+    o.aovs = aovs;
+    o.settings.width = w, o.settings.height = h, o.settings.spp = spp;
+    o.settings.progress = false;
+    return o;
+}
+
+// One render through RenderJob, exactly as kiln render sets it up.
+inline Film renderJob(const Scene& s, const Accelerator& accel, const RenderJobOptions& options,
+                      RenderStats* stats = nullptr) {
+    RenderJob job(s, accel, options);
+    Film film = job.makeFilm();
+    RenderStats done = job.render(film);
+    if (stats) *stats = done;
+    return film;
+}
 
 inline std::string writeFile(const std::filesystem::path& path, const std::string& text) {
     std::ofstream(path, std::ios::binary) << text;

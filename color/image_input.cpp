@@ -1,0 +1,87 @@
+#include "color/image_input.h"
+
+#include <OpenImageIO/imageio.h>
+#include <OpenImageIO/strutil.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "color/chromaticities.h"
+
+namespace kiln {
+namespace {
+
+std::unique_ptr<OIIO::ImageInput> openImage(const std::string& path) {
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) throw ImageReadError(path, "cannot read image: " + OIIO::geterror());
+    return in;
+}
+
+float srgbDecode(float v) {
+    return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
+}
+
+Mat3 toWorkingMatrix(const OIIO::ImageSpec& spec) {
+    Mat3 identity = {{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+    const OIIO::ParamValue* chroma =
+        spec.find_attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8));
+    if (!chroma) return identity;
+    Chromaticities c;
+    for (int i = 0; i < 8; ++i) c[size_t(i)] = static_cast<const float*>(chroma->data())[i];
+    return sameChromaticities(c, kRec709D65) ? identity : toWorkingSpace(c);
+}
+
+Color transform(const Mat3& m, const Color& c) {
+    return Color(float(m[0][0] * c.x + m[0][1] * c.y + m[0][2] * c.z),
+                 float(m[1][0] * c.x + m[1][1] * c.y + m[1][2] * c.z),
+                 float(m[2][0] * c.x + m[2][1] * c.y + m[2][2] * c.z));
+}
+
+}  // namespace
+
+ImageHeader readImageHeader(const std::string& path) {
+    auto in = openImage(path);
+    const OIIO::ImageSpec& spec = in->spec();
+    return {spec.width, spec.height, spec.nchannels};
+}
+
+RgbImage readWorkingSpaceImage(const std::string& path) {
+    auto in = openImage(path);
+    const OIIO::ImageSpec& spec = in->spec();
+    if (spec.nchannels < 3)
+        throw ImageReadError(path, "needs RGB channels, has " + std::to_string(spec.nchannels));
+    std::vector<float> data(size_t(spec.width) * spec.height * spec.nchannels);
+    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, data.data()))
+        throw ImageReadError(path, "cannot read image: " + in->geterror());
+    Mat3 toWorking = toWorkingMatrix(spec);
+    bool srgbEncoded = spec.format.basetype == OIIO::TypeDesc::UINT8 ||
+                       OIIO::Strutil::iequals(spec.get_string_attribute("oiio:ColorSpace"), "sRGB");
+    RgbImage image;
+    image.width = spec.width, image.height = spec.height;
+    image.pixels.resize(size_t(spec.width) * spec.height);
+    for (size_t i = 0; i < image.pixels.size(); ++i) {
+        const float* p = &data[i * size_t(spec.nchannels)];
+        Color c(p[0], p[1], p[2]);
+        if (srgbEncoded) c = Color(srgbDecode(c.x), srgbDecode(c.y), srgbDecode(c.z));
+        image.pixels[i] = transform(toWorking, c);
+    }
+    return image;
+}
+
+int ChannelImage::channel(const std::string& name) const {
+    auto it = std::find(channelNames.begin(), channelNames.end(), name);
+    return it == channelNames.end() ? -1 : int(it - channelNames.begin());
+}
+
+bool readChannelImage(const std::string& path, ChannelImage& image) {
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) return false;
+    const OIIO::ImageSpec& spec = in->spec();
+    image.width = spec.width, image.height = spec.height;
+    image.channelNames.assign(spec.channelnames.begin(), spec.channelnames.end());
+    image.values.resize(size_t(spec.width) * spec.height * spec.nchannels);
+    return in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.values.data());
+}
+
+}  // namespace kiln

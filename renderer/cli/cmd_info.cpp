@@ -1,0 +1,44 @@
+#include <algorithm>
+#include <cstdio>
+
+#include "integrators/render_plan.h"
+#include "renderer/cli/cli_args.h"
+#include "renderer/cli/commands.h"
+#include "renderer/cli/render_options.h"
+#include "scene/scene_info.h"
+#include "scene/scene_loader.h"
+
+namespace kiln {
+
+int runInfo(const std::vector<std::string>& args) {
+    ArgParser parser("info", "SCENE [--json]");
+    bool json = false;
+    LoadOptions load;
+    parser.flag("json", "", "print the stable JSON form (keys in docs/info-json.md)", json);
+    addLoadOptions(parser, load);
+    std::vector<std::string> pos = parser.parse(args);
+    if (parser.helpRequested()) {
+        std::fputs(parser.helpText().c_str(), stdout);
+        return 0;
+    }
+    if (pos.size() != 1) throw UsageError("needs exactly one scene file (see 'kiln info --help')");
+    Scene scene = loadScene(pos[0], load);
+    if (json) {
+        std::fputs(sceneInfoJson(scene).c_str(), stdout);
+        return 0;
+    }
+    std::fputs(sceneInfoText(scene).c_str(), stdout);
+    auto accel = makeEmbreeAccelerator(scene);
+    uint64_t tris = std::max<uint64_t>(1, scene.uniqueTriangles());
+    std::printf(
+        "embree      %llu bytes of BVH (%.1f bytes/triangle), built in %.3f s; scene model + BVH: "
+        "%.1f bytes/triangle\n",
+        (unsigned long long)accel->stats().memoryBytes,
+        double(accel->stats().memoryBytes) / double(tris), accel->stats().buildSeconds,
+        double(accel->stats().memoryBytes + summarize(scene).geometryBytes) / double(tris));
+    RenderPlan plan = planFor(scene, *accel, AovRequest::defaults());
+    std::printf("render plan (%s)\n%s", plan.compact().c_str(), plan.text().c_str());
+    return 0;
+}
+
+}  // namespace kiln

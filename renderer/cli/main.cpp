@@ -1,0 +1,60 @@
+// kiln: a batch path tracer. This file only dispatches subcommands and turns errors into exit
+// codes.
+#include <cstdio>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "renderer/cli/cli_args.h"
+#include "renderer/cli/commands.h"
+#include "scene/scene_error.h"
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage: kiln <command> [options]\n"
+    "\n"
+    "commands:\n"
+    "  render SCENE      render a scene to EXR + PNG\n"
+    "  info SCENE        describe a scene (--json for the machine-readable form)\n"
+    "  crosscheck SCENE  trace the same rays through Embree and the reference BVH and compare\n"
+    "  bench accel       build time and rays/s of both accelerators\n"
+    "  bench plan        render time of the plan's specialised path against the general one\n"
+    "  bench accuracy    error against time over spp, strategies, depth, adaptive sampling\n"
+    "  tools subdivide   1-to-4 midpoint subdivision of a mesh, written as binary PLY\n"
+    "\n"
+    "'kiln <command> --help' lists each command's options.\n";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::vector<std::string> args(argv + 1, argv + argc);
+    if (args.empty() || args[0] == "-h" || args[0] == "--help") {
+        std::fputs(kUsage, args.empty() ? stderr : stdout);
+        return args.empty() ? 2 : 0;
+    }
+    if (args[0] == "--version") {
+        std::printf("kiln %s\n", KILN_VERSION);
+        return 0;
+    }
+    std::string command = args[0];
+    args.erase(args.begin());
+    try {
+        if (command == "render") return kiln::runRender(args);
+        if (command == "info") return kiln::runInfo(args);
+        if (command == "crosscheck") return kiln::runCrosscheck(args);
+        if (command == "bench") return kiln::runBench(args);
+        if (command == "tools") return kiln::runTools(args);
+        std::fprintf(stderr, "kiln: unknown command '%s'\n%s", command.c_str(), kUsage);
+        return 2;
+    } catch (const kiln::UsageError& e) {
+        std::fprintf(stderr, "kiln %s: %s\n", command.c_str(), e.what());
+        return 2;
+    } catch (const kiln::SceneError& e) {
+        std::fprintf(stderr, "kiln: error: %s\n", e.what());
+        return 2;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "kiln: error: %s\n", e.what());
+        return 1;
+    }
+}

@@ -1,0 +1,142 @@
+#include "renderer/cli/render_options.h"
+
+#include <cmath>
+
+namespace kiln {
+
+void addLoadOptions(ArgParser& parser, LoadOptions& load) {
+    parser.option("camera", "", 1, "file|framed",
+                  "the file's camera as written, or the CS184 course framing (default: course "
+                  "framing for Z-up COLLADA)",
+                  [&load](const std::vector<std::string>& v) {
+                      if (v[0] != "file" && v[0] != "framed")
+                          throw UsageError("--camera takes 'file' or 'framed', got '" + v[0] + "'");
+                      load.cameraRule = v[0] == "file" ? LoadOptions::CameraRule::File
+                                                       : LoadOptions::CameraRule::Framed;
+                  });
+    parser.option("env", "", 1, "MAP.exr", "add a lat-long environment light",
+                  [&load](const std::vector<std::string>& v) { load.environmentMap = v[0]; });
+}
+
+namespace {
+
+void addImageOptions(ArgParser& parser, RenderJobArgs& a) {
+    RenderSettings& s = a.job.settings;
+    parser.option("resolution", "r", 2, "W H", "image size (default 800 600)",
+                  [&s](const std::vector<std::string>& v) {
+                      s.width = ArgParser::toInt("-r", v[0], 1, 32768);
+                      s.height = ArgParser::toInt("-r", v[1], 1, 32768);
+                  });
+    parser.option(
+        "crop", "", 4, "X0 X1 Y0 Y1",
+        "render only this window of the image, as fractions of its width and height (pbrt's "
+        "crop window); the EXR keeps the full image as its display window",
+        [&a](const std::vector<std::string>& v) {
+            double* c = a.crop;
+            for (int i = 0; i < 4; ++i) c[i] = ArgParser::toDouble("--crop", v[size_t(i)]);
+            if (!(c[0] >= 0 && c[0] < c[1] && c[1] <= 1 && c[2] >= 0 && c[2] < c[3] && c[3] <= 1))
+                throw UsageError(
+                    "--crop takes X0 X1 Y0 Y1 with 0 <= X0 < X1 <= 1 and 0 <= Y0 < Y1 <= 1");
+        });
+    parser.intOption("spp", "s", "camera samples per pixel (default 1)", s.spp, 1, 1 << 20);
+    parser.intOption("threads", "t", "worker threads (default: all cores)", s.threads, 1, 4096);
+    parser.intOption("tile", "", "tile size in pixels (default 32)", s.tileSize, 1, 4096);
+    parser.option("seed", "", 1, "N", "random seed (default 0)",
+                  [&s](const std::vector<std::string>& v) {
+                      s.seed = uint64_t(ArgParser::toInt("--seed", v[0], 0, 2147483647));
+                  });
+    parser.option("adaptive", "a", 2, "BATCH TOL",
+                  "adaptive sampling: test every BATCH samples, stop at "
+                  "1.96 sigma/sqrt(n) <= TOL mu (CS184; -s is the maximum)",
+                  [&s](const std::vector<std::string>& v) {
+                      s.adaptiveBatch = ArgParser::toInt("-a", v[0], 1, 1 << 20);
+                      s.adaptiveTolerance = float(ArgParser::toDouble("-a", v[1]));
+                      if (!(s.adaptiveTolerance > 0)) throw UsageError("-a tolerance must be > 0");
+                  });
+}
+
+void addTransportOptions(ArgParser& parser, RenderJobArgs& a) {
+    PathOptions& p = a.job.path;
+    parser.option("integrator", "i", 1, "NAME",
+                  "light transport: " + enumChoices<IntegratorKind>() + " (default path)",
+                  [&a](const std::vector<std::string>& v) {
+                      auto kind = parseEnum<IntegratorKind>(v[0]);
+                      if (!kind)
+                          throw UsageError("unknown integrator '" + v[0] +
+                                           "' (known: " + enumChoices<IntegratorKind>() + ")");
+                      a.job.integrator = *kind;
+                  });
+    parser.intOption("max-depth", "m",
+                     "CS184 depth: 0 emission only, 1 direct lighting, >= 2 global illumination "
+                     "(default 5)",
+                     p.maxDepth, 0, 100000);
+    parser.intOption("light-samples", "l", "light samples per shading point (default 1)",
+                     p.lightSamples, 1, 65536);
+    parser.option(
+        "hemisphere", "H", 0, "",
+        "direct light by uniform hemisphere sampling (same as --sampling hemisphere)",
+        [&p](const std::vector<std::string>&) { p.sampling = DirectSampling::Hemisphere; });
+    parser.enumOption("sampling", "direct lighting strategy (default mis)", p.sampling);
+    parser.option(
+        "heuristic", "", 1, "power|balance", "MIS heuristic (default power)",
+        [&p](const std::vector<std::string>& v) {
+            if (v[0] != "power" && v[0] != "balance")
+                throw UsageError("--heuristic takes power or balance, got '" + v[0] + "'");
+            p.powerHeuristic = v[0] == "power";
+        });
+    parser.enumOption("rr",
+                      "Russian roulette (default throughput; fixed = CS184's constant "
+                      "continuation)",
+                      p.roulette);
+    parser.option("rr-continue", "", 1, "P",
+                  "continuation probability of --rr fixed (default 0.65)",
+                  [&p](const std::vector<std::string>& v) {
+                      p.fixedContinuation = float(ArgParser::toDouble("--rr-continue", v[0]));
+                      if (!(p.fixedContinuation > 0 && p.fixedContinuation <= 1))
+                          throw UsageError("--rr-continue must be in (0, 1]");
+                  });
+    parser.option("bounce-only", "", 0, "",
+                  "keep only light that bounced exactly -m times (accumulate bounces off)",
+                  [&p](const std::vector<std::string>&) { p.accumulateBounces = false; });
+    parser.enumOption("microfacet", "microfacet distribution (default beckmann, as CS184)",
+                      p.microfacet);
+    parser.enumOption("plan",
+                      "auto (default): the path specialised for what the scene holds; "
+                      "general: every feature on (the baseline the specialisations are checked "
+                      "against)",
+                      a.job.plan);
+}
+
+}  // namespace
+
+void RenderJobArgs::addOptions(ArgParser& parser) {
+    addImageOptions(parser, *this);
+    addTransportOptions(parser, *this);
+    parser.option("aov", "", 1, "LIST",
+                  std::string("EXR layers beside the beauty, comma-separated: ") +
+                      AovRequest::names() +
+                      " (default: emission,direct,indirect,albedo,N,Z,samples,variance)",
+                  [this](const std::vector<std::string>& v) { aovList = v[0]; });
+}
+
+RenderJobOptions RenderJobArgs::finish() const {
+    RenderJobOptions out = job;
+    RenderSettings& s = out.settings;
+    if (crop[0] > 0 || crop[1] < 1 || crop[2] > 0 || crop[3] < 1) {
+        // pbrt's rule: pixel bounds are the ceilings of the scaled fractions.
+        auto at = [](double f, int n) { return int(std::ceil(f * double(n))); };
+        s.regionX0 = at(crop[0], s.width), s.regionX1 = at(crop[1], s.width);
+        s.regionY0 = at(crop[2], s.height), s.regionY1 = at(crop[3], s.height);
+        if (s.regionX1 <= s.regionX0 || s.regionY1 <= s.regionY0)
+            throw UsageError("--crop window holds no pixel at " + std::to_string(s.width) + "x" +
+                             std::to_string(s.height));
+    }
+    try {
+        out.aovs = AovRequest::parse(aovList, out.path.maxDepth);
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(std::string("--aov: ") + e.what());
+    }
+    return out;
+}
+
+}  // namespace kiln

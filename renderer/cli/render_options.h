@@ -1,0 +1,29 @@
+// Option groups that several commands share, declared once: how a scene is loaded (--camera,
+// --env) and what a render job does (size, samples, integrator, sampling, AOVs, plan).
+#pragma once
+
+#include <string>
+
+#include "renderer/cli/cli_args.h"
+#include "renderer/render_job.h"
+#include "scene/scene_loader.h"
+
+namespace kiln {
+
+// --camera file|framed, --env MAP.
+void addLoadOptions(ArgParser& parser, LoadOptions& load);
+
+// A render job's options as given on the command line; finish() turns them into RenderJobOptions.
+struct RenderJobArgs {
+    RenderJobOptions job;
+    std::string aovList = "default";
+    double crop[4] = {0, 1, 0, 1};  // --crop X0 X1 Y0 Y1, fractions of the image
+
+    // -r --crop -s -t --tile --seed -i -m -l -a -H --sampling --heuristic --rr --rr-continue
+    // --bounce-only --microfacet --plan --aov
+    void addOptions(ArgParser& parser);
+    // The render region from --crop (pbrt's rule) and the AOV request. Throws UsageError.
+    RenderJobOptions finish() const;
+};
+
+}  // namespace kiln

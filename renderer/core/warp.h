@@ -1,0 +1,74 @@
+// Sample warps from the unit square and their densities: one place for each formula.
+#pragma once
+
+#include <cmath>
+
+#include "renderer/core/math.h"
+
+namespace kiln {
+
+constexpr float kInvPi = 1.0f / kPi;
+
+inline Vec3 uniformHemisphere(float u1, float u2) {
+    float z = u1, r = std::sqrt(std::max(0.0f, 1 - z * z)), phi = 2 * kPi * u2;
+    return {r * std::cos(phi), r * std::sin(phi), z};
+}
+inline float uniformHemispherePdf() { return 1.0f / (2 * kPi); }
+
+inline Vec3 uniformSphere(float u1, float u2) {
+    float z = 1 - 2 * u1, r = std::sqrt(std::max(0.0f, 1 - z * z)), phi = 2 * kPi * u2;
+    return {r * std::cos(phi), r * std::sin(phi), z};
+}
+inline float uniformSpherePdf() { return 1.0f / (4 * kPi); }
+
+// Shirley-Chiu concentric map.
+inline void concentricDisk(float u1, float u2, float& x, float& y) {
+    float a = 2 * u1 - 1, b = 2 * u2 - 1;
+    if (a == 0 && b == 0) {
+        x = y = 0;
+        return;
+    }
+    float r, phi;
+    if (std::abs(a) > std::abs(b))
+        r = a, phi = (kPi / 4) * (b / a);
+    else
+        r = b, phi = kPi / 2 - (kPi / 4) * (a / b);
+    x = r * std::cos(phi), y = r * std::sin(phi);
+}
+
+inline Vec3 cosineHemisphere(float u1, float u2) {
+    float x, y;
+    concentricDisk(u1, u2, x, y);
+    return {x, y, std::sqrt(std::max(0.0f, 1 - x * x - y * y))};
+}
+inline float cosineHemispherePdf(float cosTheta) { return cosTheta > 0 ? cosTheta * kInvPi : 0.0f; }
+
+// Uniform point on a triangle as barycentrics (b1, b2) (Heitz's low-distortion map).
+// Written with selects, not a branch: the comparison is a coin flip the predictor cannot learn.
+inline void uniformTriangle(float u1, float u2, float& b1, float& b2) {
+    bool lower = u1 < u2;
+    float h1 = u1 * 0.5f, h2 = u2 * 0.5f;
+    b1 = lower ? h1 : u1 - h2;
+    b2 = lower ? u2 - h1 : h2;
+}
+
+// Local shading frame around a unit normal.
+struct Frame {
+    Vec3 s, t, n;
+    explicit Frame(const Vec3& normal) : n(normal) { orthonormalBasis(n, s, t); }
+    Vec3 toLocal(const Vec3& v) const { return {dot(v, s), dot(v, t), dot(v, n)}; }
+    Vec3 toWorld(const Vec3& v) const { return s * v.x + t * v.y + n * v.z; }
+};
+
+// Multiple importance sampling weights for nf samples of pdf fPdf against ng samples of pdf gPdf.
+inline float balanceHeuristic(float nf, float fPdf, float ng, float gPdf) {
+    float f = nf * fPdf, g = ng * gPdf;
+    return f + g > 0 ? f / (f + g) : 0.0f;
+}
+inline float powerHeuristic(float nf, float fPdf, float ng, float gPdf) {
+    float f = nf * fPdf, g = ng * gPdf;
+    if (std::isinf(f * f)) return 1.0f;
+    return f * f + g * g > 0 ? (f * f) / (f * f + g * g) : 0.0f;
+}
+
+}  // namespace kiln

@@ -1,0 +1,145 @@
+#include "renderer/film/aov.h"
+
+#include <sstream>
+#include <stdexcept>
+
+namespace kiln {
+namespace {
+
+struct NamedAov {
+    const char* name;
+    AovKind kind;
+};
+constexpr NamedAov kNames[] = {
+    {"emission", AovKind::Emission},
+    {"direct", AovKind::Direct},
+    {"indirect", AovKind::Indirect},
+    {"direct_diffuse", AovKind::DirectDiffuse},
+    {"direct_specular", AovKind::DirectSpecular},
+    {"direct_transmission", AovKind::DirectTransmission},
+    {"indirect_diffuse", AovKind::IndirectDiffuse},
+    {"indirect_specular", AovKind::IndirectSpecular},
+    {"indirect_transmission", AovKind::IndirectTransmission},
+    {"bounces", AovKind::Bounces},
+    {"albedo", AovKind::Albedo},
+    {"N", AovKind::Normal},
+    {"P", AovKind::Position},
+    {"Z", AovKind::Depth},
+    {"samples", AovKind::Samples},
+    {"variance", AovKind::Variance},
+    {"primid", AovKind::PrimId},
+    {"objectid", AovKind::ObjectId},
+};
+
+// Flattened field numbering used by gather(): colours take 3 consecutive fields.
+enum Field {
+    kEmission = 0,
+    kDirect = 3,
+    kIndirect = 6,
+    kLobes = 9,     // 2 x 3 lobes x 3 = 18 fields
+    kBounces = 27,  // kMaxBounceLayers x 3
+    kAlbedo = kBounces + 3 * kMaxBounceLayers,
+    kNormal = kAlbedo + 3,
+    kPosition = kNormal + 3,
+    kDepth = kPosition + 3,
+    kPrimId = kDepth + 1,
+    kObjectId = kPrimId + 1
+};
+
+}  // namespace
+
+bool AovRequest::splitsLight() const {
+    for (AovKind k :
+         {AovKind::Emission, AovKind::Direct, AovKind::Indirect, AovKind::DirectDiffuse,
+          AovKind::DirectSpecular, AovKind::DirectTransmission, AovKind::IndirectDiffuse,
+          AovKind::IndirectSpecular, AovKind::IndirectTransmission, AovKind::Bounces})
+        if (has(k)) return true;
+    return false;
+}
+
+AovRequest AovRequest::defaults() {
+    AovRequest r;
+    for (AovKind k : {AovKind::Emission, AovKind::Direct, AovKind::Indirect, AovKind::Albedo,
+                      AovKind::Normal, AovKind::Depth, AovKind::Samples, AovKind::Variance})
+        r.add(k);
+    return r;
+}
+
+const char* AovRequest::names() {
+    return "emission, direct, indirect, direct_diffuse, direct_specular, direct_transmission, "
+           "indirect_diffuse, "
+           "indirect_specular, indirect_transmission, bounces, albedo, N, P, Z, samples, variance, "
+           "primid, "
+           "objectid; or all, none, default";
+}
+
+AovRequest AovRequest::parse(const std::string& list, int maxDepth) {
+    AovRequest r;
+    std::stringstream ss(list);
+    std::string item;
+    while (std::getline(ss, item, ',')) {
+        if (item.empty()) continue;
+        if (item == "none") continue;
+        if (item == "default") {
+            r.mask |= defaults().mask;
+            continue;
+        }
+        if (item == "all") {
+            for (const NamedAov& n : kNames) r.add(n.kind);
+            continue;
+        }
+        bool found = false;
+        for (const NamedAov& n : kNames)
+            if (item == n.name) r.add(n.kind), found = true;
+        if (!found)
+            throw std::invalid_argument("unknown AOV '" + item + "' (known: " + names() + ")");
+    }
+    if (r.has(AovKind::Bounces)) r.bounceLayers = std::clamp(maxDepth, 1, kMaxBounceLayers);
+    return r;
+}
+
+AovLayout::AovLayout(const AovRequest& request) : request_(request) {
+    auto colour = [&](const std::string& layer, int field, const char* suffix = "RGB") {
+        for (int c = 0; c < 3; ++c)
+            channels_.push_back(
+                {layer + "." + std::string(1, suffix[c]), suffix[0] == 'R', false, field + c});
+    };
+    if (request.has(AovKind::Emission)) colour("emission", kEmission);
+    if (request.has(AovKind::Direct)) colour("direct", kDirect);
+    if (request.has(AovKind::Indirect)) colour("indirect", kIndirect);
+    const char* lobeNames[3] = {"diffuse", "specular", "transmission"};
+    for (int d = 0; d < 2; ++d)
+        for (int l = 0; l < 3; ++l) {
+            AovKind k = AovKind(uint32_t(AovKind::DirectDiffuse) + uint32_t(3 * d + l));
+            if (request.has(k))
+                colour(std::string(d == 0 ? "direct_" : "indirect_") + lobeNames[l],
+                       kLobes + 3 * (3 * d + l));
+        }
+    for (int b = 0; b < request.bounceLayers; ++b)
+        colour("bounce" + std::to_string(b + 1), kBounces + 3 * b);
+    if (request.has(AovKind::Albedo)) colour("albedo", kAlbedo);
+    if (request.has(AovKind::Normal)) colour("N", kNormal, "XYZ");
+    if (request.has(AovKind::Position)) colour("P", kPosition, "XYZ");
+    if (request.has(AovKind::Depth)) channels_.push_back({"Z", false, false, kDepth});
+    if (request.has(AovKind::PrimId)) channels_.push_back({"primid", false, true, kPrimId});
+    if (request.has(AovKind::ObjectId)) channels_.push_back({"objectid", false, true, kObjectId});
+}
+
+void AovLayout::gather(const SampleRecord& r, double* out) const {
+    // Flatten every field once; channels pick theirs. Cheap next to a path.
+    double f[kObjectId + 1];
+    auto put = [&](int at, const Vec3& v) { f[at] = v.x, f[at + 1] = v.y, f[at + 2] = v.z; };
+    put(kEmission, r.emission);
+    put(kDirect, r.direct);
+    put(kIndirect, r.indirect);
+    for (int d = 0; d < 2; ++d)
+        for (int l = 0; l < 3; ++l) put(kLobes + 3 * (3 * d + l), r.lobes[d][l]);
+    for (int b = 0; b < request_.bounceLayers; ++b) put(kBounces + 3 * b, r.bounces[b]);
+    put(kAlbedo, r.albedo);
+    put(kNormal, r.normal);
+    put(kPosition, r.position);
+    f[kDepth] = r.depth, f[kPrimId] = r.primId, f[kObjectId] = r.objectId;
+    for (size_t c = 0; c < channels_.size(); ++c) out[c] = f[channels_[c].field];
+}
+
+}  // namespace kiln

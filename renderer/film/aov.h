@@ -1,0 +1,93 @@
+// Arbitrary output variables: what the user may request, what one camera sample records, and how
+// the film lays the requested ones out as EXR channels ("layer.channel").
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "renderer/core/math.h"
+
+namespace kiln {
+
+enum class AovKind : uint32_t {
+    Emission,  // light seen directly (zero bounce)
+    Direct,    // light after one bounce
+    Indirect,  // light after two or more bounces
+    DirectDiffuse,
+    DirectSpecular,
+    DirectTransmission,  // direct, split by the first vertex's lobe
+    IndirectDiffuse,
+    IndirectSpecular,
+    IndirectTransmission,  // indirect, likewise
+    Bounces,               // bounce1, bounce2, ...: light after exactly k bounces
+    Albedo,
+    Normal,
+    Position,
+    Depth,  // first visible surface
+    Samples,
+    Variance,  // per pixel: sample count, estimator variance of the luminance mean
+    PrimId,
+    ObjectId,
+    Count
+};
+
+constexpr int kMaxBounceLayers = 16;
+
+struct AovRequest {
+    uint32_t mask = 0;
+    int bounceLayers = 0;  // with Bounces: bounce1..bounceN
+    bool has(AovKind k) const { return mask & (1u << uint32_t(k)); }
+    void add(AovKind k) { mask |= 1u << uint32_t(k); }
+    // Any of the light-path AOVs (the integrator must classify its contributions).
+    bool splitsLight() const;
+    // "emission,direct,..." or "all", "none", "default". Throws std::invalid_argument naming the
+    // bad entry.
+    static AovRequest parse(const std::string& list, int maxDepth);
+    static AovRequest defaults();  // beauty plus what compositing and denoising usually want
+    static const char* names();    // for --help
+};
+
+enum class Lobe { Diffuse = 0, Specular = 1, Transmission = 2 };
+
+// What one camera sample produced. Only the requested parts are filled; the per-lobe and per-bounce
+// arrays are zeroed by reset() only when requested (zeroing them for every sample cost about 10 %).
+struct SampleRecord {
+    Color L{0.0f};
+    Color emission{0.0f}, direct{0.0f}, indirect{0.0f};
+    Color lobes[2][3];  // [0 direct / 1 indirect][Lobe]
+    Color bounces[kMaxBounceLayers];
+    void reset(const AovRequest& aovs) {
+        if (!aovs.splitsLight()) return;
+        for (auto& d : lobes)
+            for (Color& c : d) c = Color(0.0f);
+        for (int b = 0; b < aovs.bounceLayers; ++b) bounces[b] = Color(0.0f);
+    }
+    Color albedo{0.0f};
+    Vec3 normal{0.0f}, position{0.0f};
+    float depth = 1e10f;  // no hit: far away, finite (compositors dislike inf)
+    float primId = -1, objectId = -1;
+};
+
+// One EXR channel fed from a SampleRecord field.
+struct AovChannel {
+    std::string name;          // "direct.R", "N.X", "Z", ...
+    bool colour = true;        // may be written as half
+    bool firstSample = false;  // ids: the first sample's value, never averaged
+    int field = 0;             // index into the record's flattened values (see AovLayout::gather)
+};
+
+class AovLayout {
+  public:
+    explicit AovLayout(const AovRequest& request);
+    const std::vector<AovChannel>& channels() const { return channels_; }
+    const AovRequest& request() const { return request_; }
+    // Writes the record's requested values, in channel order.
+    void gather(const SampleRecord& r, double* out) const;
+
+  private:
+    AovRequest request_;
+    std::vector<AovChannel> channels_;
+};
+
+}  // namespace kiln

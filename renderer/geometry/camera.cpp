@@ -1,0 +1,55 @@
+#include "renderer/geometry/camera.h"
+
+#include <cmath>
+
+#include "scene/framing.h"
+
+namespace kiln {
+
+CameraModel::CameraModel(const Camera& camera, int width, int height)
+    : cam_(camera), width_(width), height_(height), hFov_(camera.hFovDeg), vFov_(camera.vFovDeg) {
+    fitFovToAspect(hFov_, vFov_, float(width) / float(height));
+    tanX_ = std::tan(radians(hFov_) / 2);
+    tanY_ = std::tan(radians(vFov_) / 2);
+    xScale_ = 2.0f / float(width), yScale_ = 2.0f / float(height);
+    forward_ = normalize(camera.forward);
+    right_ = cross(forward_, camera.up);
+    if (dot(right_, right_) < 1e-12f) {  // up parallel to forward: pick any perpendicular
+        Vec3 t;
+        orthonormalBasis(forward_, right_, t);
+    }
+    right_ = normalize(right_);
+    up_ = cross(right_, forward_);
+}
+
+Ray CameraModel::generateRay(float px, float py, float lensU, float lensV) const {
+    float x = (px * xScale_ - 1.0f) * tanX_;
+    float y = (1.0f - py * yScale_) * tanY_;
+    Vec3 dir = normalize(right_ * x + up_ * y + forward_);
+    Ray ray{cam_.position, 0.0f, dir, kInfinity};
+    // Clip planes are distances along the view axis, as in the course program.
+    float invCos = 1.0f / dot(dir, forward_);
+    ray.tMin = cam_.nearClip * invCos;
+    ray.tMax = cam_.farClip * invCos;
+    if (cam_.apertureRadius > 0) {
+        // Thin lens: concentric disk sample, aim at the point on the plane of focus.
+        float a = 2 * lensU - 1, b = 2 * lensV - 1, r, phi;
+        if (a == 0 && b == 0)
+            r = 0, phi = 0;
+        else if (std::abs(a) > std::abs(b))
+            r = a, phi = (kPi / 4) * (b / a);
+        else
+            r = b, phi = kPi / 2 - (kPi / 4) * (a / b);
+        Vec3 lens = (right_ * std::cos(phi) + up_ * std::sin(phi)) * (r * cam_.apertureRadius);
+        Vec3 focus = cam_.position + dir * (cam_.focalDistance * invCos);
+        ray.origin = cam_.position + lens;
+        Vec3 d = normalize(focus - ray.origin);
+        float c = dot(d, forward_);
+        ray.dir = d;
+        ray.tMin = cam_.nearClip / c;
+        ray.tMax = cam_.farClip / c;
+    }
+    return ray;
+}
+
+}  // namespace kiln

@@ -1,0 +1,74 @@
+#include "renderer/render_job.h"
+
+#include <string>
+
+#include "renderer/geometry/camera.h"
+
+namespace kiln {
+
+RenderJob::RenderJob(const Scene& scene, const Accelerator& accel, const RenderJobOptions& options)
+    : scene_(scene),
+      accel_(accel),
+      options_(options),
+      plan_(planFor(scene, accel, options.aovs, options.plan)),
+      integrator_(makeIntegrator(options.integrator, scene, accel, options.path, plan_)) {}
+
+RenderJob::RenderJob(const RenderJob& job, const Accelerator& accel)
+    : scene_(job.scene_),
+      accel_(accel),
+      options_(job.options_),
+      plan_(job.plan_),
+      integrator_(makeIntegrator(options_.integrator, scene_, accel, options_.path, plan_)) {}
+
+Film RenderJob::makeFilm() const {
+    const RenderSettings& s = options_.settings;
+    Film film(s.filmWidth(), s.filmHeight(), options_.aovs);
+    film.setRegion(s.filmOriginX(), s.filmOriginY(), s.width, s.height);
+    return film;
+}
+
+RenderStats RenderJob::render(Film& film) const {
+    return renderImage(scene_, *integrator_, options_.settings, film);
+}
+
+SampleRecord RenderJob::traceSample(int x, int y, int sample, RayCounter& counter) const {
+    return kiln::traceSample(scene_, *integrator_, options_.settings, x, y, sample, counter);
+}
+
+Metadata RenderJob::metadata(const RenderStats& stats, const Film& film) const {
+    const RenderSettings& s = options_.settings;
+    const PathOptions& p = options_.path;
+    CameraModel camera(scene_.camera, s.width, s.height);
+    auto text = [](auto v) { return std::to_string(v); };
+    return Metadata{
+        {"integrator", integrator_->name()},
+        {"accelerator", accel_.stats().description},
+        {"spp", text(s.spp)},
+        {"mean_spp", text(double(stats.samples) / (double(film.width()) * film.height()))},
+        {"seed", text(s.seed)},
+        {"resolution", text(s.width) + "x" + text(s.height)},
+        {"render_seconds", text(stats.seconds)},
+        {"hfov", text(camera.hFovDeg())},
+        {"vfov", text(camera.vFovDeg())},
+        {"interrupted", stats.interrupted ? "yes" : "no"},
+        {"max_depth", text(p.maxDepth)},
+        {"light_samples", text(p.lightSamples)},
+        {"sampling", toString(p.sampling)},
+        {"roulette", toString(p.roulette)},
+        {"accumulate_bounces", p.accumulateBounces ? "yes" : "no"},
+        {"adaptive",
+         s.adaptiveBatch > 0 ? text(s.adaptiveBatch) + " " + text(s.adaptiveTolerance) : "off"},
+        {"mis_heuristic", p.powerHeuristic ? "power" : "balance"},
+        {"microfacet", toString(p.microfacet)},
+        {"camera", scene_.framedByCourseRule ? "cs184-framing"
+                   : scene_.hasFileCamera    ? "file"
+                                             : "default-framing"},
+        {"threads", text(s.threads)},
+        {"rays", text(stats.rays)},
+        {"working_space", "lin_rec709 (linear Rec.709 primaries, D65)"},
+        {"plan", plan_.compact()},
+        {"plan_decisions", plan_.text()},
+        {"nonfinite_samples", text(stats.nonFiniteSamples)}};
+}
+
+}  // namespace kiln

@@ -1,0 +1,53 @@
+// One render, set up in one place: the plan for the scene, the integrator built complete for it,
+// the film for the render region, the tile loop, and the metadata naming every option. kiln render,
+// --traversal-floor, the benchmarks and the tests all render through it, so a benchmark times
+// exactly what kiln render runs.
+#pragma once
+
+#include <memory>
+
+#include "color/image_output.h"
+#include "integrators/path.h"
+#include "integrators/render_plan.h"
+#include "renderer/render_loop.h"
+
+namespace kiln {
+
+struct RenderJobOptions {
+    IntegratorKind integrator = IntegratorKind::Path;
+    PathOptions path;
+    AovRequest aovs = AovRequest::defaults();  // what kiln render writes without --aov
+    PlanMode plan = PlanMode::Auto;
+    RenderSettings settings;  // size, region, spp, seed, threads, adaptive sampling
+};
+
+class RenderJob {
+  public:
+    // Analyses the scene and builds the integrator; accel must outlive the job.
+    RenderJob(const Scene& scene, const Accelerator& accel, const RenderJobOptions& options);
+    // The same job (scene, options, plan: no new analysis) traced through another accelerator,
+    // e.g. one that records every ray.
+    RenderJob(const RenderJob& job, const Accelerator& accel);
+
+    const RenderJobOptions& options() const { return options_; }
+    const RenderPlan& plan() const { return plan_; }
+    const Integrator& integrator() const { return *integrator_; }
+
+    // A film of the render region's size, placed in the full image.
+    Film makeFilm() const;
+    // Renders into film (made by makeFilm, or partly filled by an earlier render of this job).
+    RenderStats render(Film& film) const;
+    // One camera sample exactly as the render traces it (for --pixel/--sample debugging).
+    SampleRecord traceSample(int x, int y, int sample, RayCounter& counter) const;
+    // The job's options and results by name (the EXR header's kiln: attributes).
+    Metadata metadata(const RenderStats& stats, const Film& film) const;
+
+  private:
+    const Scene& scene_;
+    const Accelerator& accel_;
+    RenderJobOptions options_;
+    RenderPlan plan_;
+    std::unique_ptr<Integrator> integrator_;
+};
+
+}  // namespace kiln

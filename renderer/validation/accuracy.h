@@ -1,0 +1,99 @@
+// Error-versus-time measurement: image error statistics against a reference, the log-log slope fit,
+// and the efficiency figure of merit of the rendering literature, 1 / (relMSE x time).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "renderer/film/film.h"
+
+namespace kiln {
+
+// A beauty image (luminance is what the statistics use) with optional per-pixel variance of its
+// mean.
+struct Image {
+    int width = 0, height = 0;
+    std::vector<Color> pixels;
+    std::vector<double>
+        variance;  // estimator variance of each pixel's luminance mean; empty if unknown
+    // Colour AOV layers ("direct", "indirect", ...), pixel for pixel.
+    std::vector<std::string> layerNames;
+    std::vector<std::vector<Color>> layers;
+    static Image fromFilm(const Film& film);
+    const std::vector<Color>* layer(const std::string& name) const;
+};
+
+struct ErrorStats {
+    double rmse = 0;    // root mean squared error of luminance
+    double relMse = 0;  // mean of (x - r)^2 / (r^2 + 0.01): relative, robust near black
+    double bias = 0;    // mean(x) - mean(r): what more samples cannot remove (truncated depth)
+    double referenceMean = 0;  // mean luminance of the reference, to state the bias as a fraction
+};
+
+// Error of `test` against `reference`. The reference's own variance (when known) is subtracted from
+// the squared errors, so a finite-sample reference does not set a floor under the measured error.
+ErrorStats compareImages(const Image& test, const Image& reference);
+// The same statistics for one colour AOV layer present in both (no reference variance is known for
+// AOVs).
+ErrorStats compareLayer(const Image& test, const Image& reference, const std::string& layer);
+
+// Least-squares slope of log(y) against log(x) (e.g. relMSE against spp: -1 for an unbiased
+// estimator).
+double logLogSlope(const std::vector<double>& x, const std::vector<double>& y);
+
+inline double efficiency(double relMse, double seconds) {
+    return relMse > 0 && seconds > 0 ? 1.0 / (relMse * seconds) : 0.0;
+}
+
+// A log-log line plot as SVG: one polyline per series, optional reference line of slope -1.
+struct PlotSeries {
+    std::string name;
+    std::vector<double> x, y;
+};
+std::string svgLogLogPlot(const std::string& title, const std::string& xLabel,
+                          const std::string& yLabel, const std::vector<PlotSeries>& series,
+                          bool slopeMinusOne);
+
+}  // namespace kiln
+
+namespace kiln {
+
+// One measured setting of `kiln bench accuracy`.
+struct AccuracyRun {
+    std::string group;  // spp, strategy, light_samples, depth, adaptive, accel
+    std::string label;  // e.g. "mis", "m=3 rr", "tol=0.05"
+    int spp = 0, lightSamples = 1, maxDepth = 100;
+    std::string sampling = "mis", roulette = "throughput", accel = "embree";
+    float adaptiveTolerance = 0;
+    double seconds = 0, meanSpp = 0;
+    uint64_t rays = 0;
+    ErrorStats error;
+    std::vector<std::pair<std::string, ErrorStats>> aovErrors;  // on request (--aov)
+    double efficiency = 0;
+};
+
+struct AccuracyOptions {
+    std::string scene, outDir = "accuracy";
+    int width = 128, height = 96;
+    int maxSpp = 1024, referenceSpp = 4096;
+    double budgetSeconds = 300;
+    bool quick = false;  // a handful of settings (CI smoke run)
+    std::string aovs;    // colour AOV layers whose error is measured too, e.g. "direct,indirect"
+};
+
+struct AccuracyResult {
+    std::vector<AccuracyRun> runs;
+    std::vector<std::string> skipped;
+    double referenceSeconds = 0;
+    bool referenceCached = false;
+    bool caustics = false;  // from the render plan: explains a shallow slope
+};
+
+// Renders (or reuses, cached by scene + settings) the references, sweeps the settings within the
+// budget, and writes OUT/accuracy.csv, OUT/error_vs_time.svg, OUT/spp.svg and OUT/summary.md.
+// (Defined in accuracy_run.cpp.)
+AccuracyResult runAccuracy(const AccuracyOptions& options);
+// The CSV, SVGs and summary of a result (accuracy_report.cpp).
+void writeAccuracyReport(const AccuracyOptions& options, const AccuracyResult& result);
+
+}  // namespace kiln

@@ -15,7 +15,8 @@ out=docs/accuracy.md
   echo "depth 1; sweeps of spp (1..1024 as the budget allows, full depth, MIS), direct-lighting strategies (hemisphere, light, MIS),"
   echo "light samples, depth with and without roulette, adaptive tolerance, and the two accelerators. Errors are"
   echo "luminance relMSE against the reference with the reference's own variance removed; efficiency is"
-  echo "1 / (relMSE x time). Full tables: \`docs/accuracy/NAME/accuracy.csv\`."
+  echo "1 / (relMSE x time). Full tables: \`docs/accuracy/NAME/accuracy.csv\`. Renders go through RenderJob, on"
+  echo "the render plan's specialised path with the AOVs measured, as \`kiln render\` runs them."
   echo
   for scene in "${scenes[@]}"; do
     name=$(basename "$scene"); name=${name%.*}

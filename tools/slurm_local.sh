@@ -156,18 +156,19 @@ write_munge_key() {
     chmod 0400 "$DIR/munge/munge.key"
 }
 
-# CPU topology and memory as slurmd itself detects them (`slurmd -C`), so the
-# node registers cleanly. RealMemory is trimmed by 5% so fluctuating container
-# memory never drains the node ("Low RealMemory").
+# CPU count and memory as slurmd itself detects them (`slurmd -C`). Only
+# CPUs= is configured, no sockets/cores/threads: Slurm then treats every
+# hardware thread as a schedulable CPU, so N one-CPU tasks run side by side
+# even on hyperthreaded hosts. RealMemory is trimmed by 5% so fluctuating
+# container memory never drains the node ("Low RealMemory").
 node_hw() {
-    local line mem
+    local line cpus mem
     line=$(slurmd -C 2>/dev/null | head -n1) || true
-    [[ $line == NodeName=* ]] || line="NodeName=x CPUs=$(nproc)"
-    line=${line#NodeName=* }
-    mem=$(sed -n 's/.*RealMemory=\([0-9]*\).*/\1/p' <<<"$line")
+    cpus=$(sed -n 's/.* CPUs=\([0-9]*\).*/\1/p' <<<"$line")
+    mem=$(sed -n 's/.* RealMemory=\([0-9]*\).*/\1/p' <<<"$line")
+    [[ -n $cpus ]] || cpus=$(nproc)
     [[ -n $mem ]] || mem=$(awk '/^MemTotal:/ {print int($2 / 1024)}' /proc/meminfo)
-    line=${line/ RealMemory=$mem/}
-    echo "$line RealMemory=$((mem * 95 / 100))"
+    echo "CPUs=$cpus RealMemory=$((mem * 95 / 100))"
 }
 
 write_conf() {
@@ -208,12 +209,15 @@ MpiDefault=none
 SwitchType=switch/none
 
 # Per-CPU allocation so 1-CPU array tasks run side by side (CR_Core would give
-# each task a whole core, i.e. both hyperthreads). Memory is not consumable.
+# each task a whole core). Memory is not a consumable resource.
 SelectType=select/cons_tres
 SelectTypeParameters=CR_CPU
 SchedulerType=sched/backfill
 # Scheduling passes every 2 s instead of 60/30 s; no batching delay.
 SchedulerParameters=sched_interval=2,bf_interval=2,batch_sched_delay=0,default_queue_depth=1000
+# A job whose dependency can never be met (afterok on a failed or cancelled
+# job) is cancelled instead of pending forever (DependencyNeverSatisfied).
+DependencyParameters=kill_invalid_depend
 
 JobRequeue=1
 ReturnToService=2
@@ -246,15 +250,15 @@ node_idle() { [[ $(node_state) == idle ]]; }
 # A running cluster may have jobs on the node: any usable state will do.
 node_up() { [[ $(node_state) =~ ^(idle|mix|alloc)$ ]]; }
 
-# wait_for <daemon> <check...>: poll every 0.2 s up to START_TIMEOUT; give up
+# wait_for <daemon> <check...>: poll every 0.1 s up to START_TIMEOUT; give up
 # at once if the daemon died (bad config, port in use) and show the logs.
 wait_for() {
     local daemon=$1 i
     shift
-    for ((i = 0; i < START_TIMEOUT * 5; i++)); do
+    for ((i = 0; i < START_TIMEOUT * 10; i++)); do
         "$@" && return 0
         daemon_pid "$daemon" >/dev/null || { show_logs; die "$daemon exited during start-up"; }
-        sleep 0.2
+        sleep 0.1
     done
     show_logs
     die "timed out after ${START_TIMEOUT}s waiting for $daemon"
@@ -313,12 +317,25 @@ remove_dir() {
     fi
 }
 
+# A listener already on our ports would make slurmctld exit (or, worse,
+# make scontrol ping hang for MessageTimeout), so refuse up front.
+check_ports() {
+    local port
+    for port in "$CTLD_PORT" "$SLURMD_PORT"; do
+        if (exec 3<>"/dev/tcp/127.0.0.1/$port") 2>/dev/null; then
+            die "port $port is in use; set KILN_SLURM_CTLD_PORT / KILN_SLURM_SLURMD_PORT"
+        fi
+    done
+}
+
 # --- commands ---------------------------------------------------------------
 
 print_env() { echo "export SLURM_CONF=$CONF"; }
 
 cmd_start() {
-    [[ $EUID -eq 0 ]] || die "run as root (slurmd must start jobs as their submitting user)"
+    # As root the daemons run jobs for any user. Without root the cluster
+    # still works, but only for the invoking user's jobs (slurmd cannot setuid).
+    [[ $EUID -eq 0 ]] || log "warning: not root; only $(id -un)'s jobs can run"
     ensure_packages
     export SLURM_CONF=$CONF
     if all_running; then
@@ -329,6 +346,7 @@ cmd_start() {
     # Anything else (stale dir, half-started cluster) is wiped and rebuilt.
     stop_daemons
     remove_dir
+    check_ports
     CLEANUP_ON_DIE=1
     mkdir -p "$DIR"/{state,spool,run,log}
     chmod 0755 "$DIR"

@@ -1,8 +1,12 @@
-// Counter-based random numbers: every value is a pure function of (seed, pixel, sample index,
-// dimension), so an image is bit-identical whatever the thread count or tile order.
+// Counter-based sample values: every value is a pure function of (seed, pixel, sample index,
+// dimension), so an image is bit-identical whatever the thread count, tile order, shard split or
+// resume point.
 #pragma once
 
 #include <cstdint>
+
+#include "renderer/core/enum_names.h"
+#include "renderer/core/sobol.h"
 
 namespace kiln {
 
@@ -13,19 +17,49 @@ constexpr uint64_t mix64(uint64_t z) {
     return z ^ (z >> 31);
 }
 
+// independent: uniform random numbers. sobol: consecutive dimensions in pairs of shuffled,
+// Owen-scrambled Sobol points (sobol.h), stratified over a pixel's samples.
+enum class SamplerKind : uint8_t { Independent, Sobol };
+template <>
+struct EnumNames<SamplerKind> {
+    static constexpr std::pair<SamplerKind, const char*> table[] = {
+        {SamplerKind::Independent, "independent"}, {SamplerKind::Sobol, "sobol"}};
+};
+
 class Sampler {
   public:
-    Sampler(uint64_t seed, uint64_t pixelIndex, uint64_t sampleIndex)
-        : key_(mix64(mix64(mix64(seed) ^ pixelIndex) ^ sampleIndex)) {}
+    Sampler(uint64_t seed, uint64_t pixelIndex, uint64_t sampleIndex,
+            SamplerKind kind = SamplerKind::Independent)
+        : key_(mix64(mix64(seed) ^ pixelIndex)), sample_(uint32_t(sampleIndex)), kind_(kind) {
+        if (kind_ == SamplerKind::Independent) key_ = mix64(key_ ^ sampleIndex);
+    }
     float next1D() {
-        uint64_t bits = mix64(key_ + 0x9e3779b97f4a7c15ull * ++dimension_);
-        return float(bits >> 40) * 0x1.0p-24f;  // [0, 1)
+        uint32_t d = ++dimension_;
+        if (kind_ == SamplerKind::Independent) {
+            uint64_t bits = mix64(key_ + 0x9e3779b97f4a7c15ull * d);
+            return float(bits >> 40) * 0x1.0p-24f;  // [0, 1)
+        }
+        // Dimensions 1, 2 form pair 0; 3, 4 pair 1; ... The pair's second value is kept for
+        // the next call.
+        if (d % 2 == 0) return toUnit(pendingY_);
+        SobolPair p = shuffledScrambledSobol2D(sample_, pairSeed(d / 2));
+        pendingY_ = p.y;
+        return toUnit(p.x);
     }
     uint32_t dimension() const { return dimension_; }
+    SamplerKind kind() const { return kind_; }
 
   private:
+    // 24 bits, as the independent sampler, so a value is never rounded up to 1.
+    static float toUnit(uint32_t fixed) { return float(fixed >> 8) * 0x1.0p-24f; }
+    uint32_t pairSeed(uint32_t pair) const {
+        return uint32_t(mix64(key_ + 0x9e3779b97f4a7c15ull * (uint64_t(pair) + 1)));
+    }
     uint64_t key_;
+    uint32_t sample_;  // the Sobol index (the independent sampler mixes it into key_)
     uint32_t dimension_ = 0;
+    uint32_t pendingY_ = 0;
+    SamplerKind kind_;
 };
 
 }  // namespace kiln

@@ -1,0 +1,68 @@
+// Shuffled, Owen-scrambled Sobol points after Burley, "Practical Hash-based Owen Scrambling" (JCGT
+// 2020): dimensions come in pairs, each pair the first two Sobol dimensions (a (0,2)-sequence) at
+// an index shuffled by a nested uniform scramble, each coordinate Owen-scrambled by a hash. Every
+// power-of-two prefix of a pixel's samples is a (0,m,2)-net in each pair; pairs are decorrelated by
+// their seeds. No tables: only the first two Sobol generator matrices.
+#pragma once
+
+#include <cstdint>
+
+namespace kiln {
+
+constexpr uint32_t reverseBits32(uint32_t x) {
+    x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
+    x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+    x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
+    x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
+    return (x >> 16) | (x << 16);
+}
+
+// Laine-Karras style hash on bit-reversed values: bit j of the result depends only on bits <= j,
+// which is what makes it an Owen scramble once the bits are reversed (Vegdahl's constants).
+constexpr uint32_t laineKarrasPermutation(uint32_t x, uint32_t seed) {
+    x ^= x * 0x3d20adeau;
+    x += seed;
+    x *= (seed >> 16) | 1u;
+    x ^= x * 0x05526c56u;
+    x ^= x * 0x53a22864u;
+    return x;
+}
+
+// An Owen scramble of a 32-bit fixed-point value in [0, 1): each digit flipped by a hash of the
+// digits above it.
+constexpr uint32_t nestedUniformScramble(uint32_t x, uint32_t seed) {
+    return reverseBits32(laineKarrasPermutation(reverseBits32(x), seed));
+}
+
+// The second Sobol dimension's generator matrix applied to index (directions v_k = v_{k-1} ^
+// v_{k-1} >> 1).
+constexpr uint32_t sobolDimension1(uint32_t index) {
+    uint32_t x = 0;
+    for (uint32_t v = 0x80000000u; index; index >>= 1, v ^= v >> 1)
+        if (index & 1u) x ^= v;
+    return x;
+}
+
+// A 32-bit hash (lowbias32) for deriving the per-pair and per-coordinate seeds.
+constexpr uint32_t hash32(uint32_t x) {
+    x ^= x >> 16;
+    x *= 0x7feb352du;
+    x ^= x >> 15;
+    x *= 0x846ca68bu;
+    x ^= x >> 16;
+    return x;
+}
+
+struct SobolPair {
+    uint32_t x, y;  // fixed point, [0, 2^32) for [0, 1)
+};
+
+// Sample `index` of the pair with this seed.
+constexpr SobolPair shuffledScrambledSobol2D(uint32_t index, uint32_t seed) {
+    index = nestedUniformScramble(index, seed);
+    uint32_t x = reverseBits32(index), y = sobolDimension1(index);
+    uint32_t sx = hash32(seed ^ 0xa511e9b3u), sy = hash32(seed ^ 0x63d83595u);
+    return {nestedUniformScramble(x, sx), nestedUniformScramble(y, sy)};
+}
+
+}  // namespace kiln

@@ -46,6 +46,7 @@ Metadata RenderJob::metadata(const RenderStats& stats, const Film& film) const {
         {"spp", text(s.spp)},
         {"mean_spp", text(double(stats.samples) / (double(film.width()) * film.height()))},
         {"seed", text(s.seed)},
+        {"sampler", toString(s.sampler)},
         {"resolution", text(s.width) + "x" + text(s.height)},
         {"render_seconds", text(stats.seconds)},
         {"hfov", text(camera.hFovDeg())},

@@ -29,8 +29,9 @@ constexpr size_t kBatchSamples = 256;
 
 // Appends the camera sample of pixel (x, y), sample s, built in place.
 void addCameraSample(std::vector<CameraSample>& batch, const CameraModel& camera,
-                     const AovRequest& aovs, uint64_t seed, int width, int x, int y, int s) {
-    Sampler sampler(seed, uint64_t(y) * uint64_t(width) + uint64_t(x), uint64_t(s));
+                     const AovRequest& aovs, const RenderSettings& settings, int x, int y, int s) {
+    Sampler sampler(settings.seed, uint64_t(y) * uint64_t(settings.width) + uint64_t(x),
+                    uint64_t(s), settings.sampler);
     float jx = sampler.next1D(), jy = sampler.next1D();
     float lu = sampler.next1D(), lv = sampler.next1D();
     CameraSample& cs = batch.emplace_back(camera.generateRay(float(x) + jx, float(y) + jy, lu, lv),
@@ -46,7 +47,7 @@ SampleRecord traceSample(const Scene& scene, const Integrator& integrator,
     CameraModel camera(scene.camera, settings.width, settings.height);
     AovRequest all = AovRequest::parse("all", kMaxBounceLayers);
     std::vector<CameraSample> one;
-    addCameraSample(one, camera, all, settings.seed, settings.width, x, y, sample);
+    addCameraSample(one, camera, all, settings, x, y, sample);
     integrator.Li(std::span<CameraSample>(one), counter);
     return one[0].record;
 }
@@ -110,8 +111,8 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator,
                 work += uint64_t(sampleCount);
                 if (!converged.empty() && converged[uint64_t(y) * fw + x]) continue;
                 for (int s = firstSample; s < firstSample + sampleCount; ++s)
-                    addCameraSample(batch, camera, film.layout().request(), settings.seed,
-                                    settings.width, x + ox, y + oy, s);
+                    addCameraSample(batch, camera, film.layout().request(), settings, x + ox,
+                                    y + oy, s);
                 pixels.emplace_back(x, y);
                 if (batch.size() >= kBatchSamples) flush();
             }

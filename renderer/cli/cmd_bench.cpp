@@ -13,6 +13,7 @@
 #include "renderer/cli/accel_options.h"
 #include "renderer/cli/commands.h"
 #include "renderer/render_job.h"
+#include "renderer/validation/accuracy.h"
 #include "renderer/validation/ray_sets.h"
 #include "scene/importers.h"
 #include "scene/scene_info.h"
@@ -190,16 +191,53 @@ int benchScale(const std::vector<std::string>& args) {
     return 0;
 }
 
+// kiln bench compare: the accuracy report's error statistics for any two images (e.g. another
+// renderer's render against its own converged reference, for tools/peer_bench.py).
+int benchCompare(const std::vector<std::string>& args) {
+    ArgParser parser("bench compare", "TEST.exr REFERENCE.exr [--keep-reference-noise]");
+    bool keepNoise = false;
+    parser.flag("keep-reference-noise", "",
+                "do not subtract the reference's own variance (its 'variance' channel) from the "
+                "squared errors: treats a kiln reference like one without that channel",
+                keepNoise);
+    std::vector<std::string> pos = parser.parse(args);
+    if (parser.helpRequested()) {
+        std::fputs(parser.helpText().c_str(), stdout);
+        return 0;
+    }
+    if (pos.size() != 2) throw UsageError("needs a test image and a reference image");
+    Image images[2];
+    for (int i = 0; i < 2; ++i) {
+        ChannelImage file;
+        if (!readChannelImage(pos[size_t(i)], file) || file.channelNames.size() < 3)
+            throw UsageError(pos[size_t(i)] + ": cannot read an RGB image");
+        images[i] = Image::fromChannels(file);
+    }
+    if (images[0].width != images[1].width || images[0].height != images[1].height)
+        throw UsageError(pos[0] + ": " + std::to_string(images[0].width) + "x" +
+                         std::to_string(images[0].height) + ", the reference is " +
+                         std::to_string(images[1].width) + "x" + std::to_string(images[1].height));
+    if (keepNoise) images[1].variance.clear();
+    ErrorStats e = compareImages(images[0], images[1]);
+    std::printf("relmse %.6g rmse %.6g bias %.6g reference_mean %.6g\n", e.relMse, e.rmse, e.bias,
+                e.referenceMean);
+    return 0;
+}
+
 int runBench(const std::vector<std::string>& args) {
     if (!args.empty() && args[0] == "scale")
         return benchScale(std::vector<std::string>(args.begin() + 1, args.end()));
     if (!args.empty() && args[0] == "plan")
         return benchPlan(std::vector<std::string>(args.begin() + 1, args.end()));
+    if (!args.empty() && args[0] == "compare")
+        return benchCompare(std::vector<std::string>(args.begin() + 1, args.end()));
     if (!args.empty() && args[0] == "accuracy")
         return runAccuracyCommand(std::vector<std::string>(args.begin() + 1, args.end()));
     if (args.empty() || (args[0] != "accel" && args[0] != "-h" && args[0] != "--help"))
         throw UsageError(
-            "usage: kiln bench accel|plan|accuracy SCENE... (see 'kiln bench accel --help', 'kiln "
+            "usage: kiln bench accel|plan|scale|accuracy SCENE..., kiln bench compare TEST REF "
+            "(see 'kiln "
+            "bench accel --help', 'kiln "
             "bench plan --help')");
     ArgParser parser("bench accel", "SCENE... [--rays N] [--repeats N] [--threads N]");
     int rays = 200000, repeats = 3, threads = int(std::thread::hardware_concurrency());

@@ -41,6 +41,10 @@ void addImageOptions(ArgParser& parser, RenderJobArgs& a) {
     parser.intOption("spp", "s", "camera samples per pixel (default 1)", s.spp, 1, 1 << 20);
     parser.intOption("threads", "t", "worker threads (default: all cores)", s.threads, 1, 4096);
     parser.intOption("tile", "", "tile size in pixels (default 32)", s.tileSize, 1, 4096);
+    parser.enumOption("sampler",
+                      "sample values: independent random numbers (default) or shuffled, "
+                      "Owen-scrambled Sobol points (stratified over each pixel's samples)",
+                      s.sampler);
     parser.option("seed", "", 1, "N", "random seed (default 0)",
                   [&s](const std::vector<std::string>& v) {
                       s.seed = uint64_t(ArgParser::toInt("--seed", v[0], 0, 2147483647));

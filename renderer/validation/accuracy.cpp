@@ -29,6 +29,34 @@ Image Image::fromFilm(const Film& film) {
     return img;
 }
 
+Image Image::fromChannels(const ChannelImage& file, const std::vector<std::string>& layers) {
+    const size_t nc = file.channelNames.size(), count = size_t(file.width) * file.height;
+    auto pick = [&](const std::string& name, int fallback) {
+        int c = file.channel(name);
+        return c >= 0 ? c : fallback;
+    };
+    const int r = pick("R", 0), g = pick("G", 1), b = pick("B", 2), v = file.channel("variance");
+    Image img;
+    img.width = file.width, img.height = file.height;
+    for (size_t i = 0; i < count; ++i) {
+        const float* p = &file.values[i * nc];
+        img.pixels.emplace_back(p[r], p[g], p[b]);
+        if (v >= 0) img.variance.push_back(p[v]);
+    }
+    for (const std::string& layer : layers) {
+        int lr = file.channel(layer + ".R"), lg = file.channel(layer + ".G"),
+            lb = file.channel(layer + ".B");
+        if (lr < 0 || lg < 0 || lb < 0) continue;
+        img.layerNames.push_back(layer);
+        img.layers.emplace_back();
+        for (size_t i = 0; i < count; ++i) {
+            const float* p = &file.values[i * nc];
+            img.layers.back().emplace_back(p[lr], p[lg], p[lb]);
+        }
+    }
+    return img;
+}
+
 const std::vector<Color>* Image::layer(const std::string& name) const {
     for (size_t i = 0; i < layerNames.size(); ++i)
         if (layerNames[i] == name) return &layers[i];

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "color/image_input.h"
 #include "renderer/film/film.h"
 
 namespace kiln {
@@ -20,6 +21,10 @@ struct Image {
     std::vector<std::string> layerNames;
     std::vector<std::vector<Color>> layers;
     static Image fromFilm(const Film& film);
+    // From an image file's channels: beauty R, G, B (by name, else the first three), the
+    // "variance" channel when present, and these colour layers (LAYER.R/G/B) when present.
+    static Image fromChannels(const ChannelImage& file,
+                              const std::vector<std::string>& layers = {});
     const std::vector<Color>* layer(const std::string& name) const;
 };
 

@@ -52,34 +52,6 @@ uint64_t fnv(const std::string& s, uint64_t h = 1469598103934665603ull) {
     return h;
 }
 
-// A reference render cached by an earlier run: beauty, variance and the colour AOV layers.
-Image fromCachedReference(const ChannelImage& file, const AccuracyOptions& o, int depth) {
-    const int nc = int(file.channelNames.size()), v = file.channel("variance");
-    const size_t count = size_t(file.width) * file.height;
-    Image img;
-    img.width = file.width, img.height = file.height;
-    for (size_t i = 0; i < count; ++i) {
-        const float* p = &file.values[i * nc];
-        img.pixels.emplace_back(p[0], p[1], p[2]);
-        img.variance.push_back(p[v]);
-    }
-    AovLayout layout(AovRequest::parse(o.aovs, depth));
-    for (const AovChannel& c : layout.channels()) {
-        if (c.name.size() < 3 || c.name.compare(c.name.size() - 2, 2, ".R") != 0) continue;
-        std::string layer = c.name.substr(0, c.name.size() - 2);
-        int r = file.channel(layer + ".R"), g = file.channel(layer + ".G"),
-            b = file.channel(layer + ".B");
-        if (r < 0 || g < 0 || b < 0) continue;
-        img.layerNames.push_back(layer);
-        img.layers.emplace_back();
-        for (size_t i = 0; i < count; ++i) {
-            const float* p = &file.values[i * nc];
-            img.layers.back().emplace_back(p[r], p[g], p[b]);
-        }
-    }
-    return img;
-}
-
 // The reference for a depth, from the cache when its key matches, else rendered and cached as EXR.
 Image reference(const Scene& scene, const Accelerator& accel, const AccuracyOptions& o, int depth,
                 double& seconds, bool& cached) {
@@ -97,7 +69,12 @@ Image reference(const Scene& scene, const Accelerator& accel, const AccuracyOpti
     if (readChannelImage(path, cachedImage) && cachedImage.width == o.width &&
         cachedImage.height == o.height && cachedImage.channel("variance") >= 0) {
         cached = true;
-        return fromCachedReference(cachedImage, o, depth);
+        std::vector<std::string> layers;
+        AovLayout layout(AovRequest::parse(o.aovs, depth));
+        for (const AovChannel& c : layout.channels())
+            if (c.name.size() > 2 && c.name.compare(c.name.size() - 2, 2, ".R") == 0)
+                layers.push_back(c.name.substr(0, c.name.size() - 2));
+        return Image::fromChannels(cachedImage, layers);
     }
     Setting s;
     s.path.maxDepth = depth;

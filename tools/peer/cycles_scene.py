@@ -1,0 +1,151 @@
+# Builds a peer-benchmark scene in Blender's Cycles from the same description kiln reads, renders it
+# with exactly N samples, a 1-pixel box filter, no denoising, no adaptive sampling, no clamping and a
+# fixed seed, and writes a linear EXR. Run by tools/peer_bench.py:
+#   blender -b --factory-startup --python tools/peer/cycles_scene.py -- SCENE.json SPP THREADS OUT.exr
+# It prints "kiln-peer: render_seconds S" (the render call: Cycles' scene sync, BVH build and sampling).
+import json
+import math
+import sys
+import time
+
+import bpy
+
+
+def args():
+    argv = sys.argv[sys.argv.index("--") + 1:]
+    return json.load(open(argv[0])), int(argv[1]), int(argv[2]), argv[3]
+
+
+def clear():
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+
+
+def import_mesh(path, matrix, albedo):
+    # forward Y, up Z: the file's coordinates as they are (kiln's scene space, Y up), so the
+    # camera and the environment mapping below use kiln's numbers unchanged.
+    bpy.ops.wm.obj_import(filepath=path, forward_axis="Y", up_axis="Z")
+    obj = bpy.context.selected_objects[0]
+    from mathutils import Matrix
+    obj.matrix_world = Matrix([matrix[0:4], matrix[4:8], matrix[8:12], matrix[12:16]])
+    mat = bpy.data.materials.new("diffuse")
+    mat.use_nodes = True
+    bsdf = mat.node_tree.nodes["Principled BSDF"]
+    mat.node_tree.nodes.remove(bsdf)
+    diffuse = mat.node_tree.nodes.new("ShaderNodeBsdfDiffuse")
+    diffuse.inputs["Color"].default_value = (*albedo, 1.0)
+    diffuse.inputs["Roughness"].default_value = 0.0  # Lambert
+    out = mat.node_tree.nodes["Material Output"]
+    mat.node_tree.links.new(diffuse.outputs["BSDF"], out.inputs["Surface"])
+    obj.data.materials.clear()
+    obj.data.materials.append(mat)
+    for poly in obj.data.polygons:
+        poly.use_smooth = True  # kiln interpolates the file's vertex normals
+
+
+def add_camera(cam, width, height):
+    from mathutils import Matrix, Vector
+    data = bpy.data.cameras.new("camera")
+    data.sensor_fit = "VERTICAL" if width >= height else "HORIZONTAL"
+    data.angle = math.radians(cam["fov"])  # kiln: the .kiln fov is the narrower image axis
+    obj = bpy.data.objects.new("camera", data)
+    bpy.context.scene.collection.objects.link(obj)
+    pos, look, up = Vector(cam["position"]), Vector(cam["look_at"]), Vector(cam["up"])
+    forward = (look - pos).normalized()
+    right = forward.cross(up).normalized()
+    true_up = right.cross(forward)
+    rot = Matrix((right, true_up, -forward)).transposed()  # columns: camera x, y, z
+    obj.matrix_world = Matrix.Translation(pos) @ rot.to_4x4()
+    bpy.context.scene.camera = obj
+
+
+def add_environment(path, strength):
+    # kiln's lat-long lookup, built from nodes so the orientation is kiln's by construction:
+    # u = 0.5 + atan2(d.x, -d.z) / 2 pi, v = acos(d.y) / pi (v = 0 the top row), nearest texel.
+    world = bpy.data.worlds.new("world")
+    bpy.context.scene.world = world
+    world.use_nodes = True
+    nt = world.node_tree
+    nodes, links = nt.nodes, nt.links
+    coords = nodes.new("ShaderNodeTexCoord")
+    split = nodes.new("ShaderNodeSeparateXYZ")
+    links.new(coords.outputs["Generated"], split.inputs["Vector"])
+
+    def math_node(op, a, b=None):
+        n = nodes.new("ShaderNodeMath")
+        n.operation = op
+        for i, v in enumerate((a, b)):
+            if v is None:
+                continue
+            if isinstance(v, float):
+                n.inputs[i].default_value = v
+            else:
+                links.new(v, n.inputs[i])
+        return n.outputs[0]
+
+    neg_z = math_node("MULTIPLY", split.outputs["Z"], -1.0)
+    u = math_node("ADD", math_node("DIVIDE", math_node("ARCTAN2", split.outputs["X"], neg_z),
+                                   2 * math.pi), 0.5)
+    v = math_node("DIVIDE", math_node("ARCCOSINE", split.outputs["Y"]), math.pi)
+    uv = nodes.new("ShaderNodeCombineXYZ")
+    links.new(u, uv.inputs["X"])
+    links.new(math_node("SUBTRACT", 1.0, v), uv.inputs["Y"])
+    tex = nodes.new("ShaderNodeTexImage")
+    tex.image = bpy.data.images.load(path)
+    tex.image.colorspace_settings.name = "Linear"
+    tex.interpolation = "Closest"
+    tex.extension = "EXTEND"
+    links.new(uv.outputs["Vector"], tex.inputs["Vector"])
+    background = nodes["Background"] if "Background" in nodes else nodes.new("ShaderNodeBackground")
+    background.inputs["Strength"].default_value = strength
+    links.new(tex.outputs["Color"], background.inputs["Color"])
+    output = nodes.get("World Output") or nodes.new("ShaderNodeOutputWorld")
+    links.new(background.outputs["Background"], output.inputs["Surface"])
+    world.cycles.sampling_method = "MANUAL"
+    world.cycles.sample_map_resolution = 1024
+
+
+def configure(scene_desc, spp, threads, out):
+    scene = bpy.context.scene
+    scene.render.engine = "CYCLES"
+    c = scene.cycles
+    c.device = "CPU"
+    c.samples = spp
+    c.use_adaptive_sampling = False
+    c.use_denoising = False
+    c.sample_clamp_direct = 0.0
+    c.sample_clamp_indirect = 0.0
+    c.seed = 7
+    c.pixel_filter_type = "BOX"
+    c.filter_width = 1.0
+    bounces = scene_desc["max_bounces"]
+    c.max_bounces = bounces
+    c.diffuse_bounces = c.glossy_bounces = c.transmission_bounces = bounces
+    c.caustics_reflective = c.caustics_refractive = True
+    c.blur_glossy = 0.0
+    scene.render.threads_mode = "FIXED"
+    scene.render.threads = threads
+    scene.render.resolution_x, scene.render.resolution_y = scene_desc["resolution"]
+    scene.render.resolution_percentage = 100
+    scene.view_settings.view_transform = "Standard"
+    scene.render.image_settings.file_format = "OPEN_EXR"
+    scene.render.image_settings.color_depth = "32"
+    scene.render.image_settings.exr_codec = "ZIP"
+    scene.render.filepath = out
+    scene.render.use_persistent_data = False
+
+
+def main():
+    desc, spp, threads, out = args()
+    clear()
+    for mesh in desc["meshes"]:
+        import_mesh(mesh["file"], mesh["matrix"], mesh["albedo"])
+    add_camera(desc["camera"], *desc["resolution"])
+    if desc.get("environment"):
+        add_environment(desc["environment"], desc.get("environment_strength", 1.0))
+    configure(desc, spp, threads, out)
+    start = time.perf_counter()
+    bpy.ops.render.render(write_still=True)
+    print("kiln-peer: render_seconds %.4f" % (time.perf_counter() - start), flush=True)
+
+
+main()

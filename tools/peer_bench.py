@@ -1,0 +1,191 @@
+#!/usr/bin/env python3
+"""Equal-error peer benchmark: time for kiln and for Blender's Cycles to reach the same relative MSE on
+the same scene, each against its own converged reference (a benchmark, not a test).
+
+  tools/peer_bench.py [--scene lucy_env] [--spp 16,32,64,128,256] [--ref-spp 2048] [--repeats 3]
+                      [--threads 2] [--out out/peer] [--samplers independent,sobol]
+
+For every spp the renderers run interleaved (kiln per sampler, then Cycles), --repeats times; times are
+medians. Error: `kiln bench compare TEST REF --keep-reference-noise` (luminance relMSE, the same formula
+for both renderers, neither reference's noise subtracted). Time: kiln's build + render (the EXR write
+and the file load excluded), Cycles' render call (scene sync, BVH build and sampling). The error levels
+are Cycles' errors at the middle and the largest spp of the sweep; each renderer's time to reach a level
+is interpolated log-log along its own series. Prints a table and writes OUT/SCENE.md and OUT/SCENE.csv.
+"""
+import argparse
+import csv
+import json
+import math
+import os
+import re
+import statistics
+import subprocess
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+SHARED = os.path.normpath(os.path.join(ROOT, "..", "shared"))
+
+
+def obj_bounds(path):
+    lo, hi = [math.inf] * 3, [-math.inf] * 3
+    with open(path) as f:
+        for line in f:
+            if line.startswith("v "):
+                p = [float(t) for t in line.split()[1:4]]
+                lo = [min(a, b) for a, b in zip(lo, p)]
+                hi = [max(a, b) for a, b in zip(hi, p)]
+    return lo, hi
+
+
+def fit_matrix(path, center, size):
+    """kiln's <fit>: uniform scale so the largest side is `size`, bottom centre (min Y) at `center`."""
+    lo, hi = obj_bounds(path)
+    s = size / max(h - l for l, h in zip(lo, hi))
+    bottom = [(lo[0] + hi[0]) / 2, lo[1], (lo[2] + hi[2]) / 2]
+    t = [c - s * b for c, b in zip(center, bottom)]
+    return [s, 0, 0, t[0], 0, s, 0, t[1], 0, 0, s, t[2], 0, 0, 0, 1]
+
+
+SCENES = {
+    # An environment-lit mesh: Lucy, diffuse 0.6, lit only by the courtyard map (issue #21).
+    "lucy_env": {
+        "mesh": "meshes/lucy.obj", "albedo": [0.6, 0.6, 0.6], "fit": ([0, 0, 0], 1.0),
+        "camera": {"position": [0.0, 0.55, 1.9], "look_at": [0.0, 0.5, 0.0], "up": [0, 1, 0],
+                   "fov": 36.0},
+        "environment": "envmaps/courtyard.exr", "resolution": [320, 240], "max_depth": 5,
+    },
+}
+
+
+def describe(name, out):
+    """The scene as kiln reads it (.kiln + --env) and as the Cycles script reads it (JSON)."""
+    s = SCENES[name]
+    mesh = os.path.join(SHARED, s["mesh"])
+    matrix = fit_matrix(mesh, *s["fit"])
+    cam = s["camera"]
+    kiln_path = os.path.join(out, name + ".kiln")
+    with open(kiln_path, "w") as f:
+        f.write('<kiln-scene>\n  <material name="m" albedo="%s"/>\n' % " ".join(map(str, s["albedo"])))
+        f.write('  <mesh file="%s" material="m"><matrix values="%s"/></mesh>\n'
+                % (mesh, " ".join("%.9g" % v for v in matrix)))
+        f.write('  <camera position="%s" look-at="%s" up="%s" fov="%g"/>\n</kiln-scene>\n'
+                % (" ".join(map(str, cam["position"])), " ".join(map(str, cam["look_at"])),
+                   " ".join(map(str, cam["up"])), cam["fov"]))
+    desc = {"meshes": [{"file": mesh, "matrix": matrix, "albedo": s["albedo"]}], "camera": cam,
+            "environment": os.path.join(SHARED, s["environment"]), "resolution": s["resolution"],
+            # kiln's -m counts path vertices after the camera (1 = direct light); Cycles' bounces
+            # count indirect bounces (0 = direct light).
+            "max_bounces": s["max_depth"] - 1}
+    json_path = os.path.join(out, name + ".json")
+    with open(json_path, "w") as f:
+        json.dump(desc, f)
+    return kiln_path, json_path, s
+
+
+def run_kiln(kiln, scene_path, s, spp, sampler, threads, out_base):
+    w, h = s["resolution"]
+    cmd = [kiln, "render", scene_path, "--env", os.path.join(SHARED, s["environment"]),
+           "-r", str(w), str(h), "-s", str(spp), "-m", str(s["max_depth"]), "-t", str(threads),
+           "--sampler", sampler, "--aov", "none", "-q", "-o", out_base]
+    err = subprocess.run(cmd, capture_output=True, text=True, check=True).stderr
+    m = re.search(r"build ([0-9.]+)s, render ([0-9.]+)s", err)
+    return float(m.group(1)) + float(m.group(2)), out_base + ".exr"
+
+
+def run_cycles(blender, json_path, spp, threads, out_path):
+    script = os.path.join(ROOT, "tools", "peer", "cycles_scene.py")
+    cmd = [blender, "-b", "--factory-startup", "--python", script, "--",
+           json_path, str(spp), str(threads), out_path]
+    res = subprocess.run(cmd, capture_output=True, text=True)
+    m = re.search(r"kiln-peer: render_seconds ([0-9.]+)", res.stdout)
+    if res.returncode != 0 or not m:
+        sys.exit("Cycles failed:\n" + res.stdout[-3000:] + res.stderr[-3000:])
+    return float(m.group(1)), out_path
+
+
+def rel_mse(kiln, test, ref):
+    out = subprocess.run([kiln, "bench", "compare", test, ref, "--keep-reference-noise"],
+                         capture_output=True, text=True, check=True).stdout
+    return float(re.search(r"relmse ([0-9.eE+-]+)", out).group(1))
+
+
+def time_at(series, level):
+    """Log-log interpolation of (time, error) points to the time at which error reaches `level`;
+    extrapolated along the last two points below the smallest error (marked with '*')."""
+    pts = sorted(series)
+    for (t0, e0), (t1, e1) in zip(pts, pts[1:]):
+        if e0 >= level >= e1 and e0 != e1:
+            f = math.log(level / e0) / math.log(e1 / e0)
+            return math.exp(math.log(t0) + f * (math.log(t1) - math.log(t0))), ""
+    if len(pts) >= 2 and level < pts[-1][1]:
+        (t0, e0), (t1, e1) = pts[-2], pts[-1]
+        f = math.log(level / e0) / math.log(e1 / e0)
+        return math.exp(math.log(t0) + f * (math.log(t1) - math.log(t0))), "*"
+    return float("nan"), "?"
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
+    ap.add_argument("--scene", default="lucy_env", choices=sorted(SCENES))
+    ap.add_argument("--spp", default="16,32,64,128,256")
+    ap.add_argument("--ref-spp", type=int, default=2048)
+    ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--samplers", default="independent,sobol")
+    ap.add_argument("--out", default=os.path.join(ROOT, "out", "peer"))
+    ap.add_argument("--kiln", default=os.path.join(ROOT, "build", "kiln"))
+    ap.add_argument("--blender", default="blender")
+    a = ap.parse_args()
+    os.makedirs(a.out, exist_ok=True)
+    spps = [int(v) for v in a.spp.split(",")]
+    samplers = a.samplers.split(",")
+    kiln_scene, json_path, s = describe(a.scene, a.out)
+    base = os.path.join(a.out, a.scene)
+
+    refs = {}
+    for sampler in samplers:
+        ref = base + ".ref.kiln." + sampler
+        if not os.path.exists(ref + ".exr"):
+            run_kiln(a.kiln, kiln_scene, s, a.ref_spp, sampler, a.threads, ref)
+        refs["kiln " + sampler] = ref + ".exr"
+    refs["cycles"] = base + ".ref.cycles.exr"
+    if not os.path.exists(refs["cycles"]):
+        run_cycles(a.blender, json_path, a.ref_spp, a.threads, refs["cycles"])
+
+    rows = []  # (renderer, spp, median seconds, relMSE)
+    for spp in spps:
+        times = {k: [] for k in refs}
+        images = {}
+        for _ in range(a.repeats):  # interleaved: A B C, A B C, ...
+            for sampler in samplers:
+                t, img = run_kiln(a.kiln, kiln_scene, s, spp, sampler, a.threads,
+                                  "%s.kiln.%s.%d" % (base, sampler, spp))
+                times["kiln " + sampler].append(t)
+                images["kiln " + sampler] = img
+            t, img = run_cycles(a.blender, json_path, spp, a.threads, "%s.cycles.%d.exr" % (base, spp))
+            times["cycles"].append(t)
+            images["cycles"] = img
+        for k in refs:
+            rows.append((k, spp, statistics.median(times[k]), rel_mse(a.kiln, images[k], refs[k])))
+            print("%-18s %5d spp %8.3f s  relMSE %.5g" % rows[-1], flush=True)
+
+    cycles = [(t, e) for k, _, t, e in rows if k == "cycles"]
+    levels = [e for k, spp, t, e in rows if k == "cycles" and spp in (spps[len(spps) // 2], spps[-1])]
+    lines = ["| error level (Cycles at) | renderer | time to reach | / Cycles |", "|---|---|---:|---:|"]
+    for level, spp in zip(levels, (spps[len(spps) // 2], spps[-1])):
+        tc, _ = time_at(cycles, level)
+        for k in refs:
+            series = [(t, e) for kk, _, t, e in rows if kk == k]
+            tk, mark = time_at(series, level)
+            lines.append("| %.4g (%d spp) | %s | %.3f s%s | %.2f |" % (level, spp, k, tk, mark, tk / tc))
+    table = "\n".join(lines)
+    print("\n" + table)
+    with open(base + ".csv", "w", newline="") as f:
+        csv.writer(f).writerows([("renderer", "spp", "median_seconds", "relmse")] + rows)
+    with open(base + ".md", "w") as f:
+        f.write("`tools/peer_bench.py --scene %s --spp %s --ref-spp %d --repeats %d --threads %d`\n\n%s\n"
+                % (a.scene, a.spp, a.ref_spp, a.repeats, a.threads, table))
+
+
+if __name__ == "__main__":
+    main()

@@ -20,18 +20,15 @@
 namespace kiln {
 namespace {
 
-std::string lowerExtension(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
-    return ext;
-}
-
 // Spheres, lights and camera from the CGL pass; sphere materials join the scene's material list.
 void applyColladaExtras(const ColladaExtras& extras, Scene& scene) {
+    // The extras are stored relative to their own origin, normally the scene's too.
+    Vec3d shift = extras.origin - adoptOrigin(scene, extras.origin);
+    auto place = [&](Vec3 p) { return Vec3(Vec3d(p) + shift); };
     std::map<std::string, uint32_t> sphereMaterial;
     for (size_t i = 0; i < extras.spheres.size(); ++i) {
         Sphere s = extras.spheres[i];
+        s.center = place(s.center);
         const std::string& id = extras.sphereMaterialIds[i];
         auto known = sphereMaterial.find(id);
         if (known != sphereMaterial.end()) {
@@ -48,15 +45,26 @@ void applyColladaExtras(const ColladaExtras& extras, Scene& scene) {
         }
         scene.spheres.push_back(s);
     }
-    scene.lights.insert(scene.lights.end(), extras.lights.begin(), extras.lights.end());
+    for (Light l : extras.lights) {
+        l.position = place(l.position);
+        scene.lights.push_back(l);
+    }
     if (extras.camera) {
         scene.camera = *extras.camera;
+        scene.camera.position = place(extras.camera->position);
         scene.hasFileCamera = true;
     }
     scene.warnings.insert(scene.warnings.end(), extras.warnings.begin(), extras.warnings.end());
 }
 
 }  // namespace
+
+std::string lowerExtension(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
+}
 
 uint64_t countDuplicateTriangles(const Scene& scene) {
     // Hash each triangle's sorted vertex positions, sort the hashes, then confirm equal neighbours
@@ -114,22 +122,10 @@ void recenterScene(Scene& scene) {
     Bounds3 b = scene.storedBounds();
     if (b.empty()) return;
     Vec3 c = b.centroid();
-    // Only worth it (and only exact) when the scene sits far from the origin relative to its size.
+    // Only worth it when the scene sits far from its origin relative to its size (near the origin
+    // a shift would only round every coordinate once more).
     if (maxComponent(abs(c)) <= 4 * maxComponent(b.diagonal())) return;
-    std::vector<bool> proto = scene.prototypeMask();
-    for (size_t m = 0; m < scene.meshes.size(); ++m) {
-        if (proto[m]) continue;  // prototypes live in object space
-        std::vector<float>& p = scene.meshes[m].positions;
-        for (size_t v = 0; v + 2 < p.size(); v += 3) p[v] -= c.x, p[v + 1] -= c.y, p[v + 2] -= c.z;
-    }
-    for (Instance& inst : scene.instances) {
-        for (int r = 0; r < 3; ++r) inst.objectToWorld.m[r][3] -= double(c[r]);
-        inst.worldToObject = inst.objectToWorld.inverse();
-    }
-    for (Sphere& s : scene.spheres) s.center -= c;
-    for (Light& l : scene.lights) l.position -= c;
-    scene.camera.position -= c;
-    scene.origin = Vec3d(c);
+    rebaseScene(scene, scene.origin + Vec3d(c));
 }
 
 void importFile(const std::string& path, Scene& scene) {

@@ -148,6 +148,16 @@ void rebaseScene(Scene& scene, const Vec3d& origin);
 // near it are stored exactly as parsed.
 Vec3d originFor(const Bounds3T<double>& bounds);
 
+// Readers that stream positions (PLY, OBJ) cannot know the bounds before storing: they store
+// relative to the first vertex when it lies farther than this from the world origin (below it a
+// float keeps 1/16384 of a unit, and files are stored exactly as parsed).
+constexpr double kFarFirstVertex = 1024.0;
+Vec3d streamOrigin(const Vec3d& firstVertex);
+
+// Appends a mesh whose positions are relative to meshOrigin, re-expressed (in double) against the
+// scene's origin, which it sets when the scene holds nothing yet.
+void appendMesh(Scene& scene, TriangleMesh&& mesh, const Vec3d& meshOrigin);
+
 // The origin an importer stores against: `wanted` (usually the centre of what it reads, in double)
 // when the scene holds nothing yet, else the scene's own.
 Vec3d adoptOrigin(Scene& scene, const Vec3d& wanted);

@@ -153,14 +153,73 @@ void importFile(const std::string& path, Scene& scene) {
     }
 }
 
+namespace {
+
+// Importers check sizes before allocating; a library (Assimp) that does not still must not end in
+// a raw bad_alloc.
+void importOrRefuse(const std::string& path, Scene& scene) {
+    try {
+        importFile(path, scene);
+    } catch (const std::bad_alloc&) {
+        throw SceneError(path,
+                         "out of memory while reading the file (sizes it declares are "
+                         "larger than this machine can hold)");
+    } catch (const std::length_error& e) {
+        throw SceneError(path,
+                         std::string("sizes the file declares are impossible (") + e.what() + ")");
+    }
+}
+
+// Lights that add nothing (zero radiance, zero-area rectangles, closed spot cones), each named.
+void warnDarkLights(Scene& scene) {
+    size_t dark = 0;
+    for (const Light& l : scene.lights) {
+        bool zero =
+            !(maxComponent(l.radiance) > 0) ||
+            (l.kind == LightKind::Area && !l.hasMesh && !(length(cross(l.dimX, l.dimY)) > 0)) ||
+            (l.kind == LightKind::Spot && !(l.spotOuterDeg > 0));
+        if (!zero) continue;
+        ++dark;
+        scene.warnings.push_back("light '" + l.name + "' (" + toString(l.kind) +
+                                 ") has zero power and lights nothing");
+    }
+    if (dark > 0 && dark == scene.lights.size())
+        scene.warnings.push_back("every light has zero power: only emission will be visible");
+}
+
+// Beyond 2^24 / 100 the float spacing at the scene's far edge exceeds 1% of a typical edge.
+void warnFloatResolution(Scene& scene) {
+    Bounds3 b = scene.storedBounds();
+    if (b.empty()) return;
+    double reach = std::max(maxComponent(abs(b.lo)), maxComponent(abs(b.hi)));
+    double edges = 0;
+    uint64_t counted = 0;
+    for (const TriangleMesh& m : scene.meshes)
+        for (size_t t = 0; t < m.triangleCount() && counted < 100000; ++t, ++counted)
+            edges += length(m.vertex(m.indices[3 * t + 1]) - m.vertex(m.indices[3 * t]));
+    if (counted == 0 || !(edges > 0)) return;
+    double typical = edges / double(counted), spacing = reach * std::ldexp(1.0, -24);
+    if (spacing > 0.01 * typical) {
+        char msg[240];
+        std::snprintf(msg, sizeof msg,
+                      "the scene reaches %.3g units from its centre but its edges are about %.3g "
+                      "long: float spacing there (%.3g) blurs details",
+                      reach, typical, spacing);
+        scene.warnings.push_back(msg);
+    }
+}
+
+}  // namespace
+
 Scene loadScene(const std::string& path, const LoadOptions& options) {
     auto start = std::chrono::steady_clock::now();
     Scene scene;
     scene.sourcePath = path;
-    importFile(path, scene);
+    importOrRefuse(path, scene);
     std::string ext = lowerExtension(path);
     validateScene(scene);
     recenterScene(scene);
+    warnFloatResolution(scene);
     // The check costs about 0.1 s per million triangles (random vertex reads and a sort): above 20M
     // the tie rule for exact duplicates is not enforced (kiln info says so).
     constexpr uint64_t kDuplicateCheckLimit = 20'000'000;
@@ -192,10 +251,7 @@ Scene loadScene(const std::string& path, const LoadOptions& options) {
             scene.warnings.push_back("scene has no lights; using the default light rig");
         addDefaultLightRig(scene);
     }
-    bool allDark = std::all_of(scene.lights.begin(), scene.lights.end(),
-                               [](const Light& l) { return maxComponent(l.radiance) <= 0; });
-    if (allDark)
-        scene.warnings.push_back("every light has zero power: only emission will be visible");
+    warnDarkLights(scene);
 
     using Rule = LoadOptions::CameraRule;
     if (!scene.hasFileCamera)
@@ -207,6 +263,7 @@ Scene loadScene(const std::string& path, const LoadOptions& options) {
         scene.hasFileCamera &&
         (options.cameraRule == Rule::Framed || (options.cameraRule == Rule::Auto && scene.isCs184));
 
+    validateView(scene);
     scene.loadSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return scene;

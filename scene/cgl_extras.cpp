@@ -11,9 +11,10 @@ namespace kiln {
 namespace {
 
 // Strict number-list parser: garbled text or a wrong count is a SceneError naming the element.
-std::vector<double> parseNumbers(const std::string& file, pugi::xml_node node, const char* what) {
+std::vector<double> parseNumbers(const std::string& file, pugi::xml_node node, const char* what,
+                                 const char* text = nullptr) {
     std::vector<double> values;
-    const char* text = node.child_value();
+    if (!text) text = node.child_value();
     const char* p = text;
     while (*p) {
         while (*p == ' ' || *p == '\t' || *p == '\n' || *p == '\r') ++p;
@@ -96,6 +97,14 @@ class Parser {
             fix.m[0][0] = -1, fix.m[1][1] = 0, fix.m[1][2] = 1, fix.m[2][1] = 1, fix.m[2][2] = 0;
             out_.upAxisFix = fix;
         }
+        if (pugi::xml_node unit = root.child("asset").child("unit"); unit.attribute("meter")) {
+            std::vector<double> meter = parseNumbers(file_, pugi::xml_node(), "unit meter",
+                                                     unit.attribute("meter").as_string());
+            if (meter.size() != 1 || !(meter[0] > 0))
+                throw SceneError(file_, "<unit meter> must be one positive number");
+            out_.unitMeters = meter[0];
+        }
+        checkColladaGeometry(file_, root);
         for (pugi::xml_node lib : root.children()) index(lib);
         parseMaterials(root.child("library_materials"));
         pugi::xml_node visual = root.child("library_visual_scenes").child("visual_scene");
@@ -104,7 +113,11 @@ class Parser {
         if (!sceneUrl.empty())
             for (pugi::xml_node vs : root.child("library_visual_scenes").children("visual_scene"))
                 if (sceneUrl == vs.attribute("id").as_string()) visual = vs;
-        for (pugi::xml_node node : visual.children("node")) walk(node, out_.upAxisFix);
+        Mat4 base = out_.upAxisFix;
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) base.m[i][j] *= out_.unitMeters;
+        for (pugi::xml_node node : visual.children("node")) walk(node, base);
+        storeRelativeToOrigin();
         if (patched_) {
             std::ostringstream os;
             doc_.save(os, "", pugi::format_raw);
@@ -256,6 +269,8 @@ class Parser {
 
     void walk(pugi::xml_node node, const Mat4& parent) {
         Mat4 world = parent * nodeTransform(node);
+        if (const char* id = node.attribute("id").as_string(); *id) out_.nodeWorldById[id] = world;
+        if (node.child("instance_geometry")) placed_.extend(world.point(Vec3d(0.0)));
         for (pugi::xml_node child : node.children("node")) walk(child, world);
         for (pugi::xml_node inst : node.children("instance_geometry")) addSphere(inst, world);
         for (pugi::xml_node inst : node.children("instance_light")) addLight(inst, world);
@@ -276,9 +291,9 @@ class Parser {
         if (!(radius > 0))
             throw SceneError(file_, "sphere '" + geomId + "' has radius " + std::to_string(radius));
         // As the course program: centre = M*(0,0,0), radius scaled by the length of M*(1,0,0).
-        s.center = Vec3(world.point(Vec3d(0, 0, 0)));
         s.radius = radius * float(length(world.vector(Vec3d(1, 0, 0))));
         out_.spheres.push_back(s);
+        sphereCentres_.push_back(world.point(Vec3d(0, 0, 0)));
         pugi::xml_node bind =
             inst.child("bind_material").child("technique_common").child("instance_material");
         out_.sphereMaterialIds.push_back(urlTarget(bind.attribute("target")));
@@ -295,7 +310,7 @@ class Parser {
         if (!kind) throw SceneError(file_, "light '" + id + "' has no supported technique");
         std::string k = kind.name();
         light.radiance = expectColor(file_, kind, "color");
-        light.position = Vec3(world.point(Vec3d(0, 0, 0)));
+        lightPositions_.push_back(world.point(Vec3d(0, 0, 0)));
         Vec3d dir = world.vector(Vec3d(0, 0, -1));
         light.direction = Vec3(normalize(dir));
         if (k == "area") {
@@ -347,12 +362,13 @@ class Parser {
         if (!(cam.hFovDeg > 0 && cam.hFovDeg < 180 && cam.vFovDeg > 0 && cam.vFovDeg < 180))
             throw SceneError(file_,
                              "camera '" + id + "' has a field of view outside (0, 180) degrees");
-        if (pugi::xml_node n = persp.child("znear"))
-            cam.nearClip = float(expectNumbers(file_, n, "znear", 1)[0]);
-        if (pugi::xml_node f = persp.child("zfar"))
-            cam.farClip = float(expectNumbers(file_, f, "zfar", 1)[0]);
-        cam.position = Vec3(world.point(Vec3d(0, 0, 0)));
         Vec3d fwd = world.vector(Vec3d(0, 0, -1)), up = world.vector(Vec3d(0, 1, 0));
+        // Clip distances are in the camera node's units (the <unit> and any node scale).
+        if (pugi::xml_node n = persp.child("znear"))
+            cam.nearClip = float(expectNumbers(file_, n, "znear", 1)[0] * length(fwd));
+        if (pugi::xml_node f = persp.child("zfar"))
+            cam.farClip = float(expectNumbers(file_, f, "zfar", 1)[0] * length(fwd));
+        cameraPosition_ = world.point(Vec3d(0, 0, 0));
         if (length(fwd) > 0) cam.forward = Vec3(normalize(fwd));
         if (length(up) > 0) cam.up = Vec3(normalize(up));
         // The course keeps only normalize(M * (view_dir, 1)), translation included.
@@ -362,8 +378,23 @@ class Parser {
         out_.camera = cam;
     }
 
+    // The origin follows what the file places (originFor); positions wait for it in double.
+    void storeRelativeToOrigin() {
+        for (const Vec3d& c : sphereCentres_) placed_.extend(c);
+        for (const Vec3d& p : lightPositions_) placed_.extend(p);
+        out_.origin = originFor(placed_);
+        for (size_t i = 0; i < out_.spheres.size(); ++i)
+            out_.spheres[i].center = Vec3(sphereCentres_[i] - out_.origin);
+        for (size_t i = 0; i < out_.lights.size(); ++i)
+            out_.lights[i].position = Vec3(lightPositions_[i] - out_.origin);
+        if (out_.camera) out_.camera->position = Vec3(cameraPosition_ - out_.origin);
+    }
+
     const std::string& file_;
     pugi::xml_document& doc_;
+    Bounds3T<double> placed_;
+    std::vector<Vec3d> sphereCentres_, lightPositions_;
+    Vec3d cameraPosition_{0.0};
     std::map<std::string, pugi::xml_node> byId_;
     ColladaExtras out_;
     bool patched_ = false;

@@ -5,6 +5,7 @@
 
 #include <map>
 #include <optional>
+#include <pugixml.hpp>
 #include <string>
 #include <vector>
 
@@ -18,16 +19,28 @@ struct ColladaExtras {
     // Material id and name -> material parsed from its effect (kind and parameters).
     std::map<std::string, Material> materialsById;
     std::map<std::string, std::string> materialIdByName;
-    std::vector<Sphere> spheres;  // world space (up-axis fix applied)
+    double unitMeters =
+        1.0;  // <unit meter>: Assimp scales the geometry by it, so this pass does too
+    // Everything below is stored relative to `origin` (world = stored + origin), chosen in double
+    // as the centre of what the file places, so a scene far from the world origin keeps its digits.
+    Vec3d origin{0.0};
+    std::vector<Sphere> spheres;  // up-axis fix and unit applied
     std::vector<std::string> sphereMaterialIds;
-    std::vector<Light> lights;     // world space
-    std::optional<Camera> camera;  // world space
+    std::vector<Light> lights;
+    std::optional<Camera> camera;
+    // World transform of every <node> with an id, composed in double (Assimp names nodes by id).
+    std::map<std::string, Mat4> nodeWorldById;
     std::vector<std::string> warnings;
     // Set when the file needed patching before Assimp could read it (CBgems' 15-number matrix).
     std::optional<std::string> patchedXml;
 };
 
-// Throws SceneError on malformed XML or a CGL block with missing or garbled values.
+// Throws SceneError on malformed XML, a CGL block with missing or garbled values, or geometry
+// arrays Assimp would misread (counts that are not non-negative integers or do not match the data).
 ColladaExtras parseColladaExtras(const std::string& path);
+
+// Checks what Assimp's COLLADA reader trusts without checking (it dereferences null or allocates
+// without bound otherwise): array counts, accessor ranges and index lists of every geometry.
+void checkColladaGeometry(const std::string& path, pugi::xml_node collada);
 
 }  // namespace kiln

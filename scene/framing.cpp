@@ -26,6 +26,14 @@ void applyDefaultFraming(Scene& scene) {
     Vec3 target = b.centroid();
     float radius = 0.5f * length(b.diagonal());
     Vec3 dir = normalize(Vec3(0.0f, 0.25f, 1.0f));
+    // A flat scene seen (nearly) edge-on shows nothing: look along its normal axis instead.
+    Vec3 size = b.diagonal();
+    int thin = size.x <= size.y && size.x <= size.z ? 0 : (size.y <= size.z ? 1 : 2);
+    if (size[thin] <= 1e-4f * maxComponent(size) && std::abs(dir[thin]) < 0.1f) {
+        Vec3 normal(0.0f);
+        normal[thin] = 1.0f;
+        dir = normalize(normal + (thin == 1 ? Vec3(0.0f, 0.0f, 0.25f) : Vec3(0.0f, 0.25f, 0.0f)));
+    }
     float halfFov = radians(0.5f * std::min(cam.hFovDeg, cam.vFovDeg));
     float distance = radius / std::sin(halfFov) * 1.05f;
     cam.position = target + dir * distance;

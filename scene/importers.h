@@ -13,6 +13,9 @@ namespace kiln {
 // from the CGL pass and the course's up-axis convention replaces Assimp's.
 void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scene& scene);
 
+// The file name's extension, lower case, with its dot ("" when it has none).
+std::string lowerExtension(const std::string& path);
+
 // Any supported file into `scene` (appending), without validation or completion (lights, framing).
 void importFile(const std::string& path, Scene& scene);
 

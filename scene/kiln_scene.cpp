@@ -1,9 +1,13 @@
 // The .kiln scene description: XML read with pugixml. Documented in docs/kiln-scene.md.
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <pugixml.hpp>
 
+#include "renderer/core/memory.h"
 #include "scene/importers.h"
 #include "scene/scene_error.h"
 
@@ -39,29 +43,52 @@ std::vector<double> numbers(const std::string& file, pugi::xml_node node, const 
     return v;
 }
 
-Vec3 vec3(const std::string& file, pugi::xml_node node, const char* attr) {
+Vec3d vec3(const std::string& file, pugi::xml_node node, const char* attr) {
     auto v = numbers(file, node, attr, 3);
-    return Vec3(float(v[0]), float(v[1]), float(v[2]));
+    return Vec3d(v[0], v[1], v[2]);
+}
+
+// Every attribute and child element of `node` must be one kiln reads: a typo is an error, not a
+// silently ignored setting.
+void checkKnown(const std::string& file, pugi::xml_node node,
+                std::initializer_list<std::string_view> attributes,
+                std::initializer_list<std::string_view> children = {}) {
+    for (pugi::xml_attribute a : node.attributes())
+        if (std::find(attributes.begin(), attributes.end(), a.name()) == attributes.end())
+            throw SceneError(file, std::string("<") + node.name() + "> has unknown attribute '" +
+                                       a.name() + "'");
+    for (pugi::xml_node c : node.children())
+        if (c.type() == pugi::node_element &&
+            std::find(children.begin(), children.end(), c.name()) == children.end())
+            throw SceneError(
+                file, std::string("<") + node.name() + "> has unknown element <" + c.name() + ">");
 }
 
 // The transform of a <mesh> or <instances> element: <fit center size> scales the mesh uniformly so
 // its largest side is `size` and puts its bounds' bottom centre at `center`; or translate / scale /
 // matrix.
-Mat4 placement(const std::string& file, pugi::xml_node node, const Bounds3& bounds) {
+Mat4 placement(const std::string& file, pugi::xml_node node, const Bounds3T<double>& bounds) {
     Mat4 m;
+    int ways = bool(node.child("fit")) + bool(node.child("matrix")) +
+               (node.attribute("scale") || node.attribute("translate"));
+    if (ways > 1)
+        throw SceneError(file, std::string("<") + node.name() +
+                                   "> has more than one of <fit>, <matrix> and scale/translate");
     if (pugi::xml_node fit = node.child("fit")) {
-        Vec3 c = vec3(file, fit, "center");
+        checkKnown(file, fit, {"center", "size"});
+        Vec3d c = vec3(file, fit, "center");
         double size = numbers(file, fit, "size", 1)[0];
         double extent = maxComponent(bounds.diagonal());
         if (!(size > 0) || !(extent > 0))
             throw SceneError(file, "<fit> needs a positive size and a mesh with extent");
         double s = size / extent;
-        Vec3 bottom(bounds.centroid().x, bounds.lo.y, bounds.centroid().z);
+        Vec3d mid = (bounds.lo + bounds.hi) * 0.5, bottom(mid.x, bounds.lo.y, mid.z);
         m.m[0][0] = m.m[1][1] = m.m[2][2] = s;
-        for (int r = 0; r < 3; ++r) m.m[r][3] = double(c[r]) - s * double(bottom[r]);
+        for (int r = 0; r < 3; ++r) m.m[r][3] = c[r] - s * bottom[r];
         return m;
     }
     if (pugi::xml_node mat = node.child("matrix")) {
+        checkKnown(file, mat, {"values"});
         auto v = numbers(file, mat, "values", 16);
         for (int i = 0; i < 16; ++i) m.m[i / 4][i % 4] = v[size_t(i)];
         return m;
@@ -69,27 +96,50 @@ Mat4 placement(const std::string& file, pugi::xml_node node, const Bounds3& boun
     if (node.attribute("scale"))
         m.m[0][0] = m.m[1][1] = m.m[2][2] = numbers(file, node, "scale", 1)[0];
     if (node.attribute("translate")) {
-        Vec3 t = vec3(file, node, "translate");
+        Vec3d t = vec3(file, node, "translate");
         for (int r = 0; r < 3; ++r) m.m[r][3] = t[r];
     }
     return m;
 }
 
-Bounds3 meshBounds(const Scene& s) {
-    Bounds3 b;
+// World bounds (double) of a part's meshes.
+Bounds3T<double> meshBounds(const Scene& s) {
+    Bounds3T<double> b;
     for (const TriangleMesh& m : s.meshes)
-        for (size_t v = 0; v < m.vertexCount(); ++v) b.extend(m.vertex(uint32_t(v)));
+        for (size_t v = 0; v < m.vertexCount(); ++v) b.extend(s.world(m.vertex(uint32_t(v))));
     return b;
 }
 
+// xf applied to a part's stored coordinates: world = xf * (stored + part origin).
+Mat4 fromStored(const Mat4& xf, const Vec3d& origin) {
+    Mat4 t;
+    for (int r = 0; r < 3; ++r) t.m[r][3] = origin[r];
+    return xf * t;
+}
+
 // Appends src's materials and geometry; meshes are baked with xf unless asPrototype (then placed by
-// `placements`); material `override` (if >= 0) replaces every material of src.
+// `placements`, world transforms of the prototype's stored coordinates); material `override` (if
+// >= 0) replaces every material of src. Positions go world = xf * (stored + src.origin) and back to
+// dst's origin in double.
 void merge(Scene& dst, Scene& src, const Mat4& xf, int override, bool asPrototype,
            const std::vector<Mat4>& placements) {
     uint32_t base = uint32_t(dst.materials.size());
     dst.materials.insert(dst.materials.end(), src.materials.begin(), src.materials.end());
     std::vector<bool> proto = src.prototypeMask();
     uint32_t meshBase = uint32_t(dst.meshes.size());
+    Mat4 toWorld = fromStored(xf, src.origin);
+    Bounds3T<double> placed;  // world bounds of what this part adds, for dst's origin
+    Bounds3 local = src.storedBounds();
+    for (const Mat4& p : asPrototype ? placements : std::vector<Mat4>{xf})
+        for (int c = 0; !local.empty() && c < 8; ++c)
+            placed.extend(fromStored(p, src.origin)
+                              .point(Vec3d((c & 1) ? local.hi.x : local.lo.x,
+                                           (c & 2) ? local.hi.y : local.lo.y,
+                                           (c & 4) ? local.hi.z : local.lo.z)));
+    Vec3d origin = adoptOrigin(dst, originFor(placed));
+    Mat4 toStored;
+    for (int r = 0; r < 3; ++r) toStored.m[r][3] = -origin[r];
+    Mat4 bake = toStored * toWorld;  // src stored -> dst stored, one double transform
     bool flip = xf.determinant3() < 0;
     Mat4 inverse = xf.inverse();  // once: normals transform by its transpose
     for (size_t i = 0; i < src.meshes.size(); ++i) {
@@ -97,9 +147,8 @@ void merge(Scene& dst, Scene& src, const Mat4& xf, int override, bool asPrototyp
         for (uint32_t& id : m.materialIds) id = override >= 0 ? uint32_t(override) : id + base;
         if (!asPrototype && !proto[i]) {
             for (size_t v = 0; v < m.vertexCount(); ++v) {
-                Vec3 p = xf.point(m.vertex(uint32_t(v)));
-                m.positions[3 * v] = p.x, m.positions[3 * v + 1] = p.y,
-                                m.positions[3 * v + 2] = p.z;
+                Vec3d p = bake.point(Vec3d(m.vertex(uint32_t(v))));
+                for (int k = 0; k < 3; ++k) m.positions[3 * v + size_t(k)] = float(p[k]);
             }
             for (size_t v = 0; v + 2 < m.normals.size(); v += 3) {
                 Vec3 n = normalize(transformNormal(
@@ -112,24 +161,22 @@ void merge(Scene& dst, Scene& src, const Mat4& xf, int override, bool asPrototyp
         }
         dst.meshes.push_back(std::move(m));
     }
-    for (Instance inst : src.instances) {
-        inst.mesh += meshBase;
-        inst = Instance::place(inst.mesh, xf * inst.objectToWorld);
-        dst.instances.push_back(inst);
-    }
+    for (Instance inst : src.instances)
+        dst.instances.push_back(Instance::place(inst.mesh + meshBase, bake * inst.objectToWorld));
     if (asPrototype)
         for (size_t i = 0; i < src.meshes.size(); ++i)
             if (!proto[i])
                 for (const Mat4& p : placements)
-                    dst.instances.push_back(Instance::place(meshBase + uint32_t(i), p));
+                    dst.instances.push_back(Instance::place(meshBase + uint32_t(i),
+                                                            toStored * fromStored(p, src.origin)));
     for (Sphere s : src.spheres) {
-        s.center = xf.point(s.center);
+        s.center = Vec3(bake.point(Vec3d(s.center)));
         s.material = override >= 0 ? uint32_t(override) : s.material + base;
         s.radius *= float(std::cbrt(std::abs(xf.determinant3())));
         dst.spheres.push_back(s);
     }
     for (Light l : src.lights) {
-        l.position = xf.point(l.position);
+        l.position = Vec3(bake.point(Vec3d(l.position)));
         l.dimX = xf.vector(l.dimX), l.dimY = xf.vector(l.dimY);
         if (l.kind != LightKind::Ambient && length(l.direction) > 0)
             l.direction = normalize(xf.vector(l.direction));
@@ -137,7 +184,7 @@ void merge(Scene& dst, Scene& src, const Mat4& xf, int override, bool asPrototyp
     }
     if (src.hasFileCamera && !dst.hasFileCamera) {
         dst.camera = src.camera;
-        dst.camera.position = xf.point(src.camera.position);
+        dst.camera.position = Vec3(bake.point(Vec3d(src.camera.position)));
         dst.hasFileCamera = true;
     }
     dst.warnings.insert(dst.warnings.end(), src.warnings.begin(), src.warnings.end());
@@ -148,18 +195,18 @@ Material parseMaterial(const std::string& file, pugi::xml_node n) {
     m.name = n.attribute("name").as_string();
     std::string kind = n.attribute("kind").as_string("lambertian");
     if (kind == "lambertian") {
-        if (n.attribute("albedo")) m.albedo = vec3(file, n, "albedo");
+        if (n.attribute("albedo")) m.albedo = Color(vec3(file, n, "albedo"));
     } else if (kind == "mirror") {
         m.kind = MaterialKind::Mirror;
-        if (n.attribute("reflectance")) m.reflectance = vec3(file, n, "reflectance");
+        if (n.attribute("reflectance")) m.reflectance = Color(vec3(file, n, "reflectance"));
     } else if (kind == "glass") {
         m.kind = MaterialKind::Glass;
         m.ior = float(numbers(file, n, "ior", 1)[0]);
     } else if (kind == "microfacet") {
         m.kind = MaterialKind::Microfacet;
         m.alpha = float(numbers(file, n, "alpha", 1)[0]);
-        m.eta = vec3(file, n, "eta");
-        m.k = vec3(file, n, "k");
+        m.eta = Color(vec3(file, n, "eta"));
+        m.k = Color(vec3(file, n, "k"));
     } else {
         throw SceneError(
             file, "unknown material kind '" + kind + "' (lambertian, mirror, glass, microfacet)");
@@ -167,9 +214,155 @@ Material parseMaterial(const std::string& file, pugi::xml_node n) {
     return m;
 }
 
+// The .kiln files being read, outermost first: an include cycle or runaway nesting is an error,
+// not a stack overflow.
+thread_local std::vector<std::string> includeStack;
+constexpr size_t kMaxIncludeDepth = 16;
+
+class IncludeGuard {
+  public:
+    explicit IncludeGuard(const std::string& path) {
+        std::error_code ec;
+        std::string canonical = fs::weakly_canonical(path, ec).string();
+        if (std::find(includeStack.begin(), includeStack.end(), canonical) != includeStack.end())
+            throw SceneError(path, "includes itself (include cycle)");
+        if (includeStack.size() >= kMaxIncludeDepth)
+            throw SceneError(
+                path, "includes nested deeper than " + std::to_string(kMaxIncludeDepth) + " files");
+        includeStack.push_back(canonical);
+    }
+    ~IncludeGuard() { includeStack.pop_back(); }
+    IncludeGuard(const IncludeGuard&) = delete;
+    IncludeGuard& operator=(const IncludeGuard&) = delete;
+};
+
+// Instances of a grid: positive whole counts whose product fits in memory, checked before any
+// placement is made.
+std::array<int, 3> gridCounts(const std::string& file, pugi::xml_node n) {
+    auto grid = numbers(file, n, "grid", 3);
+    double total = 1;
+    std::array<int, 3> counts{};
+    for (int i = 0; i < 3; ++i) {
+        if (!(grid[i] >= 1) || grid[i] != std::floor(grid[i]) || grid[i] > 1e9)
+            throw SceneError(file, "<instances> grid needs three whole numbers >= 1");
+        counts[i] = int(grid[i]);
+        total *= grid[i];
+    }
+    // Two transforms (object to world and back) per instance, as Scene::instances holds them,
+    // plus the placement list and the accelerator's instance record.
+    double need = total * (2 * sizeof(Instance) + 64);
+    if (total > double(UINT32_MAX) || need > double(availableMemoryBytes())) {
+        char msg[160];
+        std::snprintf(msg, sizeof msg,
+                      "<instances> grid of %.0f instances would need about %.1f GiB; refusing",
+                      total, need / double(1ull << 30));
+        throw SceneError(file, msg);
+    }
+    return counts;
+}
+
+void readCamera(const std::string& path, pugi::xml_node n, Scene& scene) {
+    checkKnown(path, n, {"position", "look-at", "up", "fov"});
+    Camera& c = scene.camera;
+    Vec3d position = vec3(path, n, "position"), target = vec3(path, n, "look-at");
+    Vec3d up = n.attribute("up") ? vec3(path, n, "up") : Vec3d(0, 1, 0);
+    double fov = numbers(path, n, "fov", 1)[0];
+    if (!(fov > 0 && fov < 180))
+        throw SceneError(
+            path, "<camera> fov must be between 0 and 180 degrees, not " + std::to_string(fov));
+    if (!(length(target - position) > 0))
+        throw SceneError(path, "<camera> position and look-at are the same point");
+    if (!(length(cross(normalize(target - position), up)) > 1e-6))
+        throw SceneError(path, "<camera> up is zero or parallel to the view direction");
+    c.position = scene.stored(position);
+    c.forward = Vec3(normalize(target - position));
+    c.up = Vec3(normalize(up));
+    c.hFovDeg = c.vFovDeg = float(fov);
+    c.fromFile = true;
+    scene.hasFileCamera = true;
+}
+
+void readLight(const std::string& path, pugi::xml_node n, Scene& scene) {
+    Light l;
+    std::string kind = n.attribute("kind").as_string();
+    if (kind == "directional") {
+        checkKnown(path, n, {"kind", "radiance", "direction"});
+        l.kind = LightKind::Directional;
+        Vec3d d = vec3(path, n, "direction");
+        if (!(length(d) > 0)) throw SceneError(path, "<light> direction is zero");
+        l.direction = Vec3(normalize(d));
+    } else if (kind == "point") {
+        checkKnown(path, n, {"kind", "radiance", "position"});
+        l.kind = LightKind::Point, l.position = scene.stored(vec3(path, n, "position"));
+    } else if (kind == "ambient") {
+        checkKnown(path, n, {"kind", "radiance"});
+        l.kind = LightKind::Ambient, l.direction = Vec3(0, 1, 0);
+    } else {
+        throw SceneError(path, "unknown light kind '" + kind + "' (directional, point, ambient)");
+    }
+    l.radiance = Vec3(vec3(path, n, "radiance"));
+    scene.lights.push_back(l);
+}
+
+// <include>, <mesh> or <instances>: the referenced file read as a part, placed, merged.
+void readPart(const std::string& path, pugi::xml_node n,
+              const std::map<std::string, uint32_t>& materials, Scene& scene) {
+    std::string tag = n.name();
+    if (tag == "include")
+        checkKnown(path, n, {"file"});
+    else if (tag == "mesh")
+        checkKnown(path, n, {"file", "material", "scale", "translate"}, {"fit", "matrix"});
+    else
+        checkKnown(path, n, {"file", "material", "grid", "spacing", "scale", "translate"},
+                   {"fit", "matrix"});
+    std::string file = n.attribute("file").as_string();
+    if (file.empty()) throw SceneError(path, "<" + tag + "> needs a file attribute");
+    int override = -1;
+    if (n.attribute("material")) {
+        auto it = materials.find(n.attribute("material").as_string());
+        if (it == materials.end())
+            throw SceneError(path, "<" + tag + "> names unknown material '" +
+                                       n.attribute("material").as_string() + "'");
+        override = int(it->second);
+    }
+    std::array<int, 3> grid{};
+    double spacing = 0;
+    if (tag == "instances") {
+        grid = gridCounts(path, n);
+        spacing = numbers(path, n, "spacing", 1)[0];
+    }
+    Scene part;
+    part.sourcePath = (fs::path(path).parent_path() / file).string();
+    try {
+        importFile(part.sourcePath, part);
+    } catch (const SceneError& e) {
+        // Name the .kiln that asked for the file: the user edits that one.
+        throw SceneError(path, "<" + tag + " file=\"" + file + "\">: " + e.what());
+    }
+    if (tag == "instances") {
+        Mat4 fit = placement(path, n, meshBounds(part));
+        std::vector<Mat4> placements;
+        placements.reserve(size_t(grid[0]) * size_t(grid[1]) * size_t(grid[2]));
+        for (int z = 0; z < grid[2]; ++z)
+            for (int y = 0; y < grid[1]; ++y)
+                for (int x = 0; x < grid[0]; ++x) {
+                    Mat4 t = fit;
+                    t.m[0][3] += x * spacing, t.m[1][3] += y * spacing, t.m[2][3] += z * spacing;
+                    placements.push_back(t);
+                }
+        merge(scene, part, Mat4::identity(), override, true, placements);
+    } else {
+        Mat4 xf = tag == "mesh" ? placement(path, n, meshBounds(part)) : Mat4::identity();
+        part.hasFileCamera = part.hasFileCamera && tag == "include";
+        merge(scene, part, xf, override, false, {});
+        scene.isCs184 = false;
+    }
+}
+
 }  // namespace
 
 void readKilnScene(const std::string& path, Scene& scene) {
+    IncludeGuard guard(path);
     pugi::xml_document doc;
     pugi::xml_parse_result ok = doc.load_file(path.c_str());
     if (!ok)
@@ -177,79 +370,27 @@ void readKilnScene(const std::string& path, Scene& scene) {
                                    ": " + ok.description());
     pugi::xml_node root = doc.child("kiln-scene");
     if (!root) throw SceneError(path, "not a kiln scene (no <kiln-scene> root element)");
-    fs::path dir = fs::path(path).parent_path();
-    auto resolve = [&](pugi::xml_node n) {
-        std::string f = n.attribute("file").as_string();
-        if (f.empty())
-            throw SceneError(path, std::string("<") + n.name() + "> needs a file attribute");
-        return (dir / f).string();
-    };
-    std::map<std::string, uint32_t> materials;
     for (pugi::xml_node n : root.children()) {
         std::string tag = n.name();
-        if (tag == "material") {
-            materials[n.attribute("name").as_string()] = uint32_t(scene.materials.size());
-            scene.materials.push_back(parseMaterial(path, n));
-        } else if (tag == "include" || tag == "mesh" || tag == "instances") {
-            Scene part;
-            part.sourcePath = resolve(n);
-            importFile(part.sourcePath, part);
-            int override = -1;
-            if (n.attribute("material")) {
-                auto it = materials.find(n.attribute("material").as_string());
-                if (it == materials.end())
-                    throw SceneError(path, "<" + tag + "> names unknown material '" +
-                                               n.attribute("material").as_string() + "'");
-                override = int(it->second);
-            }
-            if (tag == "instances") {
-                auto grid = numbers(path, n, "grid", 3);
-                double spacing = numbers(path, n, "spacing", 1)[0];
-                Mat4 fit = placement(path, n, meshBounds(part));
-                std::vector<Mat4> placements;
-                for (int z = 0; z < int(grid[2]); ++z)
-                    for (int y = 0; y < int(grid[1]); ++y)
-                        for (int x = 0; x < int(grid[0]); ++x) {
-                            Mat4 t = fit;
-                            t.m[0][3] += x * spacing, t.m[1][3] += y * spacing,
-                                t.m[2][3] += z * spacing;
-                            placements.push_back(t);
-                        }
-                if (placements.empty()) throw SceneError(path, "<instances> grid places nothing");
-                merge(scene, part, Mat4::identity(), override, true, placements);
-            } else {
-                Mat4 xf = tag == "mesh" ? placement(path, n, meshBounds(part)) : Mat4::identity();
-                part.hasFileCamera = part.hasFileCamera && tag == "include";
-                merge(scene, part, xf, override, false, {});
-                scene.isCs184 = false;
-            }
-        } else if (tag == "camera") {
-            Camera& c = scene.camera;
-            c.position = vec3(path, n, "position");
-            c.forward = normalize(vec3(path, n, "look-at") - c.position);
-            if (n.attribute("up")) c.up = normalize(vec3(path, n, "up"));
-            c.hFovDeg = c.vFovDeg = float(numbers(path, n, "fov", 1)[0]);
-            c.fromFile = true;
-            scene.hasFileCamera = true;
-        } else if (tag == "light") {
-            Light l;
-            std::string kind = n.attribute("kind").as_string();
-            l.radiance = vec3(path, n, "radiance");
-            if (kind == "directional")
-                l.kind = LightKind::Directional,
-                l.direction = normalize(vec3(path, n, "direction"));
-            else if (kind == "point")
-                l.kind = LightKind::Point, l.position = vec3(path, n, "position");
-            else if (kind == "ambient")
-                l.kind = LightKind::Ambient, l.direction = Vec3(0, 1, 0);
-            else
-                throw SceneError(path,
-                                 "unknown light kind '" + kind + "' (directional, point, ambient)");
-            scene.lights.push_back(l);
-        } else if (n.type() == pugi::node_element) {
+        if (n.type() == pugi::node_element && tag != "material" && tag != "include" &&
+            tag != "mesh" && tag != "instances" && tag != "camera" && tag != "light")
             throw SceneError(path, "unknown element <" + tag + ">");
-        }
     }
+    // Materials, then geometry, then camera and lights: the geometry fixes the scene's origin,
+    // so positions given in the file are stored against it whatever the order of the elements.
+    std::map<std::string, uint32_t> materials;
+    for (pugi::xml_node n : root.children("material")) {
+        checkKnown(path, n, {"name", "kind", "albedo", "reflectance", "ior", "alpha", "eta", "k"});
+        materials[n.attribute("name").as_string()] = uint32_t(scene.materials.size());
+        scene.materials.push_back(parseMaterial(path, n));
+    }
+    for (pugi::xml_node n : root.children()) {
+        std::string tag = n.name();
+        if (tag == "include" || tag == "mesh" || tag == "instances")
+            readPart(path, n, materials, scene);
+    }
+    for (pugi::xml_node n : root.children("camera")) readCamera(path, n, scene);
+    for (pugi::xml_node n : root.children("light")) readLight(path, n, scene);
 }
 
 }  // namespace kiln

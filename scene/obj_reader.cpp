@@ -135,10 +135,11 @@ void countChunk(Chunk& c) {
 class ChunkParser {
   public:
     ChunkParser(const std::string& path, Chunk& c, TriangleMesh& mesh, uint64_t totalPositions,
-                bool useNormals, bool useUvs)
+                bool useNormals, bool useUvs, const Vec3d& origin = Vec3d(0.0))
         : path_(path),
           c_(c),
           mesh_(mesh),
+          origin_(origin),
           totalPositions_(totalPositions),
           useNormals_(useNormals),
           useUvs_(useUvs) {}
@@ -151,15 +152,20 @@ class ChunkParser {
         c_.lines = 0;
         forEachLine(c_, [&](Statement st, const char* p, const char* end) {
             switch (st) {
-                case Statement::Position:
-                    readFloats(p, end, &mesh_.positions[3 * positions++], 3, 3);
+                case Statement::Position: {
+                    double xyz[3];
+                    readNumbers(p, end, xyz, 3, 3);
+                    // Parsed in double, stored in float relative to the origin (far coordinates).
+                    float* out = &mesh_.positions[3 * positions++];
+                    for (int k = 0; k < 3; ++k) out[k] = float(xyz[k] - origin_[k]);
                     break;
+                }
                 case Statement::Normal:
-                    if (useNormals_) readFloats(p, end, &mesh_.normals[3 * normals], 3, 3);
+                    if (useNormals_) readNumbers(p, end, &mesh_.normals[3 * normals], 3, 3);
                     ++normals;
                     break;
                 case Statement::Uv:
-                    if (useUvs_) readFloats(p, end, &mesh_.uvs[2 * uvs], 1, 2);
+                    if (useUvs_) readNumbers(p, end, &mesh_.uvs[2 * uvs], 1, 2);
                     ++uvs;
                     break;
                 case Statement::Face: {
@@ -200,7 +206,8 @@ class ChunkParser {
     }
 
     // `want` numbers, of which the first `need` must be present (vt may omit v).
-    void readFloats(const char* p, const char* end, float* out, int need, int want) {
+    template <typename T>
+    void readNumbers(const char* p, const char* end, T* out, int need, int want) {
         for (int i = 0; i < want; ++i) {
             p = skipBlanks(p, end);
             if (p >= end) {
@@ -233,9 +240,33 @@ class ChunkParser {
     const std::string& path_;
     Chunk& c_;
     TriangleMesh& mesh_;
+    Vec3d origin_;
     uint64_t totalPositions_;
     bool useNormals_, useUvs_;
 };
+
+// The first 'v' statement of the file in double: far meshes are stored relative to it
+// (streamOrigin). Garbled numbers read as 0 here; the parse pass reports them.
+Vec3d firstPosition(const std::vector<Chunk>& chunks) {
+    for (const Chunk& c : chunks) {
+        if (c.positions == 0) continue;
+        Chunk copy = c;
+        Vec3d first(0.0);
+        bool found = false;
+        forEachLine(copy, [&](Statement st, const char* p, const char* end) {
+            if (st != Statement::Position || found) return;
+            found = true;
+            for (int k = 0; k < 3; ++k) {
+                p = skipBlanks(p, end);
+                const char* e = tokenEnd(p, end);
+                std::from_chars(p, e, first[k]);
+                p = e;
+            }
+        });
+        return first;
+    }
+    return Vec3d(0.0);
+}
 
 // One mesh per group, each with the vertex range its triangles use (in OBJ files a group's
 // vertices are normally its own contiguous block). False when groups share so many vertices that
@@ -329,8 +360,9 @@ bool readObj(const std::string& path, Scene& scene) {
     if (useNormals) mesh.normals.resize(3 * total.positions);
     if (useUvs) mesh.uvs.resize(2 * total.positions);
     std::atomic<bool> sameIndices{true};
+    Vec3d origin = streamOrigin(firstPosition(chunks));
     tbb::parallel_for(size_t(0), chunks.size(), [&](size_t i) {
-        ChunkParser parser(path, chunks[i], mesh, total.positions, useNormals, useUvs);
+        ChunkParser parser(path, chunks[i], mesh, total.positions, useNormals, useUvs, origin);
         if (!parser.parse()) sameIndices = false;
     });
     if (!sameIndices) return false;
@@ -357,7 +389,7 @@ bool readObj(const std::string& path, Scene& scene) {
     for (TriangleMesh& part : meshes) {
         part.finalizePadding();
         part.materialIds = {uint32_t(scene.materials.size())};
-        scene.meshes.push_back(std::move(part));
+        appendMesh(scene, std::move(part), origin);
     }
     scene.materials.push_back(m);
     return true;

@@ -1,8 +1,11 @@
 // A direct PLY reader: binary (both endians) and ASCII, vertex positions/normals/uvs, faces as
 // polygon lists (fan-triangulated) and tristrips (-1 restarts, degenerate strip triangles dropped).
 
+#include <algorithm>
 #include <bit>
+#include <cctype>
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -71,7 +74,13 @@ class Cursor {
         : path_(path), p_(p), end_(end), f_(f) {}
 
     double read(PlyType t) {
-        if (f_ == Format::Ascii) return readAscii();
+        if (f_ == Format::Ascii) {
+            double v = readAscii();
+            if (t != PlyType::Float32 && t != PlyType::Float64 && v != std::floor(v))
+                throw SceneError(path_, "non-integer value " + std::to_string(v) +
+                                            " for an integer PLY property");
+            return v;
+        }
         size_t n = typeSize(t);
         if (size_t(end_ - p_) < n)
             throw SceneError(path_, "file ends before the data its header declares");
@@ -125,8 +134,16 @@ class Cursor {
             read(p.type);
             return;
         }
-        size_t n = size_t(read(p.countType));
+        size_t n = listLength(p);
         for (size_t k = 0; k < n; ++k) read(p.type);
+    }
+    // A list's length: a non-negative integer.
+    size_t listLength(const Property& p) {
+        double n = read(p.countType);
+        if (!(n >= 0) || n != std::floor(n))
+            throw SceneError(
+                path_, "PLY list length " + std::to_string(n) + " is not a non-negative integer");
+        return size_t(n);
     }
     const char* position() const { return p_; }
     void skip(size_t n) {
@@ -139,9 +156,15 @@ class Cursor {
     double readAscii() {
         while (p_ < end_ && (*p_ == ' ' || *p_ == '\n' || *p_ == '\r' || *p_ == '\t')) ++p_;
         if (p_ >= end_) throw SceneError(path_, "file ends before the data its header declares");
+        const char* tokenEnd = p_;
+        while (tokenEnd < end_ && !std::isspace(static_cast<unsigned char>(*tokenEnd))) ++tokenEnd;
         double v = 0;
-        auto [next, ec] = std::from_chars(p_, end_, v);
-        if (ec != std::errc()) throw SceneError(path_, "garbled number in PLY body");
+        auto [next, ec] = std::from_chars(p_, tokenEnd, v);
+        if (ec != std::errc() || next != tokenEnd)
+            throw SceneError(path_,
+                             "garbled number '" +
+                                 std::string(p_, size_t(std::min<ptrdiff_t>(tokenEnd - p_, 40))) +
+                                 "' in PLY body");
         p_ = next;
         return v;
     }
@@ -210,8 +233,15 @@ void readPly(const std::string& path, Scene& scene) {
             haveFormat = true;
         } else if (word == "element") {
             Element e;
-            ls >> e.name >> e.count;
-            if (!ls) throw SceneError(path, "malformed PLY element line: '" + line + "'");
+            std::string count, extra;
+            ls >> e.name >> count >> extra;
+            auto [end, ec] = std::from_chars(count.data(), count.data() + count.size(), e.count);
+            if (e.name.empty() || count.empty() || ec != std::errc() ||
+                end != count.data() + count.size() || !extra.empty())
+                throw SceneError(path,
+                                 "malformed PLY element line (needs a name and a "
+                                 "non-negative whole count): '" +
+                                     line + "'");
             elements.push_back(e);
         } else if (word == "property") {
             if (elements.empty()) throw SceneError(path, "PLY property before any element");
@@ -246,6 +276,7 @@ void readPly(const std::string& path, Scene& scene) {
     TriangleMesh mesh;
     mesh.name = "ply";
     size_t vertexCount = 0;
+    Vec3d origin(0.0);
     Cursor cur(path, headerEnd, end, format);
     for (const Element& e : elements) {
         if (e.name == "vertex") {
@@ -299,9 +330,11 @@ void readPly(const std::string& path, Scene& scene) {
                     }
                     row[i] = cur.read(e.props[i].type);
                 }
-                mesh.positions[3 * v] = float(row[ix]);
-                mesh.positions[3 * v + 1] = float(row[iy]);
-                mesh.positions[3 * v + 2] = float(row[iz]);
+                if (v == 0) origin = streamOrigin(Vec3d(row[ix], row[iy], row[iz]));
+                // Parsed in double, stored in float relative to the origin (far coordinates).
+                mesh.positions[3 * v] = float(row[ix] - origin.x);
+                mesh.positions[3 * v + 1] = float(row[iy] - origin.y);
+                mesh.positions[3 * v + 2] = float(row[iz] - origin.z);
                 if (normals) {
                     mesh.normals[3 * v] = float(row[inx]);
                     mesh.normals[3 * v + 1] = float(row[iny]);
@@ -359,7 +392,7 @@ void readPly(const std::string& path, Scene& scene) {
                         cur.read(p.type);
                         continue;
                     }
-                    size_t n = size_t(cur.read(p.countType));
+                    size_t n = cur.listLength(p);
                     bool isIndexList = p.name == "vertex_indices" || p.name == "vertex_index";
                     poly.clear();
                     for (size_t k = 0; k < n; ++k) {
@@ -369,6 +402,10 @@ void readPly(const std::string& path, Scene& scene) {
                             poly.push_back(UINT32_MAX);  // strip restart
                             continue;
                         }
+                        if (idx != std::floor(idx))
+                            throw SceneError(path, "face " + std::to_string(f) +
+                                                       " has a non-integer vertex index " +
+                                                       std::to_string(idx));
                         if (idx < 0 || idx >= double(vertexCount))
                             throw SceneError(path,
                                              "face " + std::to_string(f) + " has vertex index " +
@@ -411,7 +448,7 @@ void readPly(const std::string& path, Scene& scene) {
     mesh.finalizePadding();
     mesh.materialIds = {uint32_t(scene.materials.size())};
     scene.materials.push_back(Material{"ply-default"});
-    scene.meshes.push_back(std::move(mesh));
+    appendMesh(scene, std::move(mesh), origin);
 }
 
 }  // namespace kiln

@@ -93,4 +93,57 @@ uint64_t Scene::instancedTriangles() const {
     return n;
 }
 
+bool Scene::holdsNothing() const {
+    return meshes.empty() && spheres.empty() && lights.empty() && !hasFileCamera;
+}
+
+namespace {
+
+// Adds shift to every xyz of a position buffer in double, rounding once.
+void shiftPositions(std::vector<float>& p, const Vec3d& shift) {
+    for (size_t v = 0; v + 2 < p.size(); v += 3)
+        for (int k = 0; k < 3; ++k) p[v + k] = float(double(p[v + k]) + shift[k]);
+}
+
+}  // namespace
+
+void rebaseScene(Scene& scene, const Vec3d& origin) {
+    Vec3d shift = scene.origin - origin;  // stored_new = stored_old + shift
+    if (shift == Vec3d(0.0)) return;
+    auto move = [&](Vec3& p) { p = Vec3(Vec3d(p) + shift); };
+    std::vector<bool> proto = scene.prototypeMask();
+    for (size_t m = 0; m < scene.meshes.size(); ++m) {
+        if (!proto[m]) shiftPositions(scene.meshes[m].positions, shift);  // not object space
+    }
+    for (Instance& inst : scene.instances) {
+        for (int r = 0; r < 3; ++r) inst.objectToWorld.m[r][3] += shift[r];
+        inst.worldToObject = inst.objectToWorld.inverse();
+    }
+    for (Sphere& s : scene.spheres) move(s.center);
+    for (Light& l : scene.lights) move(l.position);
+    move(scene.camera.position);
+    scene.origin = origin;
+}
+
+Vec3d originFor(const Bounds3T<double>& bounds) {
+    if (bounds.empty()) return Vec3d(0.0);
+    Vec3d c = (bounds.lo + bounds.hi) * 0.5;
+    return maxComponent(abs(c)) > 4 * maxComponent(bounds.hi - bounds.lo) ? c : Vec3d(0.0);
+}
+
+Vec3d streamOrigin(const Vec3d& firstVertex) {
+    return maxComponent(abs(firstVertex)) > kFarFirstVertex ? firstVertex : Vec3d(0.0);
+}
+
+void appendMesh(Scene& scene, TriangleMesh&& mesh, const Vec3d& meshOrigin) {
+    Vec3d shift = meshOrigin - adoptOrigin(scene, meshOrigin);
+    if (shift != Vec3d(0.0)) shiftPositions(mesh.positions, shift);
+    scene.meshes.push_back(std::move(mesh));
+}
+
+Vec3d adoptOrigin(Scene& scene, const Vec3d& wanted) {
+    if (scene.holdsNothing()) scene.origin = wanted;
+    return scene.origin;
+}
+
 }  // namespace kiln

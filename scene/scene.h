@@ -131,6 +131,35 @@ struct Scene {
     Bounds3 storedBounds() const;
     uint64_t uniqueTriangles() const;     // stored triangles
     uint64_t instancedTriangles() const;  // triangles as rendered (instances expanded)
+    bool holdsNothing() const;            // no geometry, light or file camera stored yet
+
+    // Stored (float) coordinates of a world point, and back; the subtraction is in double so a
+    // point far from the origin keeps the precision of its distance to Scene::origin.
+    Vec3 stored(const Vec3d& world) const { return Vec3(world - origin); }
+    Vec3d world(const Vec3& stored) const { return Vec3d(stored) + origin; }
 };
+
+// Moves Scene::origin to `origin`, re-expressing everything stored in double (world = stored +
+// origin), so nothing is rounded at the old origin's magnitude.
+void rebaseScene(Scene& scene, const Vec3d& origin);
+
+// The origin for geometry with these world bounds: their centre when they sit far from the world
+// origin relative to their size (where float would round them), else the world origin, so scenes
+// near it are stored exactly as parsed.
+Vec3d originFor(const Bounds3T<double>& bounds);
+
+// Readers that stream positions (PLY, OBJ) cannot know the bounds before storing: they store
+// relative to the first vertex when it lies farther than this from the world origin (below it a
+// float keeps 1/16384 of a unit, and files are stored exactly as parsed).
+constexpr double kFarFirstVertex = 1024.0;
+Vec3d streamOrigin(const Vec3d& firstVertex);
+
+// Appends a mesh whose positions are relative to meshOrigin, re-expressed (in double) against the
+// scene's origin, which it sets when the scene holds nothing yet.
+void appendMesh(Scene& scene, TriangleMesh&& mesh, const Vec3d& meshOrigin);
+
+// The origin an importer stores against: `wanted` (usually the centre of what it reads, in double)
+// when the scene holds nothing yet, else the scene's own.
+Vec3d adoptOrigin(Scene& scene, const Vec3d& wanted);
 
 }  // namespace kiln

@@ -38,10 +38,16 @@ std::string quote(const std::string& s) {
 }  // namespace
 
 // Bounds in world coordinates (the scene is stored relative to Scene::origin).
-Bounds3 worldBoundsOf(const Scene& scene) {
+Bounds3T<double> worldBoundsExact(const Scene& scene) {
     Bounds3 b = scene.storedBounds();
-    if (b.empty()) return b;
-    return {Vec3(Vec3d(b.lo) + scene.origin), Vec3(Vec3d(b.hi) + scene.origin)};
+    if (b.empty()) return {};
+    return {scene.world(b.lo), scene.world(b.hi)};
+}
+
+Bounds3 worldBoundsOf(const Scene& scene) {
+    Bounds3T<double> b = worldBoundsExact(scene);
+    if (b.empty()) return {};
+    return {Vec3(b.lo), Vec3(b.hi)};
 }
 
 SceneSummary summarize(const Scene& scene) {
@@ -67,7 +73,7 @@ SceneSummary summarize(const Scene& scene) {
 std::string sceneInfoText(const Scene& scene) {
     SceneSummary s = summarize(scene);
     std::ostringstream os;
-    Bounds3 b = worldBoundsOf(scene);
+    Bounds3T<double> b = worldBoundsExact(scene);
     os << "scene       " << scene.sourcePath << "\n";
     os << "load        " << num(scene.loadSeconds) << " s\n";
     os << "geometry    " << s.triangles << " triangles (" << s.uniqueTriangles << " stored), "
@@ -146,7 +152,7 @@ std::string sceneInfoText(const Scene& scene) {
 
 std::string sceneInfoJson(const Scene& scene) {
     SceneSummary s = summarize(scene);
-    Bounds3 b = worldBoundsOf(scene);
+    Bounds3T<double> b = worldBoundsExact(scene);
     const Camera& c = scene.camera;
     std::ostringstream os;
     auto map = [&](const std::map<std::string, int>& m) {

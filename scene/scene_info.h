@@ -20,6 +20,7 @@ struct SceneSummary {
 
 SceneSummary summarize(const Scene& scene);
 Bounds3 worldBoundsOf(const Scene& scene);  // world coordinates (adds Scene::origin back)
+Bounds3T<double> worldBoundsExact(const Scene& scene);  // the same in double (far scenes)
 std::string sceneInfoText(const Scene& scene);
 std::string sceneInfoJson(const Scene& scene);
 

@@ -20,18 +20,15 @@
 namespace kiln {
 namespace {
 
-std::string lowerExtension(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
-    return ext;
-}
-
 // Spheres, lights and camera from the CGL pass; sphere materials join the scene's material list.
 void applyColladaExtras(const ColladaExtras& extras, Scene& scene) {
+    // The extras are stored relative to their own origin, normally the scene's too.
+    Vec3d shift = extras.origin - adoptOrigin(scene, extras.origin);
+    auto place = [&](Vec3 p) { return Vec3(Vec3d(p) + shift); };
     std::map<std::string, uint32_t> sphereMaterial;
     for (size_t i = 0; i < extras.spheres.size(); ++i) {
         Sphere s = extras.spheres[i];
+        s.center = place(s.center);
         const std::string& id = extras.sphereMaterialIds[i];
         auto known = sphereMaterial.find(id);
         if (known != sphereMaterial.end()) {
@@ -48,15 +45,26 @@ void applyColladaExtras(const ColladaExtras& extras, Scene& scene) {
         }
         scene.spheres.push_back(s);
     }
-    scene.lights.insert(scene.lights.end(), extras.lights.begin(), extras.lights.end());
+    for (Light l : extras.lights) {
+        l.position = place(l.position);
+        scene.lights.push_back(l);
+    }
     if (extras.camera) {
         scene.camera = *extras.camera;
+        scene.camera.position = place(extras.camera->position);
         scene.hasFileCamera = true;
     }
     scene.warnings.insert(scene.warnings.end(), extras.warnings.begin(), extras.warnings.end());
 }
 
 }  // namespace
+
+std::string lowerExtension(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
+}
 
 uint64_t countDuplicateTriangles(const Scene& scene) {
     // Hash each triangle's sorted vertex positions, sort the hashes, then confirm equal neighbours
@@ -114,22 +122,10 @@ void recenterScene(Scene& scene) {
     Bounds3 b = scene.storedBounds();
     if (b.empty()) return;
     Vec3 c = b.centroid();
-    // Only worth it (and only exact) when the scene sits far from the origin relative to its size.
+    // Only worth it when the scene sits far from its origin relative to its size (near the origin
+    // a shift would only round every coordinate once more).
     if (maxComponent(abs(c)) <= 4 * maxComponent(b.diagonal())) return;
-    std::vector<bool> proto = scene.prototypeMask();
-    for (size_t m = 0; m < scene.meshes.size(); ++m) {
-        if (proto[m]) continue;  // prototypes live in object space
-        std::vector<float>& p = scene.meshes[m].positions;
-        for (size_t v = 0; v + 2 < p.size(); v += 3) p[v] -= c.x, p[v + 1] -= c.y, p[v + 2] -= c.z;
-    }
-    for (Instance& inst : scene.instances) {
-        for (int r = 0; r < 3; ++r) inst.objectToWorld.m[r][3] -= double(c[r]);
-        inst.worldToObject = inst.objectToWorld.inverse();
-    }
-    for (Sphere& s : scene.spheres) s.center -= c;
-    for (Light& l : scene.lights) l.position -= c;
-    scene.camera.position -= c;
-    scene.origin = Vec3d(c);
+    rebaseScene(scene, scene.origin + Vec3d(c));
 }
 
 void importFile(const std::string& path, Scene& scene) {
@@ -157,14 +153,73 @@ void importFile(const std::string& path, Scene& scene) {
     }
 }
 
+namespace {
+
+// Importers check sizes before allocating; a library (Assimp) that does not still must not end in
+// a raw bad_alloc.
+void importOrRefuse(const std::string& path, Scene& scene) {
+    try {
+        importFile(path, scene);
+    } catch (const std::bad_alloc&) {
+        throw SceneError(path,
+                         "out of memory while reading the file (sizes it declares are "
+                         "larger than this machine can hold)");
+    } catch (const std::length_error& e) {
+        throw SceneError(path,
+                         std::string("sizes the file declares are impossible (") + e.what() + ")");
+    }
+}
+
+// Lights that add nothing (zero radiance, zero-area rectangles, closed spot cones), each named.
+void warnDarkLights(Scene& scene) {
+    size_t dark = 0;
+    for (const Light& l : scene.lights) {
+        bool zero =
+            !(maxComponent(l.radiance) > 0) ||
+            (l.kind == LightKind::Area && !l.hasMesh && !(length(cross(l.dimX, l.dimY)) > 0)) ||
+            (l.kind == LightKind::Spot && !(l.spotOuterDeg > 0));
+        if (!zero) continue;
+        ++dark;
+        scene.warnings.push_back("light '" + l.name + "' (" + toString(l.kind) +
+                                 ") has zero power and lights nothing");
+    }
+    if (dark > 0 && dark == scene.lights.size())
+        scene.warnings.push_back("every light has zero power: only emission will be visible");
+}
+
+// Beyond 2^24 / 100 the float spacing at the scene's far edge exceeds 1% of a typical edge.
+void warnFloatResolution(Scene& scene) {
+    Bounds3 b = scene.storedBounds();
+    if (b.empty()) return;
+    double reach = std::max(maxComponent(abs(b.lo)), maxComponent(abs(b.hi)));
+    double edges = 0;
+    uint64_t counted = 0;
+    for (const TriangleMesh& m : scene.meshes)
+        for (size_t t = 0; t < m.triangleCount() && counted < 100000; ++t, ++counted)
+            edges += length(m.vertex(m.indices[3 * t + 1]) - m.vertex(m.indices[3 * t]));
+    if (counted == 0 || !(edges > 0)) return;
+    double typical = edges / double(counted), spacing = reach * std::ldexp(1.0, -24);
+    if (spacing > 0.01 * typical) {
+        char msg[240];
+        std::snprintf(msg, sizeof msg,
+                      "the scene reaches %.3g units from its centre but its edges are about %.3g "
+                      "long: float spacing there (%.3g) blurs details",
+                      reach, typical, spacing);
+        scene.warnings.push_back(msg);
+    }
+}
+
+}  // namespace
+
 Scene loadScene(const std::string& path, const LoadOptions& options) {
     auto start = std::chrono::steady_clock::now();
     Scene scene;
     scene.sourcePath = path;
-    importFile(path, scene);
+    importOrRefuse(path, scene);
     std::string ext = lowerExtension(path);
     validateScene(scene);
     recenterScene(scene);
+    warnFloatResolution(scene);
     // The check costs about 0.1 s per million triangles (random vertex reads and a sort): above 20M
     // the tie rule for exact duplicates is not enforced (kiln info says so).
     constexpr uint64_t kDuplicateCheckLimit = 20'000'000;
@@ -196,10 +251,7 @@ Scene loadScene(const std::string& path, const LoadOptions& options) {
             scene.warnings.push_back("scene has no lights; using the default light rig");
         addDefaultLightRig(scene);
     }
-    bool allDark = std::all_of(scene.lights.begin(), scene.lights.end(),
-                               [](const Light& l) { return maxComponent(l.radiance) <= 0; });
-    if (allDark)
-        scene.warnings.push_back("every light has zero power: only emission will be visible");
+    warnDarkLights(scene);
 
     using Rule = LoadOptions::CameraRule;
     if (!scene.hasFileCamera)
@@ -211,6 +263,7 @@ Scene loadScene(const std::string& path, const LoadOptions& options) {
         scene.hasFileCamera &&
         (options.cameraRule == Rule::Framed || (options.cameraRule == Rule::Auto && scene.isCs184));
 
+    validateView(scene);
     scene.loadSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return scene;

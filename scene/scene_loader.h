@@ -19,8 +19,17 @@ struct LoadOptions {
 // Throws SceneError (one line: file and problem) on anything it cannot load.
 Scene loadScene(const std::string& path, const LoadOptions& options = {});
 
-// Checks the geometry: finite vertices, indices in range, something to render.
-void validateScene(const Scene& scene);
+// Checks the geometry: finite vertices, indices in range, something to render (triangles of zero
+// area do not count; a mesh made only of them is a warning).
+void validateScene(Scene& scene);
+
+// Checks, before any ray is traced, what would make rays invalid: a camera with no direction, a
+// field of view outside (0, 180), clip planes out of order, a scene extent float cannot trace.
+void validateView(const Scene& scene);
+void validateCamera(const std::string& file, const Camera& camera);
+
+// Largest extent (after recentring) kiln traces: beyond it squared distances leave float's range.
+constexpr float kMaxSceneExtent = 1e15f;
 
 // Lights for files that bring none: a key directional light and a dim sky (ambient) fill.
 void addDefaultLightRig(Scene& scene);

@@ -1,11 +1,82 @@
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <functional>
 
 #include "scene/scene_error.h"
 #include "scene/scene_loader.h"
 
 namespace kiln {
 
-void validateScene(const Scene& scene) {
+namespace {
+
+uint64_t zeroAreaTriangles(const TriangleMesh& mesh) {
+    return tbb::parallel_reduce(
+        tbb::blocked_range<size_t>(0, mesh.triangleCount(), 1 << 16), uint64_t(0),
+        [&](const tbb::blocked_range<size_t>& r, uint64_t n) {
+            for (size_t t = r.begin(); t != r.end(); ++t) {
+                Vec3 a = mesh.vertex(mesh.indices[3 * t]), b = mesh.vertex(mesh.indices[3 * t + 1]),
+                     c = mesh.vertex(mesh.indices[3 * t + 2]);
+                Vec3 n2 = cross(b - a, c - a);
+                n += !(dot(n2, n2) > 0);
+            }
+            return n;
+        },
+        std::plus<uint64_t>());
+}
+
+// Meshes made only of zero-area triangles show nothing: a warning each, an error when nothing
+// else is left to render. Called after the index checks.
+void checkDegenerate(Scene& scene) {
+    uint64_t visible = 0;
+    for (const TriangleMesh& mesh : scene.meshes) {
+        uint64_t zero = zeroAreaTriangles(mesh);
+        uint64_t rest = mesh.triangleCount() - zero;
+        visible += rest;
+        if (zero > 0 && rest == 0)
+            scene.warnings.push_back("mesh '" + mesh.name + "': all " + std::to_string(zero) +
+                                     " triangles have zero area and cannot be seen");
+    }
+    if (visible == 0 && scene.spheres.empty())
+        throw SceneError(
+            scene.sourcePath,
+            "nothing to render: every triangle has zero area and there are no spheres");
+}
+
+}  // namespace
+
+void validateCamera(const std::string& file, const Camera& c) {
+    if (!isFinite(c.position) || !isFinite(c.forward) || !isFinite(c.up))
+        throw SceneError(file, "the camera has a non-finite position or direction");
+    if (!(length(c.forward) > 0)) throw SceneError(file, "the camera has no view direction");
+    if (!(c.hFovDeg > 0 && c.hFovDeg < 180 && c.vFovDeg > 0 && c.vFovDeg < 180))
+        throw SceneError(file, "the camera's field of view is outside (0, 180) degrees");
+    if (!(c.nearClip >= 0 && c.farClip > c.nearClip))
+        throw SceneError(file, "the camera's clip planes are not 0 <= near < far");
+    if (!(c.apertureRadius >= 0 && std::isfinite(c.apertureRadius) && c.focalDistance > 0))
+        throw SceneError(file, "the camera's lens has a negative aperture or no focal distance");
+}
+
+void validateView(const Scene& scene) {
+    validateCamera(scene.sourcePath, scene.camera);
+    Bounds3 b = scene.storedBounds();
+    b.extend(scene.camera.position);
+    float extent = maxComponent(b.diagonal());
+    float reach = std::max(maxComponent(abs(b.lo)), maxComponent(abs(b.hi)));
+    if (!(extent <= kMaxSceneExtent && reach <= kMaxSceneExtent)) {
+        char msg[200];
+        std::snprintf(msg, sizeof msg,
+                      "the scene and camera span %.3g units; kiln traces at most %.0e (float "
+                      "distances would overflow)",
+                      double(std::max(extent, reach)), double(kMaxSceneExtent));
+        throw SceneError(scene.sourcePath, msg);
+    }
+}
+
+void validateScene(Scene& scene) {
     const std::string& file = scene.sourcePath;
     if (scene.uniqueTriangles() == 0 && scene.spheres.empty())
         throw SceneError(file, "empty scene: no triangles and no spheres to render");
@@ -53,6 +124,7 @@ void validateScene(const Scene& scene) {
         if (l.radiance.x < 0 || l.radiance.y < 0 || l.radiance.z < 0)
             throw SceneError(file, "light '" + l.name + "' has negative radiance");
     }
+    checkDegenerate(scene);
 }
 
 }  // namespace kiln

@@ -1,5 +1,10 @@
 // Bad input: a one-line SceneError naming the file and the problem, never a crash.
+#include <cstring>
+#include <tuple>
+
+#include "renderer/geometry/camera.h"
 #include "scene/scene_error.h"
+#include "scene/scene_info.h"
 #include "scene/scene_loader.h"
 #include "test_support.h"
 
@@ -180,6 +185,153 @@ TEST(BadInput, UnreadableEnvironmentMap) {
         EXPECT_NE(std::string(e.what()).find("cannot read environment map"), std::string::npos)
             << e.what();
     }
+}
+
+// A garbled COLLADA count or index list is refused by kiln's XML pass before Assimp (which
+// dereferences null or allocates without bound on them) ever sees it.
+TEST(BadInput, GarbledColladaCountsNeverReachAssimp) {
+    auto dir = test::scratchDir();
+    std::string good = collada("");
+    for (auto [from, to, what] : {
+             std::tuple{R"(count="9">)", R"(count="0">)", "holds 9 numbers"},
+             std::tuple{R"(count="9">)", R"(count="">)", "not a non-negative integer"},
+             std::tuple{R"(count="9">)", R"(count="-6">)", "not a non-negative integer"},
+             std::tuple{R"(count="9">)", R"(count="abc">)", "not a non-negative integer"},
+             std::tuple{R"(count="3" stride="3")", R"(count="30" stride="3")", "reads 90 values"},
+             std::tuple{"<p>0 1 2</p>", "<p>0 1 -1e39</p>", "not a non-negative integer"},
+             std::tuple{"<p>0 1 2</p>", "<p>0 1 2.5</p>", "not a non-negative integer"},
+         }) {
+        std::string text = good;
+        ASSERT_NE(text.find(from), std::string::npos) << from;
+        text.replace(text.find(from), std::string(from).size(), to);
+        expectError(test::writeFile(dir / "garbled_count.dae", text), what);
+    }
+}
+
+TEST(BadInput, StrictAsciiPlyNumbers) {
+    auto dir = test::scratchDir();
+    auto ply = [](const std::string& faceCount, const std::string& face) {
+        return "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+               "property float z\nelement face " +
+               faceCount +
+               "\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n" +
+               face + "\n";
+    };
+    EXPECT_NO_THROW(loadScene(test::writeFile(dir / "ok.ply", ply("1", "3 0 1 2"))));
+    for (auto [count, face, what] : {
+             std::tuple{"1,5", "3 0 1 2", "malformed PLY element line"},
+             std::tuple{"1x", "3 0 1 2", "malformed PLY element line"},
+             std::tuple{"-1", "3 0 1 2", "malformed PLY element line"},
+             std::tuple{"1", "3 0 1 2.7", "non-integer"},
+             std::tuple{"1", "3.9 0 1 2", "non-integer"},
+             std::tuple{"1", "3 0 1x 2", "garbled number"},
+         })
+        expectError(test::writeFile(dir / "strict.ply", ply(count, face)), what);
+}
+
+// glTF: 3 vertices, indices 0 1 5. Assimp drops such faces with only a log line.
+TEST(BadInput, GltfIndexOutOfRange) {
+    auto dir = test::scratchDir();
+    std::string bin(44, '\0');
+    float pos[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    uint16_t idx[4] = {0, 1, 5, 0};
+    std::memcpy(bin.data(), pos, 36);
+    std::memcpy(bin.data() + 36, idx, 8);
+    test::writeFile(dir / "buf.bin", bin);
+    std::string gltf =
+        R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}], "buffers": [{"byteLength": 44, "uri": "buf.bin"}], "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6}], "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}, {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}]})";
+    expectError(test::writeFile(dir / "range.gltf", gltf), "out of range");
+}
+
+TEST(BadInput, KilnSceneMistakesAreErrors) {
+    auto dir = test::scratchDir();
+    test::writeFile(dir / "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    for (auto [body, what] : {
+             std::pair{R"(<mesh file="tri.obj" translat="1 0 0"/>)",
+                       "unknown attribute 'translat'"},
+             std::pair{R"(<mesh file="tri.obj"><fitt center="0 0 0" size="1"/></mesh>)",
+                       "unknown element <fitt>"},
+             std::pair{
+                 R"(<mesh file="tri.obj"/><camera position="0 0 5" look-at="0 0 0" fov="0"/>)",
+                 "fov must be between 0 and 180"},
+             std::pair{
+                 R"(<mesh file="tri.obj"/><camera position="0 0 5" look-at="0 0 0" fov="180"/>)",
+                 "fov must be between 0 and 180"},
+             std::pair{
+                 R"(<mesh file="tri.obj"/><camera position="0 0 5" look-at="0 0 0" fov="-30"/>)",
+                 "fov must be between 0 and 180"},
+             std::pair{
+                 R"(<mesh file="tri.obj"/><camera position="1 2 3" look-at="1 2 3" fov="40"/>)",
+                 "are the same point"},
+             std::pair{R"(<instances file="tri.obj" grid="100000 100000 100000" spacing="1"/>)",
+                       "would need about"},
+             std::pair{R"(<instances file="tri.obj" grid="2.5 1 1" spacing="1"/>)",
+                       "whole numbers"},
+             std::pair{R"(<mesh file="missing.ply"/>)", "missing.ply: no such file"},
+         }) {
+        std::string path =
+            test::writeFile(dir / "bad.kiln", std::string("<kiln-scene>") + body + "</kiln-scene>");
+        expectError(path, what);
+    }
+}
+
+TEST(BadInput, KilnIncludeCycleIsAnError) {
+    auto dir = test::scratchDir();
+    test::writeFile(dir / "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    std::string self = test::writeFile(
+        dir / "self.kiln",
+        R"(<kiln-scene><mesh file="tri.obj"/><include file="self.kiln"/></kiln-scene>)");
+    expectError(self, "include cycle");
+    test::writeFile(dir / "a.kiln", R"(<kiln-scene><include file="b.kiln"/></kiln-scene>)");
+    test::writeFile(dir / "b.kiln", R"(<kiln-scene><include file="a.kiln"/></kiln-scene>)");
+    expectError((dir / "a.kiln").string(), "include cycle");
+}
+
+TEST(BadInput, OnlyZeroAreaTrianglesIsAnError) {
+    auto dir = test::scratchDir();
+    expectError(test::writeFile(dir / "flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n"),
+                "every triangle has zero area");
+    // One such mesh beside a visible one: a warning naming it.
+    Scene s = loadScene(test::writeFile(
+        dir / "mixed.obj",
+        "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\no line\nf 1 2 3\no visible\nf 1 2 4\n"));
+    bool warned = false;
+    for (const std::string& w : s.warnings)
+        warned |= w.find("'line': all 1 triangles have zero area") != std::string::npos;
+    EXPECT_TRUE(warned);
+}
+
+TEST(BadInput, ZeroPowerFileLightsWarnAndInfoSaysSo) {
+    auto dir = test::scratchDir();
+    std::string light =
+        R"(<light id="l"><technique_common><point><color>0 0 0</color></point></technique_common></light>)";
+    std::string text = collada("", "0 0 0 1 0 0 0 1 0", "0 1 2", light);
+    text.replace(text.find("</visual_scene>"), 0,
+                 R"(<node id="ln"><instance_light url="#l"/></node>)");
+    Scene s = loadScene(test::writeFile(dir / "zero.dae", text));
+    std::string info = sceneInfoText(s);
+    EXPECT_NE(info.find("has zero power"), std::string::npos) << info;
+    EXPECT_NE(info.find("every light has zero power"), std::string::npos) << info;
+}
+
+TEST(BadInput, InvalidCameraIsRefusedBeforeAnyRay) {
+    Camera c;
+    c.forward = Vec3(0.0f);
+    EXPECT_THROW(validateCamera("x", c), SceneError);
+    c = Camera{};
+    c.hFovDeg = 180;
+    EXPECT_THROW(validateCamera("x", c), SceneError);
+    c = Camera{};
+    c.position = Vec3(std::nanf(""), 0, 0);
+    EXPECT_THROW(CameraModel(c, 8, 8), SceneError);
+    EXPECT_NO_THROW(CameraModel(Camera{}, 8, 8));
+}
+
+TEST(BadInput, SceneSpanningBeyondFloatIsRefused) {
+    auto dir = test::scratchDir();
+    expectError(test::writeFile(dir / "huge.obj",
+                                "v -1e18 0 0\nv 1e18 0 0\nv 0 1e18 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\n"),
+                "kiln traces at most");
 }
 
 }  // namespace

@@ -3,11 +3,18 @@
 #include <cmath>
 
 #include "scene/framing.h"
+#include "scene/scene_error.h"
+#include "scene/scene_loader.h"
 
 namespace kiln {
 
 CameraModel::CameraModel(const Camera& camera, int width, int height)
     : cam_(camera), width_(width), height_(height), hFov_(camera.hFovDeg), vFov_(camera.vFovDeg) {
+    // A camera that did not come through loadScene is checked here: no invalid ray reaches Embree.
+    validateCamera("camera", camera);
+    if (width <= 0 || height <= 0)
+        throw SceneError("camera", "image size must be positive, not " + std::to_string(width) +
+                                       " x " + std::to_string(height));
     fitFovToAspect(hFov_, vFov_, float(width) / float(height));
     tanX_ = std::tan(radians(hFov_) / 2);
     tanY_ = std::tan(radians(vFov_) / 2);

@@ -1,0 +1,174 @@
+// Cameras, lights and materials read through Assimp and the COLLADA pass, each compared with the
+// value written in a file the test writes itself.
+#include <filesystem>
+
+#include "scene/scene_loader.h"
+#include "test_support.h"
+
+namespace kiln {
+namespace {
+
+// A one-triangle glTF 2.0 scene (base64 buffer) with `cameraNodes` and `cameras` spliced in.
+std::string gltf(const std::string& cameraNodes, const std::string& cameras) {
+    return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1]}], "nodes": [{"mesh": 0}, )" +
+           cameraNodes + R"(], "cameras": [)" + cameras +
+           R"(], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}], "buffers": [{"byteLength": 44, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAABAAIAAAA="}], "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6}], "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}, {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}]})";
+}
+
+Scene loadAsFile(const std::string& path) {
+    LoadOptions o;
+    o.cameraRule = LoadOptions::CameraRule::File;
+    return loadScene(path, o);
+}
+
+bool hasWarning(const Scene& s, const std::string& text) {
+    for (const std::string& w : s.warnings)
+        if (w.find(text) != std::string::npos) return true;
+    return false;
+}
+
+// yfov 0.7 rad (40.107 degrees) at aspect 1.5, node at (0.5, 0.5, 3): Assimp reports
+// mHorizontalFOV = yfov * aspect and copies the node's translation into mPosition.
+TEST(ImportCameras, GltfFieldOfViewAndPositionAsWritten) {
+    auto dir = test::scratchDir();
+    Scene s = loadAsFile(test::writeFile(
+        dir / "cam.gltf",
+        gltf(
+            R"({"translation": [0.5, 0.5, 3.0], "camera": 0})",
+            R"({"type": "perspective", "perspective": {"aspectRatio": 1.5, "yfov": 0.7, "zfar": 100, "znear": 0.01}})")));
+    ASSERT_TRUE(s.hasFileCamera);
+    EXPECT_NEAR(s.camera.vFovDeg, 0.7 * 180 / 3.14159265358979, 1e-3);
+    EXPECT_NEAR(s.camera.hFovDeg, 2 * std::atan(std::tan(0.35) * 1.5) * 180 / 3.14159265358979,
+                1e-3);
+    Vec3d p = s.world(s.camera.position);
+    EXPECT_NEAR(p.x, 0.5, 1e-6);
+    EXPECT_NEAR(p.y, 0.5, 1e-6);
+    EXPECT_NEAR(p.z, 3.0, 1e-6);
+    EXPECT_NEAR(s.camera.forward.z, -1.0f, 1e-6f);
+    EXPECT_NEAR(s.camera.nearClip, 0.01f, 1e-7f);
+}
+
+TEST(ImportCameras, OrthographicCameraWarnsAndFramesTheScene) {
+    auto dir = test::scratchDir();
+    Scene s = loadScene(test::writeFile(
+        dir / "ortho.gltf",
+        gltf(
+            R"({"translation": [0.5, 0.5, 3.0], "camera": 0})",
+            R"({"type": "orthographic", "orthographic": {"xmag": 1.0, "ymag": 1.0, "zfar": 100, "znear": 0.01}})")));
+    EXPECT_FALSE(s.hasFileCamera);
+    EXPECT_TRUE(hasWarning(s, "orthographic")) << (s.warnings.empty() ? "" : s.warnings[0]);
+}
+
+// NFF states the full angle ("angle 60") and a from/at pair.
+TEST(ImportCameras, NffAngleIsTheFullHorizontalAngle) {
+    auto dir = test::scratchDir();
+    Scene s = loadAsFile(test::writeFile(
+        dir / "cam.nff",
+        "v\nfrom 0 3 10\nat 0 0 0\nup 0 1 0\nangle 60\nhither 0.1\nresolution 640 480\n\n"
+        "f 1 0 0 0.8 .8 20 0 1\np 3\n-1 -1 0\n1 -1 0\n0 1 0\n"));
+    ASSERT_TRUE(s.hasFileCamera);
+    EXPECT_NEAR(s.camera.hFovDeg, 60.0f, 1e-3f);
+    Vec3d p = s.world(s.camera.position);
+    EXPECT_NEAR(p.y, 3.0, 1e-5);
+    EXPECT_NEAR(p.z, 10.0, 1e-5);
+    Vec3 toOrigin = normalize(Vec3(-Vec3(p)));
+    EXPECT_GT(dot(s.camera.forward, toOrigin), 0.9999f);
+}
+
+// ASE and LWS cameras look down their node's -Z; Assimp reports +Z. Their cameras in Assimp's
+// own test files must look at the scene.
+TEST(ImportCameras, AseAndLwsCamerasLookAtTheScene) {
+    for (const char* rel : {"ASE/CameraRollAnim.ase", "LWS/move_x.lws"}) {
+        std::string path = std::string("/usr/share/assimp/models/") + rel;
+        ASSERT_TRUE(std::filesystem::exists(path)) << "assimp-testmodels (tools/setup.sh) missing";
+        Scene s = loadAsFile(path);
+        ASSERT_TRUE(s.hasFileCamera) << rel;
+        Bounds3 b = s.storedBounds();
+        Vec3 toScene = normalize(b.centroid() - s.camera.position);
+        EXPECT_GT(dot(s.camera.forward, toScene), std::cos(radians(20.0f))) << rel;
+    }
+}
+
+// SMD materials carry no diffuse colour: Assimp's Get() would write black into the default grey.
+TEST(ImportCameras, MissingDiffuseKeepsTheDefaultAlbedo) {
+    auto dir = test::scratchDir();
+    Scene s = loadScene(test::writeFile(
+        dir / "tri.smd",
+        "version 1\nnodes\n  0 \"root\" -1\nend\nskeleton\ntime 0\n  0 0 0 0 0 0 0\nend\n"
+        "triangles\nnone.tga\n0  0 0 0 0 0 1 0 0\n0  1 0 0 0 0 1 1 0\n0  1 1 0 0 0 1 1 1\nend\n"));
+    ASSERT_FALSE(s.materials.empty());
+    EXPECT_EQ(s.materials[0].albedo, Material{}.albedo);
+}
+
+// <unit meter="0.01">: Assimp scales the geometry; the CGL pass must scale the camera (position
+// and clip planes), lights and spheres alike.
+TEST(ImportCameras, ColladaUnitScalesCameraAndLights) {
+    auto dir = test::scratchDir();
+    std::string dae = R"(<?xml version="1.0"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+<asset><unit meter="0.01" name="centimeter"/><up_axis>Y_UP</up_axis></asset>
+<library_cameras><camera id="c"><optics><technique_common><perspective><yfov>40</yfov><aspect_ratio>1</aspect_ratio><znear>10</znear><zfar>10000</zfar></perspective></technique_common></optics></camera></library_cameras>
+<library_lights><light id="l"><technique_common><point><color>1 1 1</color></point></technique_common></light></library_lights>
+<library_geometries><geometry id="g"><mesh>
+<source id="p"><float_array id="pa" count="9">-100 0 0 100 0 0 0 100 0</float_array>
+<technique_common><accessor source="#pa" count="3" stride="3"><param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/></accessor></technique_common></source>
+<vertices id="v"><input semantic="POSITION" source="#p"/></vertices>
+<triangles count="1"><input semantic="VERTEX" source="#v" offset="0"/><p>0 1 2</p></triangles>
+</mesh></geometry></library_geometries>
+<library_visual_scenes><visual_scene id="s">
+<node id="n"><instance_geometry url="#g"/></node>
+<node id="cn"><translate>0 50 500</translate><instance_camera url="#c"/></node>
+<node id="ln"><translate>0 300 0</translate><instance_light url="#l"/></node>
+</visual_scene></library_visual_scenes>
+<scene><instance_visual_scene url="#s"/></scene></COLLADA>
+)";
+    Scene s = loadAsFile(test::writeFile(dir / "cm.dae", dae));
+    Bounds3 b = s.storedBounds();
+    EXPECT_NEAR(b.hi.x - b.lo.x, 2.0f, 1e-5f);  // geometry: 200 cm
+    Vec3d cam = s.world(s.camera.position);
+    EXPECT_NEAR(cam.y, 0.5, 1e-6);
+    EXPECT_NEAR(cam.z, 5.0, 1e-6);
+    EXPECT_NEAR(s.camera.nearClip, 0.1f, 1e-7f);
+    EXPECT_NEAR(s.camera.farClip, 100.0f, 1e-4f);
+    const Light* point = test::findLight(s, LightKind::Point);
+    ASSERT_NE(point, nullptr);
+    EXPECT_NEAR(s.world(point->position).y, 3.0, 1e-6);
+}
+
+// The same COLLADA read by Assimp alone (.xml): its camera's near clip is in centimetres too.
+// (Assimp 5.2 ignores the optics of a COLLADA camera without a name attribute.)
+TEST(ImportCameras, AssimpCameraClipPlanesFollowTheNodeScale) {
+    auto dir = test::scratchDir();
+    std::string dae = R"(<?xml version="1.0"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+<asset><unit meter="0.01" name="centimeter"/><up_axis>Y_UP</up_axis></asset>
+<library_cameras><camera id="c" name="c"><optics><technique_common><perspective><yfov>40</yfov><aspect_ratio>1</aspect_ratio><znear>10</znear><zfar>10000</zfar></perspective></technique_common></optics></camera></library_cameras>
+<library_geometries><geometry id="g"><mesh>
+<source id="p"><float_array id="pa" count="9">-100 0 0 100 0 0 0 100 0</float_array>
+<technique_common><accessor source="#pa" count="3" stride="3"><param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/></accessor></technique_common></source>
+<vertices id="v"><input semantic="POSITION" source="#p"/></vertices>
+<triangles count="1"><input semantic="VERTEX" source="#v" offset="0"/><p>0 1 2</p></triangles>
+</mesh></geometry></library_geometries>
+<library_visual_scenes><visual_scene id="s">
+<node id="n"><instance_geometry url="#g"/></node>
+<node id="cn"><translate>0 50 500</translate><instance_camera url="#c"/></node>
+</visual_scene></library_visual_scenes>
+<scene><instance_visual_scene url="#s"/></scene></COLLADA>
+)";
+    Scene s = loadAsFile(test::writeFile(dir / "cm.xml", dae));
+    ASSERT_TRUE(s.hasFileCamera);
+    EXPECT_NEAR(s.camera.nearClip, 0.1f, 1e-6f);
+    EXPECT_NEAR(s.world(s.camera.position).z, 5.0, 1e-5);
+    EXPECT_NEAR(s.camera.vFovDeg, 40.0f, 1e-3f);
+}
+
+// A flat mesh in the x = 0 plane would be seen edge-on by the default (+Z) framing.
+TEST(ImportCameras, FlatSceneIsFramedFaceOn) {
+    auto dir = test::scratchDir();
+    Scene s = loadScene(
+        test::writeFile(dir / "wall.obj", "v 0 0 0\nv 0 1 0\nv 0 1 1\nv 0 0 1\nf 1 2 3 4\n"));
+    EXPECT_GT(std::abs(s.camera.forward.x), 0.9f);
+}
+
+}  // namespace
+}  // namespace kiln

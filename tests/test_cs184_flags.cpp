@@ -5,6 +5,9 @@
 #include <cmath>
 
 #include "color/image_output.h"
+#include "renderer/accel/brute_force.h"
+#include "renderer/core/sampler.h"
+#include "scene/scene_loader.h"
 #include "test_support.h"
 
 namespace kiln {
@@ -90,6 +93,45 @@ TEST(Cs184View, ExposureScalesTheLightBeforeTheDisplay) {
     EXPECT_NE(a, readPixels((dir / "c.png").string()));
 }
 
+// Brute force finds exactly the reference BVH's hits (same primitive tests, same tie rule) on
+// triangles, spheres and instances, and the same occlusion.
+TEST(BruteForce, HitsWhatTheReferenceBvhHits) {
+    Scene spheres = loadScene(test::cs184("sky/CBspheres_lambertian.dae"));
+    Scene cow = loadScene(test::cs184("meshedit/cow.dae"));
+    Scene instanced = test::sceneWith(test::sphereMesh(8, 16));
+    for (int i = 0; i < 4; ++i) {
+        Mat4 xf;
+        xf.m[0][0] = xf.m[1][1] = xf.m[2][2] = 0.5 + 0.1 * i;
+        xf.m[0][3] = (i % 2) * 1.5 - 0.75, xf.m[1][3] = (i / 2) * 1.5 - 0.75;
+        instanced.instances.push_back(Instance::place(0, xf));
+    }
+    for (const Scene* s : {&spheres, &cow, &instanced}) {
+        auto brute = makeBruteForceAccelerator(*s), bvh = makeReferenceAccelerator(*s);
+        Bounds3 box = s->storedBounds();
+        Vec3 centre = box.centroid(), extent = box.hi - box.lo;
+        int hits = 0;
+        for (int i = 0; i < 3000; ++i) {
+            Sampler r(7, uint64_t(i), 0);
+            Vec3 from = centre + Vec3(r.next1D() - 0.5f, r.next1D() - 0.5f, r.next1D() - 0.5f) *
+                                     extent * 2.0f;
+            Vec3 to = centre +
+                      Vec3(r.next1D() - 0.5f, r.next1D() - 0.5f, r.next1D() - 0.5f) * extent * 0.8f;
+            Ray ray{from, 0, to - from, kInfinity};
+            Hit a, b;
+            bool ha = brute->intersect(ray, a), hb = bvh->intersect(ray, b);
+            ASSERT_EQ(ha, hb) << s->sourcePath << " ray " << i;
+            EXPECT_EQ(brute->occluded(ray), ha);
+            if (!ha) continue;
+            ++hits;
+            EXPECT_EQ(a.t, b.t);
+            EXPECT_EQ(a.shape, b.shape);
+            EXPECT_EQ(a.prim, b.prim);
+            EXPECT_EQ(a.instance, b.instance);
+        }
+        EXPECT_GT(hits, 300) << s->sourcePath;
+    }
+}
+
 class Cs184Flags : public ::testing::Test {
   protected:
     std::string scene = test::cs184("sky/CBspheres_lambertian.dae");
@@ -137,6 +179,14 @@ TEST_F(Cs184Flags, CourseShortFlagsMeanTheLongOnes) {
     ASSERT_EQ(render("-H -l 8", "h8"), 0);
     EXPECT_NE(exr("h1"), exr("h8"));
     EXPECT_EQ(render("--exposure nan", "bad"), 2);
+    // Brute force renders small jobs exactly as the BVH does, and refuses one of hours at once.
+    ASSERT_EQ(render("--accel brute", "brute"), 0);
+    ASSERT_EQ(render("--accel reference", "bvh"), 0);
+    EXPECT_EQ(exr("brute"), exr("bvh"));
+    EXPECT_EQ(kiln("render " + test::cs184("meshedit/cow.dae") +
+                   " -r 1920 1080 -s 256 -q --accel brute --output " + (dir / "slow").string()),
+              2);
+    EXPECT_FALSE(std::filesystem::exists(dir / "slow.exr"));
     EXPECT_EQ(render("--view NoSuchView", "bad"), 2);
 }
 

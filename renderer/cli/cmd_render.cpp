@@ -259,7 +259,7 @@ int runRender(const std::vector<std::string>& args) {
     for (const std::string& w : scene.warnings)
         std::fprintf(stderr, "kiln: warning: %s: %s\n", scenePath.c_str(), w.c_str());
     auto t1 = std::chrono::steady_clock::now();
-    std::unique_ptr<Accelerator> accel = c.accel.build(scene);
+    std::unique_ptr<Accelerator> accel = c.accel.build(scene, &jobOptions);
     double buildTime = seconds(t1);
     RenderJob job(scene, *accel, jobOptions);
     warnHemisphereBlind(job, scenePath);

@@ -251,7 +251,7 @@ void Cs184Report::timingTable(SceneReport& s, Size size, double share) {
 }
 
 void Cs184Report::figures(SceneReport& s, std::vector<Figure>& figs, Size size) {
-    int part = 0;
+    int part = 1;  // the timing table opened part 1
     const char* parts[] = {"",
                            "Part 1: ray generation and intersection",
                            "Part 2: direct lighting",

@@ -69,7 +69,7 @@ std::string HtmlPage::html() const {
            "</title>\n<style>\n"
            "body{font-family:sans-serif;margin:2em;max-width:1400px;color:#222}\n"
            ".row{display:flex;flex-wrap:wrap;gap:12px;margin:8px 0}\n"
-           "figure{margin:0;max-width:340px}figure img{width:100%;image-rendering:pixelated;"
+           "figure{margin:0;width:300px}figure img{width:100%;image-rendering:pixelated;"
            "border:1px solid #ccc}\n"
            "figcaption{font-size:12px}code,pre{font-size:11px;color:#555}\n"
            "table{border-collapse:collapse;margin:8px 0}td,th{border:1px solid #bbb;"

@@ -7,6 +7,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <stdexcept>
@@ -113,8 +114,10 @@ void writeExr(const std::string& path, const Film& film, const Metadata& metadat
 }
 
 void writePreview(const std::string& path, const Film& film, const std::string& display,
-                  const std::string& view) {
+                  const std::string& view, float exposureStops) {
     OIIO::ImageBuf linear = beautyBuffer(film);
+    if (exposureStops != 0)
+        OIIO::ImageBufAlgo::mul(linear, linear, std::exp2(exposureStops));  // --exposure
     OIIO::ImageBuf shown;
     if (!OIIO::ImageBufAlgo::ociodisplay(shown, linear, display, view, "lin_rec709", "", false, "",
                                          "", &colorConfig()))

@@ -31,9 +31,10 @@ void writeSampleHeatMap(const std::string& path, const Film& film);
 // rendering).
 void checkDisplayView(const std::string& display, const std::string& view);
 
-// Display-referred 8-bit preview through the OCIO display/view.
+// Display-referred 8-bit preview through the OCIO display/view, the scene light first scaled by
+// 2^exposureStops.
 void writePreview(const std::string& path, const Film& film, const std::string& display = "sRGB",
-                  const std::string& view = "Standard");
+                  const std::string& view = "Standard", float exposureStops = 0);
 
 // The scene-linear -> display transform of one value (for tests and tools).
 float displayTransform(float linear, const std::string& display = "sRGB",

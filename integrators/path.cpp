@@ -113,6 +113,29 @@ void PathIntegrator::addLight(SampleRecord& rec, int bounce, const Color& c, Lob
     if (bounce >= 1 && bounce <= aovs_.bounceLayers) rec.bounces[bounce - 1] += c;
 }
 
+Color PathIntegrator::emissionAt(const Ray& ray, const Hit& hit, const SurfaceInteraction& si,
+                                 int& li) const {
+    li = (hit.shape != kSphereShape && hit.instance == kInvalidId) ? lights_.lightOfMesh(hit.shape)
+                                                                   : -1;
+    return li >= 0 ? lights_.emitted(size_t(li), si.p, si.ng, ray.origin)
+                   : scene_.materials[si.material].emission;
+}
+
+template <bool Infinite>
+Color PathIntegrator::probeEmission(const Ray& ray, const Hit& hit) const {
+    Color Le(0.0f);
+    if (!hit.valid()) {
+        if constexpr (Infinite)
+            for (size_t i : lights_.infiniteLights())
+                Le += lights_.escaped(i, normalize(ray.dir), false);
+        return Le;
+    }
+    SurfaceInteraction si = makeInteraction(scene_, ray, hit);
+    if (maxComponent(scene_.materials[si.material].emission) <= 0) return Le;
+    int li = -1;
+    return emissionAt(ray, hit, si, li);
+}
+
 namespace {
 
 // What a path carries from one vertex to the next (its next ray waits in BatchScratch::nextRays).
@@ -141,6 +164,11 @@ struct BatchScratch {
     std::vector<Hit> hits;
     std::vector<PendingLight> pending;
     std::vector<uint8_t> occluded;
+    // -H: hemisphere probes (closest-hit rays whose emission is the direct light), their
+    // throughput waiting in PendingLight::contribution.
+    std::vector<Ray> probeRays;
+    std::vector<Hit> probeHits;
+    std::vector<PendingLight> probes;
 };
 
 }  // namespace
@@ -165,7 +193,8 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
         w.rays.push_back(batch[i].ray);
     }
     const float nLight = float(opt_.lightSamples);
-    const bool useNee = opt_.sampling != DirectSampling::Hemisphere && lights_.size() > 0;
+    const bool hemisphere = opt_.sampling == DirectSampling::Hemisphere;
+    const bool useNee = !hemisphere && lights_.size() > 0;
 
     for (int bounce = 0; !w.active.empty(); ++bounce) {
         w.hits.resize(w.rays.size());
@@ -185,6 +214,8 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
         w.nextRays.clear();
         w.pending.clear();
         w.shadowRays.clear();
+        w.probes.clear();
+        w.probeRays.clear();
 
         // Mesh data of hits a few ahead requested from memory while this one is shaded.
         constexpr size_t kIndicesAhead = 16, kVerticesAhead = 8;
@@ -207,6 +238,7 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
             auto emissionWeight = [&](int li, const Vec3& dir, const Vec3& x, const Vec3& n) {
                 if constexpr (DeltaLightsOnly)
                     return 1.0f;  // no light can be hit: emission here is unweighted
+                if (hemisphere && !st.specular) return 0.0f;  // the probes counted it
                 if (st.specular || li < 0 || !useNee) return 1.0f;
                 if (opt_.sampling == DirectSampling::Light) return 0.0f;
                 float pl =
@@ -232,11 +264,8 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
             const Material& mat = scene_.materials[si.material];
             if (bounce == 0) recordSurface(ray, hit, si, rec);
             if (maxComponent(mat.emission) > 0) {
-                int li = (hit.shape != kSphereShape && hit.instance == kInvalidId)
-                             ? lights_.lightOfMesh(hit.shape)
-                             : -1;
-                Color Le =
-                    li >= 0 ? lights_.emitted(size_t(li), si.p, si.ng, ray.origin) : mat.emission;
+                int li = -1;
+                Color Le = emissionAt(ray, hit, si, li);
                 addLight<SplitLight>(
                     rec, bounce, st.beta * Le * emissionWeight(li, normalize(ray.dir), si.p, si.ng),
                     st.firstLobe);
@@ -289,23 +318,35 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
                 }
             }
 
+            // -H (CS184's estimate_direct_lighting_hemisphere): -l uniform hemisphere rays, each
+            // adding the emission it finds; the continuing path then counts none.
+            if (hemisphere && !bsdf.isDelta() &&
+                (opt_.accumulateBounces || bounce + 1 == opt_.maxDepth)) {
+                for (int k = 0; k < opt_.lightSamples; ++k) {
+                    Vec3 wi = uniformHemisphere(sampler.next1D(), sampler.next1D());
+                    if (wo.z < 0) wi.z = -wi.z;
+                    Vec3 wiWorld = frame.toWorld(wi);
+                    Color f = bsdf.eval(wo, wi) * std::abs(wi.z);
+                    if (maxComponent(f) <= 0 ||
+                        (dot(wiWorld, si.ng) > 0) != (dot(woWorld, si.ng) > 0))
+                        continue;
+                    w.probeRays.push_back(spawnRay(si, wiWorld));
+                    w.probes.push_back({pi, bounce + 1,
+                                        bounce == 0 ? lobeOf(mat.kind, false) : st.firstLobe,
+                                        st.beta * f / (uniformHemispherePdf() * nLight)});
+                }
+            }
+
             // Continue the path. With only delta lights and no emitters, a ray after the last
             // bounce could find nothing: not traced.
             if constexpr (DeltaLightsOnly)
                 if (bounce + 1 >= opt_.maxDepth) continue;
             BsdfSample bs;
-            if (opt_.sampling == DirectSampling::Hemisphere && !bsdf.isDelta()) {
-                Vec3 wi = uniformHemisphere(sampler.next1D(), sampler.next1D());
-                sampler.next1D();
-                if (wo.z < 0) wi.z = -wi.z;
-                bs.wi = wi;
-                bs.pdf = uniformHemispherePdf();
-                bs.f = bsdf.eval(wo, wi);
-            } else {
-                float uc = sampler.next1D(), u1 = sampler.next1D(), u2 = sampler.next1D();
-                if (!bsdf.sample(wo, uc, u1, u2, bs)) continue;
-            }
+            float uc = sampler.next1D(), u1 = sampler.next1D(), u2 = sampler.next1D();
+            if (!bsdf.sample(wo, uc, u1, u2, bs)) continue;
             if (bs.pdf <= 0 || maxComponent(bs.f) <= 0) continue;
+            // With -H, what a non-delta bounce's ray finds at the last depth the probes counted.
+            if (hemisphere && !bs.delta && bounce + 1 >= opt_.maxDepth) continue;
             // The shading frame may send a reflection below the real surface, or a refraction back
             // out of it: following either would leak light through thin walls.
             Vec3 wiWorld = frame.toWorld(bs.wi);
@@ -341,6 +382,18 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
                 if (w.occluded[k]) continue;
                 const PendingLight& p = w.pending[k];
                 addLight<SplitLight>(batch[p.path].record, p.bounce, p.contribution, p.lobe);
+            }
+        }
+        if (!w.probeRays.empty()) {
+            w.probeHits.resize(w.probeRays.size());
+            accel_.intersect(std::span<const Ray>(w.probeRays), std::span<Hit>(w.probeHits));
+            counter.rays += w.probeRays.size();
+            for (size_t k = 0; k < w.probes.size(); ++k) {
+                const PendingLight& p = w.probes[k];
+                Color Le = probeEmission<Infinite>(w.probeRays[k], w.probeHits[k]);
+                if (maxComponent(Le) > 0)
+                    addLight<SplitLight>(batch[p.path].record, p.bounce, p.contribution * Le,
+                                         p.lobe);
             }
         }
         w.active.swap(w.next);

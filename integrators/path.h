@@ -46,6 +46,8 @@ struct PathOptions {
     MicrofacetModel microfacet = MicrofacetModel::Beckmann;
 };
 
+struct SurfaceInteraction;
+
 class PathIntegrator final : public Integrator {
     using TraceFn = void (PathIntegrator::*)(std::span<CameraSample>, RayCounter&) const;
 
@@ -67,6 +69,11 @@ class PathIntegrator final : public Integrator {
     void trace(std::span<CameraSample> batch, RayCounter& counter) const;
     template <bool SplitLight>
     void addLight(SampleRecord& rec, int bounce, const Color& c, Lobe lobe) const;
+    // Radiance an emitting surface sends back along ray; li: the light that samples it, or -1.
+    Color emissionAt(const Ray& ray, const Hit& hit, const SurfaceInteraction& si, int& li) const;
+    // What a -H hemisphere probe finds: emission where it hits, lights at infinity where not.
+    template <bool Infinite>
+    Color probeEmission(const Ray& ray, const Hit& hit) const;
     TraceFn trace_;  // chosen once, for the plan
     float misWeight(float nf, float fPdf, float ng, float gPdf) const {
         return opt_.powerHeuristic ? powerHeuristic(nf, fPdf, ng, gPdf)

@@ -127,6 +127,62 @@ TEST(DirectLighting, HemisphereLightAndMisAgreeOnCBspheresLambertian) {
               results[0].stderror * results[0].stderror * 512);
 }
 
+// CS184's -H -l N: N uniform hemisphere rays per shading point. Direct light only (-m 1), so every
+// ray past the camera's is a probe: their count grows N-fold and the estimate stays that of light
+// sampling.
+TEST(DirectLighting, HemisphereTakesLSamplesPerShadingPoint) {
+    Scene s = loadScene(test::cs184("sky/CBspheres_lambertian.dae"));
+    auto accel = makeEmbreeAccelerator(s);
+    const int w = 48, h = 36, spp = 64;
+    auto render = [&](DirectSampling sampling, int l, RenderStats& stats) {
+        PathOptions opt;
+        opt.maxDepth = 1;
+        opt.sampling = sampling;
+        opt.lightSamples = l;
+        return estimate(test::renderJob(s, *accel, test::jobOptions(w, h, spp, opt), &stats));
+    };
+    RenderStats one, sixteen, light;
+    ImageEstimate h1 = render(DirectSampling::Hemisphere, 1, one);
+    ImageEstimate h16 = render(DirectSampling::Hemisphere, 16, sixteen);
+    ImageEstimate l4 = render(DirectSampling::Light, 4, light);
+    const double cameraRays = double(w) * h * spp;
+    ASSERT_GT(double(one.rays), cameraRays);
+    EXPECT_NEAR((double(sixteen.rays) - cameraRays) / (double(one.rays) - cameraRays), 16.0, 0.5);
+    expectAgree(h1, h16, "-H -l 1 vs -H -l 16");
+    expectAgree(h16, l4, "-H -l 16 vs light sampling");
+}
+
+// A grey plane (albedo a) under a uniform sky of radiance 1, direct light only: every pixel is a,
+// and one uniform hemisphere probe estimates it as 2 a cos(theta), variance a^2 / 3; -l N divides
+// that by N.
+TEST(DirectLighting, HemisphereProbeVarianceIsAlbedoSquaredOverThreeL) {
+    TriangleMesh plane = test::gridMesh(8, 8);
+    for (size_t i = 0; i < plane.positions.size(); i += 3)
+        plane.positions[i] -= 4, plane.positions[i + 1] -= 4;
+    Scene s = test::sceneWith(plane);
+    const double albedo = 0.5;
+    s.materials[0].albedo = Color(float(albedo));
+    Light sky;
+    sky.kind = LightKind::Environment;
+    sky.radiance = Color(1.0f);
+    s.lights.push_back(sky);
+    s.camera.position = Vec3(0, 0, 4);
+    s.camera.hFovDeg = s.camera.vFovDeg = 30;
+    auto accel = makeEmbreeAccelerator(s);
+    const int w = 16, h = 16, spp = 32;
+    for (int l : {1, 16}) {
+        PathOptions opt;
+        opt.maxDepth = 1;
+        opt.sampling = DirectSampling::Hemisphere;
+        opt.lightSamples = l;
+        ImageEstimate e = estimate(test::renderJob(s, *accel, test::jobOptions(w, h, spp, opt)));
+        double samples = double(w) * h * spp, variance = albedo * albedo / 3 / l;
+        EXPECT_NEAR(e.mean, albedo, 5 * std::sqrt(variance / samples)) << "-l " << l;
+        // The sample variance of 8192 samples of 2 a cos(theta) is within 10 % of its value.
+        EXPECT_NEAR(e.stderror * e.stderror * samples, variance, 0.1 * variance) << "-l " << l;
+    }
+}
+
 TEST(RussianRoulette, UnbiasedAgainstNoRoulette) {
     Scene s = loadScene(test::cs184("sky/CBspheres_lambertian.dae"));
     ImageEstimate est[3];

@@ -36,7 +36,7 @@ class Accelerator {
     virtual const AcceleratorStats& stats() const = 0;
 };
 
-enum class AcceleratorKind { Embree, Reference };
+enum class AcceleratorKind { Embree, Reference, BruteForce };
 
 struct EmbreeOptions {
     enum class Quality { Low, Medium, High } quality = Quality::Medium;

@@ -1,18 +1,29 @@
 #include "renderer/cli/accel_options.h"
 
+#include <algorithm>
+#include <cstdio>
+#include <thread>
+
+#include "renderer/accel/brute_force.h"
+
 namespace kiln {
 
 void AcceleratorChoice::addOptions(ArgParser& parser, bool withKind) {
     if (withKind)
         parser.option(
-            "accel", "", 1, "embree|reference", "traversal: Embree (default) or the reference BVH",
+            "accel", "", 1, "embree|reference|brute",
+            "traversal: Embree (default), the reference BVH, or brute force (every ray against "
+            "every primitive: CS184's timing without a BVH; refused when estimated over an hour)",
             [this](const std::vector<std::string>& v) {
                 if (v[0] == "embree")
                     kind = AcceleratorKind::Embree;
                 else if (v[0] == "reference")
                     kind = AcceleratorKind::Reference;
+                else if (v[0] == "brute")
+                    kind = AcceleratorKind::BruteForce;
                 else
-                    throw UsageError("--accel takes 'embree' or 'reference', got '" + v[0] + "'");
+                    throw UsageError(
+                        ArgParser::badChoice("accel", "embree, reference or brute", v[0]));
             });
     parser.option(
         "embree-quality", "", 1, "low|medium|high", "Embree BVH build quality (default medium)",
@@ -51,7 +62,31 @@ void AcceleratorChoice::addOptions(ArgParser& parser, bool withKind) {
                      reference.maxLeafSize, 1, 255);
 }
 
-std::unique_ptr<Accelerator> AcceleratorChoice::build(const Scene& scene) const {
+double bruteForceSeconds(const Scene& scene, const RenderJobOptions& render) {
+    const RenderSettings& s = render.settings;
+    double pixels = double(s.filmWidth()) * double(s.filmHeight());
+    double vertices = std::min(render.path.maxDepth, 4);
+    double rays = pixels * s.spp * (1 + vertices * (render.path.lightSamples + 1));
+    int threads =
+        s.threads > 0 ? s.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+    return rays * double(bruteForcePrimitiveCount(scene)) * kBruteForceNsPerTest * 1e-9 / threads;
+}
+
+std::unique_ptr<Accelerator> AcceleratorChoice::build(const Scene& scene,
+                                                      const RenderJobOptions* render) const {
+    if (kind == AcceleratorKind::BruteForce) {
+        double estimate = render ? bruteForceSeconds(scene, *render) : 0;
+        if (estimate > kBruteForceLimitSeconds) {
+            char text[300];
+            std::snprintf(text, sizeof text,
+                          "--accel brute: %llu primitives at this size would take about %.1f "
+                          "hours (limit %.0f minutes); use a smaller -r/-s or the BVH",
+                          (unsigned long long)bruteForcePrimitiveCount(scene), estimate / 3600,
+                          kBruteForceLimitSeconds / 60);
+            throw UsageError(text);
+        }
+        return makeBruteForceAccelerator(scene);
+    }
     if (kind == AcceleratorKind::Reference) return makeReferenceAccelerator(scene, reference);
     return makeEmbreeAccelerator(scene, embree);
 }

@@ -6,8 +6,17 @@
 
 #include "renderer/accel/accelerator.h"
 #include "renderer/cli/cli_args.h"
+#include "renderer/render_job.h"
 
 namespace kiln {
+
+// A brute-force render estimated to take longer than this is refused.
+constexpr double kBruteForceLimitSeconds = 3600;
+
+// Seconds a brute-force render of these options would take: rays (camera, then per vertex the
+// light samples and the next bounce, up to four vertices) x primitives x the measured cost of a
+// test, over the threads.
+double bruteForceSeconds(const Scene& scene, const RenderJobOptions& render);
 
 struct AcceleratorChoice {
     AcceleratorKind kind = AcceleratorKind::Embree;
@@ -15,7 +24,10 @@ struct AcceleratorChoice {
     ReferenceBvhOptions reference;
 
     void addOptions(ArgParser& parser, bool withKind);
-    std::unique_ptr<Accelerator> build(const Scene& scene) const;
+    // With the render's options, a brute-force choice whose estimated time is over
+    // kBruteForceLimitSeconds is refused (UsageError naming the estimate) before any work.
+    std::unique_ptr<Accelerator> build(const Scene& scene,
+                                       const RenderJobOptions* render = nullptr) const;
 };
 
 }  // namespace kiln

@@ -27,6 +27,7 @@ struct RenderCommand {
     LoadOptions load;
     std::string output;  // base path, or the -f file
     std::string display = "sRGB", view = "Standard";
+    float exposure = 0;  // stops
     ExrOptions exr;
     bool heatMap = false, quiet = false, traversalFloor = false;
     float aperture = -1, focus = -1;
@@ -42,14 +43,14 @@ double seconds(std::chrono::steady_clock::time_point since) {
 }
 
 void addCameraOptions(ArgParser& parser, RenderCommand& c) {
-    parser.option("aperture", "", 1, "R",
-                  "thin-lens aperture radius in scene units (default 0: pinhole)",
+    parser.option("aperture", "b", 1, "R",
+                  "thin-lens aperture radius in scene units, CS184's -b (default 0: pinhole)",
                   [&c](const std::vector<std::string>& v) {
                       c.aperture = float(ArgParser::toDouble("--aperture", v[0]));
                       if (c.aperture < 0) throw UsageError("--aperture must be >= 0");
                   });
-    parser.option("focus", "", 1, "D",
-                  "thin-lens focal distance (default: distance to the scene centre)",
+    parser.option("focus", "d", 1, "D",
+                  "thin-lens focal distance, CS184's -d (default: distance to the scene centre)",
                   [&c](const std::vector<std::string>& v) {
                       c.focus = float(ArgParser::toDouble("--focus", v[0]));
                       if (!(c.focus > 0)) throw UsageError("--focus must be > 0");
@@ -57,15 +58,15 @@ void addCameraOptions(ArgParser& parser, RenderCommand& c) {
 }
 
 void addOutputOptions(ArgParser& parser, RenderCommand& c) {
-    parser.option("output", "o", 1, "OUT",
-                  "output base name: OUT.exr and OUT.png (default: scene name)",
-                  [&c](const std::vector<std::string>& v) { c.output = v[0]; });
+    addOutputNameOptions(parser, c.output, c.job.job.path);
     parser.option("file", "f", 1, "OUT.png", "CS184 form: preview file; the EXR goes beside it",
                   [&c](const std::vector<std::string>& v) { c.output = v[0]; });
     parser.option("display", "", 1, "NAME", "OCIO display for the preview (default sRGB)",
                   [&c](const std::vector<std::string>& v) { c.display = v[0]; });
-    parser.option("view", "", 1, "NAME", "OCIO view for the preview (default Standard)",
+    parser.option("view", "", 1, "NAME",
+                  "OCIO view for the preview (default Standard; CS184: the course's display)",
                   [&c](const std::vector<std::string>& v) { c.view = v[0]; });
+    addExposureOption(parser, c.exposure);
     parser.flag("half", "", "write colour layers as half floats (data layers stay float)",
                 c.exr.half);
     parser.option("compression", "", 1, "zip|piz", "EXR compression (default zip)",
@@ -258,7 +259,7 @@ int runRender(const std::vector<std::string>& args) {
     for (const std::string& w : scene.warnings)
         std::fprintf(stderr, "kiln: warning: %s: %s\n", scenePath.c_str(), w.c_str());
     auto t1 = std::chrono::steady_clock::now();
-    std::unique_ptr<Accelerator> accel = c.accel.build(scene);
+    std::unique_ptr<Accelerator> accel = c.accel.build(scene, &jobOptions);
     double buildTime = seconds(t1);
     RenderJob job(scene, *accel, jobOptions);
     warnHemisphereBlind(job, scenePath);
@@ -272,8 +273,9 @@ int runRender(const std::vector<std::string>& args) {
     meta["aovs"] = c.job.aovList;
     meta["display"] = c.display;
     meta["view"] = c.view;
+    meta["exposure"] = std::to_string(c.exposure);
     writeExr(out.exr, film, meta, c.exr);
-    writePreview(out.preview, film, c.display, c.view);
+    writePreview(out.preview, film, c.display, c.view, c.exposure);
     std::string heatPath;
     if (c.heatMap || jobOptions.settings.adaptiveBatch > 0) {
         heatPath = fs::path(out.exr).replace_extension(".samples.png").string();

@@ -13,5 +13,6 @@ int runCrosscheck(const std::vector<std::string>& args);
 int runBench(const std::vector<std::string>& args);
 int runTools(const std::vector<std::string>& args);            // kiln tools subdivide
 int runAccuracyCommand(const std::vector<std::string>& args);  // kiln bench accuracy
+int runReport(const std::vector<std::string>& args);           // kiln report cs184
 
 }  // namespace kiln

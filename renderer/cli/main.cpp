@@ -22,6 +22,7 @@ constexpr const char* kUsage =
     "  bench plan        render time of the plan's specialised path against the general one\n"
     "  bench accuracy    error against time over spp, strategies, depth, adaptive sampling\n"
     "  tools subdivide   1-to-4 midpoint subdivision of a mesh, written as binary PLY\n"
+    "  report cs184      the CS184 PathTracer write-up (five parts) as one HTML page\n"
     "\n"
     "'kiln <command> --help' lists each command's options.\n";
 
@@ -45,6 +46,7 @@ int main(int argc, char** argv) {
         if (command == "crosscheck") return kiln::runCrosscheck(args);
         if (command == "bench") return kiln::runBench(args);
         if (command == "tools") return kiln::runTools(args);
+        if (command == "report") return kiln::runReport(args);
         std::fprintf(stderr, "kiln: unknown command '%s'\n%s", command.c_str(), kUsage);
         return 2;
     } catch (const kiln::UsageError& e) {

@@ -14,8 +14,35 @@ void addLoadOptions(ArgParser& parser, LoadOptions& load) {
                       load.cameraRule = v[0] == "file" ? LoadOptions::CameraRule::File
                                                        : LoadOptions::CameraRule::Framed;
                   });
-    parser.option("env", "", 1, "MAP.exr", "add a lat-long environment light",
+    parser.option("env", "e", 1, "MAP.exr", "add a lat-long environment light (CS184's -e)",
                   [&load](const std::vector<std::string>& v) { load.environmentMap = v[0]; });
+}
+
+void addOutputNameOptions(ArgParser& parser, std::string& output, PathOptions& path) {
+    parser.option("output", "", 1, "OUT",
+                  "output base name: OUT.exr and OUT.png (default: scene name)",
+                  [&output](const std::vector<std::string>& v) { output = v[0]; });
+    parser.option("accumulate", "o", 1, "0|1|OUT",
+                  "CS184's accumulate-bounces switch: -o 0 keeps only light that bounced "
+                  "exactly -m times (as --bounce-only), -o 1 all bounces (default); any other "
+                  "value is the output base name, as --output (an output named 0 or 1: --output 0)",
+                  [&output, &path](const std::vector<std::string>& v) {
+                      if (v[0] == "0" || v[0] == "1")
+                          path.accumulateBounces = v[0] == "1";
+                      else
+                          output = v[0];
+                  });
+}
+
+void addExposureOption(ArgParser& parser, float& stops) {
+    parser.option("exposure", "", 1, "STOPS",
+                  "scale the preview's light by 2^STOPS before the display transform (the EXR "
+                  "keeps the rendered values)",
+                  [&stops](const std::vector<std::string>& v) {
+                      double value = ArgParser::toDouble("--exposure", v[0]);
+                      if (std::abs(value) > 64) throw UsageError("--exposure must be in [-64, 64]");
+                      stops = float(value);
+                  });
 }
 
 namespace {

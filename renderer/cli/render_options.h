@@ -10,8 +10,14 @@
 
 namespace kiln {
 
-// --camera file|framed, --env MAP.
+// --camera file|framed, -e/--env MAP.
 void addLoadOptions(ArgParser& parser, LoadOptions& load);
+
+// --output OUT, and -o: CS184's accumulate-bounces switch for a lone 0 or 1, else the output name.
+void addOutputNameOptions(ArgParser& parser, std::string& output, PathOptions& path);
+
+// --exposure STOPS: the preview's light scaled by 2^STOPS.
+void addExposureOption(ArgParser& parser, float& stops);
 
 // A render job's options as given on the command line; finish() turns them into RenderJobOptions.
 struct RenderJobArgs {

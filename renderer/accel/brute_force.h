@@ -1,0 +1,19 @@
+// The course's "without a BVH": every ray tested against every primitive, with the same
+// triangle and sphere tests as the reference BVH, so BVH-against-none timings compare traversal
+// alone. Only for small scenes: a render's cost is rays x primitives.
+#pragma once
+
+#include "renderer/accel/accelerator.h"
+
+namespace kiln {
+
+// Nanoseconds one thread takes for one ray-primitive test (measured, docs/cs184.md): what the
+// refusal of a brute-force render that would take hours estimates with.
+constexpr double kBruteForceNsPerTest = 5.0;
+
+// The primitives a ray is tested against: world triangles, spheres, and each instance's triangles.
+uint64_t bruteForcePrimitiveCount(const Scene& scene);
+
+std::unique_ptr<Accelerator> makeBruteForceAccelerator(const Scene& scene);
+
+}  // namespace kiln

@@ -1,6 +1,7 @@
 #include "color/atomic_file.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/statvfs.h>
 #include <unistd.h>
 
@@ -42,16 +43,26 @@ std::string directoryOf(const std::string& path) {
     return dir.empty() ? "." : dir.string();
 }
 
-// Unique per process and per call: two renders to one -o never share a temporary file.
+std::string hostName() {
+    char host[256] = "";
+    if (gethostname(host, sizeof host - 1) != 0 || !*host) return "host";
+    for (char* c = host; *c; ++c)
+        if (*c == '/' || *c == '-') *c = '_';
+    return host;
+}
+
+// ".NAME.tmp-HOST-": hidden, and not matched by the target's own glob.
+std::string tempPrefix(const fs::path& p) {
+    std::string name = ".";
+    return name.append(p.filename().string()).append(".tmp-").append(hostName()).append("-");
+}
+
+// Unique per host, process and call: two renders to one -o never share a temporary file.
 std::string uniqueTempName(const std::string& path) {
     static std::atomic<unsigned> counter{0};
     fs::path p(path);
-    std::string name = ".";  // hidden, and not matched by the target's own glob
-    name.append(p.filename().string())
-        .append(".tmp-")
-        .append(std::to_string(getpid()))
-        .append("-")
-        .append(std::to_string(counter++));
+    std::string name = tempPrefix(p);
+    name.append(std::to_string(getpid())).append("-").append(std::to_string(counter++));
     return (p.parent_path() / name).string();
 }
 
@@ -103,6 +114,23 @@ void AtomicFile::commit() {
         ::fsync(dir);
         ::close(dir);
     }
+}
+
+int removeStaleTemporaries(const std::string& path) {
+    fs::path p(path);
+    fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
+    std::string prefix = tempPrefix(p);
+    int removed = 0;
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(dir, ec)) {
+        std::string name = entry.path().filename().string();
+        if (name.rfind(prefix, 0) != 0) continue;
+        long pid = std::strtol(name.c_str() + prefix.size(), nullptr, 10);
+        // Only this host's, and only of a process that is gone (SIGKILL during a write).
+        if (pid > 0 && ::kill(pid_t(pid), 0) != 0 && errno == ESRCH && fs::remove(entry.path(), ec))
+            ++removed;
+    }
+    return removed;
 }
 
 void checkOutputSpace(const std::string& dir, uint64_t bytesNeeded) {

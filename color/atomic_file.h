@@ -39,6 +39,10 @@ class AtomicFile {
     bool committed_ = false;
 };
 
+// Removes the temporary files a killed process of this host left for path (SIGKILL during a
+// write); returns how many. Another live process's are kept.
+int removeStaleTemporaries(const std::string& path);
+
 // Before rendering: throws std::runtime_error unless a file can be created in dir and
 // bytesNeeded fit its free space.
 void checkOutputSpace(const std::string& dir, uint64_t bytesNeeded);

@@ -301,38 +301,77 @@ CheckpointInfo readCheckpointInfo(const std::string& path) {
     return readHeader(in, path);
 }
 
+namespace {
+
+// The next buffer's header; throws unless it is the film's buffer b for pixels pixels.
+void expectBuffer(Reader& in, const FilmBuffer& b, size_t pixels, const std::string& path) {
+    uint32_t nameBytes = in.value<uint32_t>();
+    if (nameBytes > 256) throw CheckpointError(path + ": checkpoint is malformed");
+    std::string name(nameBytes, '\0');
+    in.read(name.data(), nameBytes);
+    uint8_t rule = in.value<uint8_t>();
+    uint32_t elementBytes = in.value<uint32_t>(), perPixel = in.value<uint32_t>();
+    uint64_t bytes = in.value<uint64_t>();
+    if (name != b.name || rule != uint8_t(b.rule) || elementBytes != b.elementBytes ||
+        perPixel != b.perPixel || bytes != b.bytes(pixels))
+        throw CheckpointError(path + ": checkpoint buffer '" + name +
+                              "' does not match this kiln's '" + b.name + "'");
+}
+
+void expectBufferCount(Reader& in, size_t count, const std::string& path) {
+    if (in.value<uint32_t>() != count)
+        throw CheckpointError(path + ": checkpoint holds other film buffers than this kiln's");
+}
+
+void expectChecksum(Reader& in, const std::string& path) {
+    uLong expected = in.crc();
+    if (in.value<uint32_t>() != uint32_t(expected))
+        throw CheckpointError(path + ": checkpoint checksum mismatch (the file is corrupted)");
+}
+
+}  // namespace
+
 Film readCheckpoint(const std::string& path, CheckpointInfo& info) {
     Reader in(path);
     info = readHeader(in, path);
     Film film(info.width, info.height, info.aovs);
     film.setRegion(info.originX, info.originY, info.fullWidth, info.fullHeight);
     std::vector<FilmBuffer> buffers = film.buffers();
-    if (in.value<uint32_t>() != buffers.size())
-        throw CheckpointError(path + ": checkpoint holds other film buffers than this kiln's");
+    expectBufferCount(in, buffers.size(), path);
     for (const FilmBuffer& b : buffers) {
-        uint32_t nameBytes = in.value<uint32_t>();
-        if (nameBytes > 256) throw CheckpointError(path + ": checkpoint is malformed");
-        std::string name(nameBytes, '\0');
-        in.read(name.data(), nameBytes);
-        uint8_t rule = in.value<uint8_t>();
-        uint32_t elementBytes = in.value<uint32_t>(), perPixel = in.value<uint32_t>();
-        uint64_t bytes = in.value<uint64_t>();
-        if (name != b.name || rule != uint8_t(b.rule) || elementBytes != b.elementBytes ||
-            perPixel != b.perPixel || bytes != b.bytes(film.pixelCount()))
-            throw CheckpointError(path + ": checkpoint buffer '" + name +
-                                  "' does not match this kiln's '" + b.name + "'");
-        in.read(b.data, bytes);
+        expectBuffer(in, b, film.pixelCount(), path);
+        in.read(b.data, b.bytes(film.pixelCount()));
     }
-    uLong expected = in.crc();
-    uint32_t stored = 0;
-    try {
-        stored = in.value<uint32_t>();
-    } catch (const CheckpointError&) {
-        throw CheckpointError(path + ": checkpoint is truncated");
-    }
-    if (stored != uint32_t(expected))
-        throw CheckpointError(path + ": checkpoint checksum mismatch (the file is corrupted)");
+    expectChecksum(in, path);
     return film;
+}
+
+void mergeCheckpoint(const std::string& path, Film& into, CheckpointInfo& info) {
+    Reader in(path);
+    info = readHeader(in, path);
+    size_t at = [&] {
+        try {
+            return into.placeShard(info.originX, info.originY, info.width, info.height,
+                                   info.fullWidth, info.fullHeight);
+        } catch (const std::invalid_argument& e) {
+            throw CheckpointError(path + ": " + e.what());
+        }
+    }();
+    std::vector<FilmBuffer> buffers = into.buffers();
+    size_t width = size_t(info.width);
+    expectBufferCount(in, buffers.size(), path);
+    std::vector<char> row;
+    for (const FilmBuffer& b : buffers) {
+        expectBuffer(in, b, width * size_t(info.height), path);
+        row.resize(b.bytes(width));
+        // A row at a time straight into the merged film: no second film in memory.
+        for (int y = 0; y < info.height; ++y) {
+            in.read(row.data(), row.size());
+            combineRun(b, row.data(), at + size_t(y) * size_t(into.width()), width,
+                       into.sampleCounts());
+        }
+    }
+    expectChecksum(in, path);
 }
 
 }  // namespace kiln

@@ -56,6 +56,11 @@ CheckpointInfo readCheckpointInfo(const std::string& path);
 // Reads the whole checkpoint and checks its checksum. Throws CheckpointError.
 Film readCheckpoint(const std::string& path, CheckpointInfo& info);
 
+// Adds the checkpoint's film into into (a film of a region holding the shard's), streaming: the
+// shard is never whole in memory. Shards in order of their first sample (FirstSample). Throws
+// CheckpointError; into is then partly merged.
+void mergeCheckpoint(const std::string& path, Film& into, CheckpointInfo& info);
+
 struct CheckpointError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <set>
 
+#include "renderer/core/memory.h"
+
 namespace kiln {
 namespace {
 
@@ -78,6 +80,16 @@ int checkCoverage(const std::vector<Shard>& shards, int& x0, int& y0, int& x1, i
     return total;
 }
 
+// The merged film in memory (shards are streamed into it).
+void checkMemory(const CheckpointInfo& first, uint64_t pixels) {
+    uint64_t perPixel = 0;
+    for (const FilmBuffer& b : Film(1, 1, first.aovs).buffers()) perPixel += b.bytes(1);
+    uint64_t need = pixels * perPixel, available = availableMemoryBytes();
+    if (need > available)
+        throw CheckpointError("merging needs " + std::to_string(need >> 20) + " MiB, " +
+                              std::to_string(available >> 20) + " MiB available");
+}
+
 }  // namespace
 
 MergedRender mergeShards(const std::vector<std::string>& paths) {
@@ -92,6 +104,7 @@ MergedRender mergeShards(const std::vector<std::string>& paths) {
         return a.info.sampleStart < b.info.sampleStart;
     });
     const CheckpointInfo& first = shards.front().info;
+    checkMemory(first, uint64_t(x1 - x0) * uint64_t(y1 - y0));
     MergedRender out{Film(x1 - x0, y1 - y0, first.aovs), first};
     out.film.setRegion(x0, y0, first.fullWidth, first.fullHeight);
     out.info.originX = x0, out.info.originY = y0;
@@ -101,8 +114,7 @@ MergedRender mergeShards(const std::vector<std::string>& paths) {
     out.info.seconds = 0;
     for (const Shard& s : shards) {
         CheckpointInfo info;
-        Film film = readCheckpoint(s.path, info);
-        out.film.merge(film);
+        mergeCheckpoint(s.path, out.film, info);
         out.info.rays += info.rays;
         out.info.nonFiniteSamples += info.nonFiniteSamples;
         out.info.seconds += info.seconds;

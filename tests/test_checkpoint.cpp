@@ -144,6 +144,10 @@ void killAndResume(bool adaptive) {
         EXPECT_TRUE(test::readExrPixels(out + ".exr") == want) << "seed " << seed;
         EXPECT_EQ(test::readText(out + ".png"), test::readText(ref + ".png")) << seed;
     }
+    // A kill during a checkpoint write leaves a temporary file; the next run removes it.
+    for (const auto& entry : fs::directory_iterator(dir))
+        EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos)
+            << entry.path();
     // At least one kill must have landed mid-render after a checkpoint, or nothing was tested.
     EXPECT_GE(resumedPartial, 1);
 }
@@ -286,6 +290,35 @@ TEST(AtomicFile, TwoWritersOfOneTargetNeverShareATemporaryFile) {
     int files = 0;
     for (const auto& entry : fs::directory_iterator(dir)) files += entry.is_regular_file();
     EXPECT_EQ(files, 1);
+}
+
+}  // namespace
+}  // namespace kiln
+
+namespace kiln {
+namespace {
+
+TEST(AtomicFile, TemporariesOfAKilledProcessAreRemovedALiveOnesKept) {
+    auto dir = test::scratchDir();
+    std::string target = (dir / "out.ckpt").string();
+    pid_t child = ::fork();
+    if (child == 0) {
+        AtomicFile left(target);
+        left.write("partial", 7);
+        ::_exit(0);  // as a SIGKILL would: no destructor, the temporary file stays
+    }
+    ::waitpid(child, nullptr, 0);
+    AtomicFile mine(target);  // this live process's write in progress
+    auto temporaries = [&] {
+        int n = 0;
+        for (const auto& entry : std::filesystem::directory_iterator(dir))
+            n += entry.path().filename().string().find(".tmp-") != std::string::npos;
+        return n;
+    };
+    EXPECT_EQ(temporaries(), 2);
+    EXPECT_EQ(removeStaleTemporaries(target), 1);
+    EXPECT_EQ(temporaries(), 1);
+    EXPECT_TRUE(std::filesystem::exists(mine.tempPath()));
 }
 
 }  // namespace

@@ -53,6 +53,9 @@ int runMerge(const std::vector<std::string>& args) {
     std::string base = output;
     if (std::filesystem::path(base).extension() == ".exr")
         base = std::filesystem::path(base).replace_extension("").string();
+    std::filesystem::path dir = std::filesystem::path(base).parent_path();
+    if (!dir.empty() && !std::filesystem::is_directory(dir))
+        throw UsageError("output directory '" + dir.string() + "' does not exist");
     auto t0 = std::chrono::steady_clock::now();
     MergedRender merged = [&] {
         try {

@@ -307,6 +307,10 @@ void applyLongRenderOptions(const RenderCommand& c, RenderJobOptions& o) {
 void checkOutputsFit(const RenderCommand& c, const RenderJobOptions& o, const OutputPaths& out) {
     OutputSizes need = estimateOutputs(o, c.checkpoints());
     fs::path dir = fs::path(out.exr).parent_path();
+    for (const std::string& path : {out.exr, out.preview, out.checkpoint})
+        if (int n = removeStaleTemporaries(path))
+            std::fprintf(stderr, "kiln: removed %d temporary file(s) of %s left by a killed kiln\n",
+                         n, path.c_str());
     try {
         checkOutputSpace(dir.empty() ? "." : dir.string(),
                          need.exr + need.preview + need.checkpoint);

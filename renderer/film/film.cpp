@@ -95,59 +95,45 @@ uint64_t Film::totalSamples() const {
     return n;
 }
 
-namespace {
-
-// Combines count elements of one pixel run (a row of the shard) by the buffer's rule.
-void combineRun(const FilmBuffer& dst, const FilmBuffer& src, size_t dstPixel, size_t srcPixel,
-                size_t pixels, const uint32_t* dstCounts) {
+void combineRun(const FilmBuffer& dst, const void* src, size_t dstPixel, size_t pixels,
+                const uint32_t* dstCounts) {
     size_t per = dst.perPixel;
     switch (dst.rule) {
         case Accumulation::Sum: {
             auto* d = static_cast<FixedSum*>(dst.data) + dstPixel * per;
-            auto* s = static_cast<const FixedSum*>(src.data) + srcPixel * per;
+            auto* s = static_cast<const FixedSum*>(src);
             for (size_t k = 0; k < pixels * per; ++k) d[k] += s[k];
             break;
         }
         case Accumulation::Count: {
             auto* d = static_cast<uint32_t*>(dst.data) + dstPixel;
-            auto* s = static_cast<const uint32_t*>(src.data) + srcPixel;
+            auto* s = static_cast<const uint32_t*>(src);
             for (size_t k = 0; k < pixels; ++k) d[k] += s[k];
             break;
         }
         case Accumulation::FirstSample: {
             auto* d = static_cast<double*>(dst.data) + dstPixel * per;
-            auto* s = static_cast<const double*>(src.data) + srcPixel * per;
+            auto* s = static_cast<const double*>(src);
             for (size_t p = 0; p < pixels; ++p)
                 if (dstCounts[dstPixel + p] == 0) std::copy_n(s + p * per, per, d + p * per);
             break;
         }
         case Accumulation::Flag: {
             auto* d = static_cast<uint8_t*>(dst.data) + dstPixel;
-            auto* s = static_cast<const uint8_t*>(src.data) + srcPixel;
+            auto* s = static_cast<const uint8_t*>(src);
             for (size_t k = 0; k < pixels; ++k) d[k] |= s[k];
             break;
         }
     }
 }
 
-}  // namespace
-
-void Film::merge(const Film& shard) {
-    int dx = shard.originX() - originX(), dy = shard.originY() - originY();
-    if (dx < 0 || dy < 0 || dx + shard.width() > width_ || dy + shard.height() > height_ ||
-        shard.fullWidth() != fullWidth() || shard.fullHeight() != fullHeight())
+size_t Film::placeShard(int originX, int originY, int shardWidth, int shardHeight, int fullWidth,
+                        int fullHeight) const {
+    int dx = originX - originX_, dy = originY - originY_;
+    if (dx < 0 || dy < 0 || dx + shardWidth > width_ || dy + shardHeight > height_ ||
+        fullWidth != this->fullWidth() || fullHeight != this->fullHeight())
         throw std::invalid_argument("shard region lies outside the merged image");
-    std::vector<FilmBuffer> mine = buffers(), theirs = shard.buffers();
-    for (size_t b = 0; b < mine.size(); ++b)
-        if (mine[b].name != theirs[b].name || mine[b].perPixel != theirs[b].perPixel)
-            throw std::invalid_argument("shard film holds other channels (" + theirs[b].name + ")");
-    for (int y = 0; y < shard.height(); ++y) {
-        size_t srcPixel = size_t(y) * size_t(shard.width());
-        size_t dstPixel = index(dx, dy + y);
-        for (size_t b = 0; b < mine.size(); ++b)
-            combineRun(mine[b], theirs[b], dstPixel, srcPixel, size_t(shard.width()),
-                       count_.data());
-    }
+    return index(dx, dy);
 }
 
 }  // namespace kiln

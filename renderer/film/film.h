@@ -36,6 +36,11 @@ struct FilmBuffer {
     size_t bytes(size_t pixels) const { return pixels * perPixel * elementBytes; }
 };
 
+// Combines a run of pixels of a shard's buffer (src, laid out as dst) into dst from pixel dstPixel
+// on, by dst's rule. dstCounts: the film's sample counts before this shard (FirstSample).
+void combineRun(const FilmBuffer& dst, const void* src, size_t dstPixel, size_t pixels,
+                const uint32_t* dstCounts);
+
 class Film {
   public:
     Film(int width, int height, const AovRequest& aovs = {});
@@ -83,10 +88,11 @@ class Film {
     std::vector<FilmBuffer> buffers();
     // The same list for reading (checkpoint writes); its pointers must not be written through.
     std::vector<FilmBuffer> buffers() const { return const_cast<Film*>(this)->buffers(); }
-    // Adds a film holding other samples of the same pixels, or of a region inside this one (placed
-    // by its origin). Shards must come in the order of their first sample index (FirstSample).
-    // Throws std::invalid_argument if the buffers or the region do not fit.
-    void merge(const Film& shard);
+    // Where a shard's pixel (0, 0) lands in this film (its index); throws std::invalid_argument if
+    // the shard's region does not lie inside this one.
+    size_t placeShard(int originX, int originY, int shardWidth, int shardHeight, int fullWidth,
+                      int fullHeight) const;
+    const uint32_t* sampleCounts() const { return count_.data(); }
 
   private:
     size_t index(int x, int y) const { return size_t(y) * size_t(width_) + size_t(x); }

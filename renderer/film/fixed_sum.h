@@ -16,10 +16,21 @@ constexpr int kFixedFractionBits = 48;
 constexpr double kMaxSampleValue = 0x1p58;
 
 // False (and out untouched) for a non-finite value or one of magnitude >= kMaxSampleValue.
+// Rounds to nearest, ties to even, without a libm call on the common paths (this runs for every
+// channel of every sample).
 inline bool toFixed(double value, FixedSum& out) {
-    if (!(std::fabs(value) < kMaxSampleValue)) return false;
-    double scaled = std::nearbyint(value * 0x1p48);
-    out = std::fabs(scaled) < 0x1p62 ? FixedSum(int64_t(scaled)) : FixedSum(scaled);
+    double magnitude = std::fabs(value);
+    if (!(magnitude < kMaxSampleValue)) return false;
+    double scaled = value * 0x1p48, size = magnitude * 0x1p48;
+    if (size < 0x1p51) {
+        // Adding and removing 1.5 * 2^52 leaves the nearest integer (IEEE round-to-nearest-even).
+        constexpr double kRound = 0x1.8p52;
+        out = FixedSum(int64_t((scaled + kRound) - kRound));
+    } else if (size >= 0x1p52) {
+        out = size < 0x1p62 ? FixedSum(int64_t(scaled)) : FixedSum(scaled);  // already integral
+    } else {
+        out = FixedSum(int64_t(std::nearbyint(scaled)));
+    }
     return true;
 }
 

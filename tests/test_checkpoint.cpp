@@ -274,6 +274,13 @@ TEST(Checkpoint, DiskFullDuringACheckpointKeepsThePreviousOneAndReportsTheFailur
                                    -1, 0, err),
               2);
     EXPECT_NE(test::readText(err).find("free"), std::string::npos) << test::readText(err);
+    // A read-only filesystem likewise, and its message says so.
+    ASSERT_EQ(::mount("tmpfs", disk.dir.c_str(), "tmpfs", MS_REMOUNT | MS_RDONLY, "size=2m"), 0);
+    EXPECT_EQ(test::runKilnProcess({"render", test::spheres(), "-r", "8", "6", "-q", "-o",
+                                    (disk.dir / "c").string()},
+                                   -1, 0, err),
+              2);
+    EXPECT_NE(test::readText(err).find("not writable"), std::string::npos) << test::readText(err);
 }
 
 TEST(AtomicFile, TwoWritersOfOneTargetNeverShareATemporaryFile) {

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <thread>
 
+#include "long_render_support.h"
 #include "test_support.h"
 
 namespace kiln {
@@ -235,8 +236,10 @@ TEST(Cli, SigintWritesThePartialImageAndExitsNonZero) {
                 (char*)nullptr);
         ::_exit(127);
     }
-    // Wait until it renders (the load takes a moment), then interrupt.
-    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+    // Wait until kiln catches SIGINT (a loaded machine may take seconds to start it), then let it
+    // render a moment and interrupt.
+    ASSERT_TRUE(test::waitForHandler(pid, SIGINT));
+    std::this_thread::sleep_for(std::chrono::milliseconds(1000));
     ::kill(pid, SIGINT);
     int status = 0;
     ::waitpid(pid, &status, 0);

@@ -12,6 +12,8 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "color/atomic_file.h"
+
 namespace kiln {
 namespace {
 
@@ -33,6 +35,32 @@ OIIO::ImageBuf beautyBuffer(const Film& film) {
 OIIO::ColorConfig& colorConfig() {
     static OIIO::ColorConfig config(colorConfigPath());
     return config;
+}
+
+// The OpenImageIO writer for a file name's extension (png, jpeg, ...).
+std::string formatOf(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    return ext.empty() ? "png" : ext.substr(1);
+}
+
+// Every image goes through an AtomicFile: a unique temporary name, every write checked, fsync,
+// rename. spec's pixel type is what the file stores (dataType: all channels, when given).
+void writeAtomically(const std::string& path, const std::string& format, OIIO::ImageSpec spec,
+                     const OIIO::ImageBuf& buf, const char* what,
+                     OIIO::TypeDesc dataType = OIIO::TypeDesc::UNKNOWN) {
+    auto out = OIIO::ImageOutput::create(format);
+    if (!out) throw std::runtime_error(path + ": no " + format + " writer: " + OIIO::geterror());
+    if (dataType != OIIO::TypeDesc::UNKNOWN) {
+        spec.channelformats.clear();
+        spec.set_format(dataType);
+    }
+    AtomicFile file(path);
+    if (!out->set_ioproxy(file.proxy()) || !out->open(path, spec) || !buf.write(out.get()) ||
+        !out->close())
+        throw std::runtime_error(path + ": cannot write " + what + ": " + out->geterror() +
+                                 buf.geterror());
+    out.reset();
+    file.commit();
 }
 
 }  // namespace
@@ -98,19 +126,7 @@ void writeExr(const std::string& path, const Film& film, const Metadata& metadat
             if (variance) px[k++] = float(film.luminanceVariance(x, y));
             buf.setpixel(x + film.originX(), y + film.originY(), px.data(), nc);
         }
-    std::string tmp = path + ".tmp";
-    // Write under another name and rename, so a reader never sees a half-written EXR.
-    auto out = OIIO::ImageOutput::create("openexr");
-    if (!out || !out->open(tmp, spec) || !buf.write(out.get())) {
-        std::string err = out ? out->geterror() : OIIO::geterror();
-        if (out) out->close();
-        std::filesystem::remove(tmp);
-        throw std::runtime_error(path + ": cannot write EXR: " + err + buf.geterror());
-    }
-    out->close();
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) throw std::runtime_error(path + ": cannot move EXR into place: " + ec.message());
+    writeAtomically(path, "openexr", spec, buf, "EXR");
 }
 
 void writePreview(const std::string& path, const Film& film, const std::string& display,
@@ -122,14 +138,7 @@ void writePreview(const std::string& path, const Film& film, const std::string& 
     if (!OIIO::ImageBufAlgo::ociodisplay(shown, linear, display, view, "lin_rec709", "", false, "",
                                          "", &colorConfig()))
         throw std::runtime_error(path + ": colour transform failed: " + shown.geterror());
-    std::string tmp = path + ".tmp" + std::filesystem::path(path).extension().string();
-    if (!shown.write(tmp, OIIO::TypeDesc::UINT8)) {
-        std::filesystem::remove(tmp);
-        throw std::runtime_error(path + ": cannot write preview: " + shown.geterror());
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) throw std::runtime_error(path + ": cannot move preview into place: " + ec.message());
+    writeAtomically(path, formatOf(path), shown.spec(), shown, "preview", OIIO::TypeDesc::UINT8);
 }
 
 namespace {
@@ -191,13 +200,8 @@ void writeSampleHeatMap(const std::string& path, const Film& film) {
     std::string hiText = std::to_string(hi);
     drawNumber(rgb, w, H, w - int(hiText.size()) * 4 * scale, h + barH + scale, hi, scale);
     OIIO::ImageBuf buf(OIIO::ImageSpec(w, H, 3, OIIO::TypeDesc::FLOAT), rgb.data());
-    std::string tmp = path + ".tmp.png";
     // The colours are a display-referred code, not scene light: written as is.
-    if (!buf.write(tmp, OIIO::TypeDesc::UINT8)) {
-        std::filesystem::remove(tmp);
-        throw std::runtime_error(path + ": cannot write heat map: " + buf.geterror());
-    }
-    std::filesystem::rename(tmp, path);
+    writeAtomically(path, "png", buf.spec(), buf, "heat map", OIIO::TypeDesc::UINT8);
 }
 
 void checkDisplayView(const std::string& display, const std::string& view) {

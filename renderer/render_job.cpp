@@ -27,8 +27,8 @@ Film RenderJob::makeFilm() const {
     return film;
 }
 
-RenderStats RenderJob::render(Film& film) const {
-    return renderImage(scene_, *integrator_, options_.settings, film);
+RenderStats RenderJob::render(Film& film, const RenderControl& control) const {
+    return renderImage(scene_, *integrator_, options_.settings, film, control);
 }
 
 SampleRecord RenderJob::traceSample(int x, int y, int sample, RayCounter& counter) const {
@@ -44,6 +44,7 @@ Metadata RenderJob::metadata(const RenderStats& stats, const Film& film) const {
         {"integrator", integrator_->name()},
         {"accelerator", accel_.stats().description},
         {"spp", text(s.spp)},
+        {"sample_range", text(s.sampleStart) + " " + text(s.spp)},
         {"mean_spp", text(double(stats.samples) / (double(film.width()) * film.height()))},
         {"seed", text(s.seed)},
         {"sampler", toString(s.sampler)},

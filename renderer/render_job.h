@@ -30,13 +30,15 @@ class RenderJob {
     RenderJob(const RenderJob& job, const Accelerator& accel);
 
     const RenderJobOptions& options() const { return options_; }
+    const Scene& scene() const { return scene_; }
     const RenderPlan& plan() const { return plan_; }
     const Integrator& integrator() const { return *integrator_; }
 
     // A film of the render region's size, placed in the full image.
     Film makeFilm() const;
-    // Renders into film (made by makeFilm, or partly filled by an earlier render of this job).
-    RenderStats render(Film& film) const;
+    // Renders into film (made by makeFilm, or partly filled by an earlier render of this job, e.g.
+    // read back from a checkpoint: each pixel continues at its next sample).
+    RenderStats render(Film& film, const RenderControl& control = {}) const;
     // One camera sample exactly as the render traces it (for --pixel/--sample debugging).
     SampleRecord traceSample(int x, int y, int sample, RayCounter& counter) const;
     // The job's options and results by name (the EXR header's kiln: attributes).

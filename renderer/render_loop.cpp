@@ -21,6 +21,11 @@ std::atomic<bool>& renderCancelFlag() {
     return flag;
 }
 
+std::atomic<bool>& checkpointRequestFlag() {
+    static std::atomic<bool> flag{false};
+    return flag;
+}
+
 namespace {
 
 // Camera samples a render traces per integrator call: enough for full 16-wide packets after
@@ -52,8 +57,53 @@ SampleRecord traceSample(const Scene& scene, const Integrator& integrator,
     return one[0].record;
 }
 
+namespace {
+
+// The sample indices where waves end. Waves of 1, 1, 2, 4, ... samples (at most kMaxWave): an
+// interrupted render has nearly even counts everywhere. Adaptive renders go in waves of one batch,
+// the granularity of the convergence test. The sums do not depend on the waves (they are exact);
+// only the adaptive test points do, and those are fixed multiples of the batch.
+constexpr int kMaxWave = 64;
+
+std::vector<int> waveEnds(const RenderSettings& s) {
+    std::vector<int> ends;
+    int done = s.sampleStart, wave = s.adaptiveBatch > 0 ? s.adaptiveBatch : 1;
+    while (done < s.spp) {
+        done = std::min(s.spp, s.adaptiveBatch > 0 ? (done / wave + 1) * wave : done + wave);
+        ends.push_back(done);
+        if (s.adaptiveBatch <= 0 && done > s.sampleStart + 1) wave = std::min(2 * wave, kMaxWave);
+    }
+    return ends;
+}
+
+bool adaptiveConverges(const Film& film, const RenderSettings& settings, int x, int y) {
+    double n = film.samples(x, y);
+    if (n < 2) return false;
+    double s1 = film.luminanceSum(x, y), s2 = film.luminanceSquareSum(x, y);
+    double mu = s1 / n, var = std::max(0.0, (s2 - s1 * s1 / n) / (n - 1));
+    return 1.96 * std::sqrt(var / n) <= settings.adaptiveTolerance * mu;
+}
+
+// The samples pixel (x, y) of the film still lacks.
+uint64_t remainingSamples(const Film& film, const RenderSettings& s) {
+    uint64_t n = 0;
+    for (int y = 0; y < film.height(); ++y)
+        for (int x = 0; x < film.width(); ++x)
+            if (!film.converged(x, y))
+                n += uint64_t(std::max(0, s.spp - s.sampleStart - int(film.samples(x, y))));
+    return n;
+}
+
+using Clock = std::chrono::steady_clock;
+
+Clock::time_point after(Clock::time_point t, double seconds) {
+    return t + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
+}
+
+}  // namespace
+
 RenderStats renderImage(const Scene& scene, const Integrator& integrator,
-                        const RenderSettings& settings, Film& film) {
+                        const RenderSettings& settings, Film& film, const RenderControl& control) {
     RenderStats stats;
     CameraModel camera(scene.camera, settings.width, settings.height);
     // Tiles cover the film (the render region); cameras and samplers see whole-image pixels.
@@ -63,57 +113,76 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator,
         throw std::logic_error("renderImage: film size differs from the render region");
     int tile = std::max(1, settings.tileSize);
     int tilesX = (fw + tile - 1) / tile, tilesY = (fh + tile - 1) / tile;
-    uint64_t pixels = uint64_t(fw) * uint64_t(fh);
-    Progress progress("render", pixels * uint64_t(settings.spp), settings.progress);
+    Progress progress("render", remainingSamples(film, settings), settings.progress);
     std::atomic<uint64_t> nonFinite{0};
     std::mutex badMutex;
     std::vector<BadSample> bad;
     std::atomic<bool>& cancel = renderCancelFlag();
-
-    // Adaptive sampling: a pixel that met the confidence test takes no more samples.
-    std::vector<uint8_t> converged(settings.adaptiveBatch > 0 ? size_t(pixels) : 0, 0);
-    auto converges = [&](int x, int y) {
-        double n = film.samples(x, y);
-        if (n < 2) return false;
-        double s1 = film.luminanceSum(x, y), s2 = film.luminanceSquareSum(x, y);
-        double mu = s1 / n, var = std::max(0.0, (s2 - s1 * s1 / n) / (n - 1));
-        return 1.96 * std::sqrt(var / n) <= settings.adaptiveTolerance * mu;
+    std::atomic<bool>& request = checkpointRequestFlag();
+    const bool timed = control.timeLimitSeconds > 0, periodic = control.checkpointEverySeconds > 0;
+    const Clock::time_point limit = after(control.start, control.timeLimitSeconds);
+    Clock::time_point nextCheckpoint = after(control.start, control.checkpointEverySeconds);
+    // Checked before every pixel: any reason to stop the tiles (they finish the pixel in hand).
+    std::atomic<bool> paused{false};
+    auto pausing = [&] {
+        if (paused.load(std::memory_order_relaxed)) return true;
+        bool stop = cancel.load(std::memory_order_relaxed) ||
+                    (request.load(std::memory_order_relaxed) && control.checkpoint);
+        if (!stop && (timed || periodic)) {
+            Clock::time_point now = Clock::now();
+            stop = (timed && now >= limit) || (periodic && now >= nextCheckpoint);
+        }
+        if (stop) paused.store(true);
+        return stop;
     };
 
-    auto renderTile = [&](int tileIndex, int firstSample, int sampleCount) {
+    auto renderTile = [&](int tileIndex, int waveStart, int waveEnd) {
         int x0 = (tileIndex % tilesX) * tile, y0 = (tileIndex / tilesX) * tile;
         int x1 = std::min(x0 + tile, fw), y1 = std::min(y0 + tile, fh);
         RayCounter counter;
         uint64_t work = 0, badCount = 0;
         std::vector<CameraSample> batch;
-        std::vector<std::pair<int, int>> pixels;  // of the batch, in order
-        batch.reserve(kBatchSamples + size_t(sampleCount));
-        // Whole pixels per batch, samples in order, so the film sums each pixel as before.
+        struct Queued {
+            int x, y, first;
+        };
+        std::vector<Queued> queued;  // the pixels of the batch, in order
+        batch.reserve(kBatchSamples + size_t(waveEnd - waveStart));
+        // Whole pixels per batch, samples in order.
         auto flush = [&] {
             integrator.Li(std::span<CameraSample>(batch), counter);
             size_t k = 0;
-            for (auto [x, y] : pixels) {
-                for (int s = firstSample; s < firstSample + sampleCount; ++s, ++k) {
+            for (auto [x, y, first] : queued) {
+                for (int s = first; s < waveEnd; ++s, ++k) {
                     if (film.add(x, y, batch[k].record)) continue;
-                    // Non-finite: dropped from the image, counted, and kept for replay (in
-                    // whole-image pixels, as --pixel takes them).
+                    // Dropped from the image, counted, and kept for replay (in whole-image
+                    // pixels, as --pixel takes them).
                     ++badCount;
                     std::lock_guard lock(badMutex);
                     bad.push_back({x + ox, y + oy, s});
                 }
-                if (!converged.empty() && converges(x, y)) converged[uint64_t(y) * fw + x] = 1;
+                // The convergence test at fixed sample counts, so resumed renders test alike.
+                if (settings.adaptiveBatch > 0 &&
+                    film.samples(x, y) % settings.adaptiveBatch == 0 &&
+                    adaptiveConverges(film, settings, x, y))
+                    film.setConverged(x, y);
             }
             batch.clear();
-            pixels.clear();
+            queued.clear();
         };
-        for (int y = y0; y < y1 && !cancel.load(std::memory_order_relaxed); ++y)
+        for (int y = y0; y < y1; ++y)
             for (int x = x0; x < x1; ++x) {
-                work += uint64_t(sampleCount);
-                if (!converged.empty() && converged[uint64_t(y) * fw + x]) continue;
-                for (int s = firstSample; s < firstSample + sampleCount; ++s)
+                int first = std::max(waveStart, settings.sampleStart + int(film.samples(x, y)));
+                if (first >= waveEnd) continue;
+                if (pausing()) {
+                    y = y1;
+                    break;
+                }
+                work += uint64_t(waveEnd - first);
+                if (film.converged(x, y)) continue;
+                for (int s = first; s < waveEnd; ++s)
                     addCameraSample(batch, camera, film.layout().request(), settings, x + ox,
                                     y + oy, s);
-                pixels.emplace_back(x, y);
+                queued.push_back({x, y, first});
                 if (batch.size() >= kBatchSamples) flush();
             }
         if (!batch.empty()) flush();
@@ -121,33 +190,47 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator,
         if (badCount) nonFinite += badCount;
     };
 
+    auto snapshot = [&] {
+        stats.seconds = progress.elapsedSeconds();
+        stats.rays = progress.rays();
+        stats.samples = film.totalSamples();
+        stats.nonFiniteSamples = nonFinite.load();
+    };
     tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
     arena.execute([&] {
-        // Waves of 1, 1, 2, 4, ... samples: an interrupted render has nearly even counts
-        // everywhere. Adaptive renders go in waves of one batch, the granularity of the convergence
-        // test.
-        int done = 0, wave = settings.adaptiveBatch > 0 ? settings.adaptiveBatch : 1;
-        while (done < settings.spp && !cancel.load()) {
-            int n = std::min(wave, settings.spp - done);
-            tbb::parallel_for(tbb::blocked_range<int>(0, tilesX * tilesY, 1),
-                              [&](const tbb::blocked_range<int>& r) {
-                                  for (int t = r.begin(); t != r.end(); ++t) renderTile(t, done, n);
-                              });
-            done += n;
-            if (done > 1 && settings.adaptiveBatch <= 0) wave *= 2;
+        int waveStart = settings.sampleStart;
+        for (int waveEnd : waveEnds(settings)) {
+            for (;;) {
+                paused.store(false);
+                tbb::parallel_for(tbb::blocked_range<int>(0, tilesX * tilesY, 1),
+                                  [&](const tbb::blocked_range<int>& r) {
+                                      for (int t = r.begin(); t != r.end(); ++t)
+                                          renderTile(t, waveStart, waveEnd);
+                                  });
+                if (!paused.load()) break;
+                if (cancel.load()) return;
+                if (timed && Clock::now() >= limit) {
+                    stats.timeLimitReached = true;
+                    return;
+                }
+                // A checkpoint (periodic or SIGUSR1), then the rest of the wave.
+                request.store(false);
+                snapshot();
+                if (control.checkpoint) control.checkpoint(film, stats);
+                nextCheckpoint = after(Clock::now(), control.checkpointEverySeconds);
+            }
+            waveStart = waveEnd;
         }
     });
     progress.finish();
-    stats.seconds = progress.elapsedSeconds();
-    stats.rays = progress.rays();
-    stats.samples = film.totalSamples();
-    stats.nonFiniteSamples = nonFinite.load();
+    snapshot();
     std::sort(bad.begin(), bad.end(), [](const BadSample& a, const BadSample& b) {
         return std::tie(a.y, a.x, a.sample) < std::tie(b.y, b.x, b.sample);
     });
     if (bad.size() > 10) bad.resize(10);
     stats.firstBadSamples = bad;
     stats.interrupted = cancel.load();
+    stats.complete = remainingSamples(film, settings) == 0;
     return stats;
 }
 

@@ -3,7 +3,9 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "integrators/integrator.h"
@@ -24,7 +26,9 @@ struct RenderSettings {
         return hasRegion() ? regionX0 : 0;
     }  // film pixel (0, 0) in the image
     int filmOriginY() const { return hasRegion() ? regionY0 : 0; }
-    int spp = 1;
+    int spp = 1;  // the render ends at sample index spp (exclusive)
+    // --sample-range A B: this render takes samples [sampleStart, spp) of every pixel (a shard).
+    int sampleStart = 0;
     int threads = 0;  // 0 = all cores
     int tileSize = 32;
     uint64_t seed = 0;
@@ -48,7 +52,19 @@ struct RenderStats {
     uint64_t samples = 0;
     uint64_t nonFiniteSamples = 0;
     std::vector<BadSample> firstBadSamples;  // the first few, in (pixel, sample) order
-    bool interrupted = false;
+    bool interrupted = false;                // SIGINT/SIGTERM: stopped at a pixel boundary
+    bool timeLimitReached = false;           // RenderControl::timeLimitSeconds: likewise
+    bool complete = false;                   // every pixel has all its samples (or converged)
+};
+
+// What a long render does besides rendering: periodic checkpoints (at a pixel boundary, the film
+// quiescent) and a time limit. The loop stops there, the caller writes what it has.
+struct RenderControl {
+    double checkpointEverySeconds = 0;  // 0: none
+    double timeLimitSeconds = 0;        // 0: none; counted from start
+    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+    // Called between pixels with no tile running; stats hold the counts so far.
+    std::function<void(const Film&, const RenderStats&)> checkpoint;
 };
 
 // Replays one camera sample exactly as the render loop traces it (same sampler state): for
@@ -57,10 +73,15 @@ SampleRecord traceSample(const Scene& scene, const Integrator& integrator,
                          const RenderSettings& settings, int x, int y, int sample,
                          RayCounter& counter);
 
-// Set by the SIGINT handler; the loop stops at the next pixel and keeps what it has.
+// Set by the SIGINT/SIGTERM handler; the loop stops at the next pixel and keeps what it has.
 std::atomic<bool>& renderCancelFlag();
+// Set by the SIGUSR1 handler: write a checkpoint at the next pixel boundary and go on.
+std::atomic<bool>& checkpointRequestFlag();
 
+// Renders the samples each pixel still lacks: a pixel holding n samples continues at sample
+// sampleStart + n, so a film read back from a checkpoint resumes exactly where it stopped.
 RenderStats renderImage(const Scene& scene, const Integrator& integrator,
-                        const RenderSettings& settings, Film& film);
+                        const RenderSettings& settings, Film& film,
+                        const RenderControl& control = {});
 
 }  // namespace kiln

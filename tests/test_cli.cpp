@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <thread>
 
+#include "long_render_support.h"
 #include "test_support.h"
 
 namespace kiln {
@@ -102,7 +103,7 @@ TEST(Cli, RenderWritesExrAndPngAndReportsStats) {
 
 TEST(Cli, TraversalFloorReportsTheRendersRaysOrRefusesBeforeRecordingTooMany) {
     auto dir = test::scratchDir();
-    std::string render = "render " + test::repo("scenes/cornell.dae") + " -r 32 24 -s 4 -q -o " +
+    std::string render = "render " + test::repo("scenes/cornell.dae") + " -r 32 24 -s 64 -q -o " +
                          (dir / "floor").string() + " --traversal-floor";
     CliRun r = runKiln(render);
     ASSERT_EQ(r.code, 0) << r.err;
@@ -113,10 +114,11 @@ TEST(Cli, TraversalFloorReportsTheRendersRaysOrRefusesBeforeRecordingTooMany) {
     EXPECT_NE(r.err.find("the render's " + rays + " rays traced again alone"), std::string::npos)
         << r.err;
     EXPECT_NE(r.err.find("occlusion, batched"), std::string::npos) << r.err;
-    // Too little memory to record them: the image is still written, then a one-line error.
+    // Too little memory to record them (2 MB: enough for the film and the EXR write, checked
+    // before the render, not for the rays): the image is still written, then a one-line error.
     std::filesystem::remove(dir / "floor.exr");
     CliRun small = [&] {
-        test::ScopedMemoryLimit limit("1000");
+        test::ScopedMemoryLimit limit("2000000");
         return runKiln(render);
     }();
     EXPECT_EQ(small.code, 2) << small.err;
@@ -234,8 +236,10 @@ TEST(Cli, SigintWritesThePartialImageAndExitsNonZero) {
                 (char*)nullptr);
         ::_exit(127);
     }
-    // Wait until it renders (the load takes a moment), then interrupt.
-    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+    // Wait until kiln catches SIGINT (a loaded machine may take seconds to start it), then let it
+    // render a moment and interrupt.
+    ASSERT_TRUE(test::waitForHandler(pid, SIGINT));
+    std::this_thread::sleep_for(std::chrono::milliseconds(1000));
     ::kill(pid, SIGINT);
     int status = 0;
     ::waitpid(pid, &status, 0);

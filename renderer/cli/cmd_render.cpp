@@ -5,19 +5,24 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "color/atomic_file.h"
 #include "color/image_output.h"
 #include "renderer/accel/recording_accelerator.h"
 #include "renderer/cli/accel_options.h"
 #include "renderer/cli/commands.h"
 #include "renderer/cli/render_options.h"
 #include "renderer/core/memory.h"
+#include "renderer/long_render.h"
 #include "renderer/render_job.h"
 #include "scene/scene_loader.h"
 
 namespace kiln {
 namespace {
 
+// Signals only set flags: the render stops (or checkpoints) at the next pixel, and a signal that
+// arrives while the outputs are written lets the writes finish.
 extern "C" void onInterrupt(int) { renderCancelFlag().store(true); }
+extern "C" void onCheckpointRequest(int) { checkpointRequestFlag().store(true); }
 
 namespace fs = std::filesystem;
 
@@ -32,10 +37,22 @@ struct RenderCommand {
     bool heatMap = false, quiet = false, traversalFloor = false;
     float aperture = -1, focus = -1;
     int debugX = -1, debugY = -1, debugSample = -1;
+    // Long renders (docs/long-renders.md).
+    double checkpointEvery = 0, timeLimit = 0;
+    bool resume = false;
+    int rangeStart = -1, rangeEnd = -1;  // --sample-range
+    std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
+    bool checkpoints() const {
+        return checkpointEvery > 0 || timeLimit > 0 || resume || rangeStart >= 0;
+    }
 };
 
+// Exit codes besides 0 (done), 1 (failure, e.g. a write) and 2 (bad input).
+constexpr int kExitTimeLimit = 3;      // --time-limit reached: checkpoint saved, --resume goes on
+constexpr int kExitInterrupted = 130;  // SIGINT/SIGTERM: checkpoint (if any) and image saved
+
 struct OutputPaths {
-    std::string exr, preview;
+    std::string exr, preview, checkpoint;
 };
 
 double seconds(std::chrono::steady_clock::time_point since) {
@@ -81,6 +98,38 @@ void addOutputOptions(ArgParser& parser, RenderCommand& c) {
                 c.heatMap);
 }
 
+void addLongRenderOptions(ArgParser& parser, RenderCommand& c) {
+    auto seconds = [](const std::string& name, const std::string& text) {
+        double v = ArgParser::toDouble(name, text);
+        if (!(v > 0 && v < 1e9)) throw UsageError(name + " takes seconds > 0, got '" + text + "'");
+        return v;
+    };
+    parser.option("checkpoint-every", "", 1, "SECONDS",
+                  "write OUT.ckpt (the exact film, atomically) every SECONDS and on SIGINT, "
+                  "SIGTERM, SIGUSR1",
+                  [&c, seconds](const std::vector<std::string>& v) {
+                      c.checkpointEvery = seconds("--checkpoint-every", v[0]);
+                  });
+    parser.flag("resume", "",
+                "continue from OUT.ckpt (refused if it belongs to another scene, settings or "
+                "kiln version); without OUT.ckpt, start from scratch. A larger -s refines",
+                c.resume);
+    parser.option("sample-range", "", 2, "A B",
+                  "render samples [A, B) of every pixel (a shard for kiln merge); B is the spp",
+                  [&c](const std::vector<std::string>& v) {
+                      c.rangeStart = ArgParser::toInt("--sample-range", v[0], 0, (1 << 20) - 1);
+                      c.rangeEnd = ArgParser::toInt("--sample-range", v[1], 1, 1 << 20);
+                      if (c.rangeEnd <= c.rangeStart)
+                          throw UsageError("--sample-range takes A B with A < B");
+                  });
+    parser.option("time-limit", "", 1, "SECONDS",
+                  "stop at a pixel boundary SECONDS after start, write OUT.ckpt and the image so "
+                  "far, exit 3 (--resume continues)",
+                  [&c, seconds](const std::vector<std::string>& v) {
+                      c.timeLimit = seconds("--time-limit", v[0]);
+                  });
+}
+
 void addDebugOptions(ArgParser& parser, RenderCommand& c) {
     parser.option("pixel", "", 2, "X Y",
                   "debug: trace only this pixel (with --sample) and print what it returns",
@@ -101,11 +150,12 @@ void addDebugOptions(ArgParser& parser, RenderCommand& c) {
 OutputPaths outputPaths(const RenderCommand& c, const std::string& scenePath) {
     std::string base = c.output.empty() ? fs::path(scenePath).stem().string() : c.output;
     std::string ext = fs::path(base).extension().string();
-    OutputPaths out{base + ".exr", base + ".png"};
+    OutputPaths out{base + ".exr", base + ".png", ""};
     if (ext == ".png" || ext == ".jpg" || ext == ".jpeg")
-        out = {fs::path(base).replace_extension(".exr").string(), base};
+        out = {fs::path(base).replace_extension(".exr").string(), base, ""};
     else if (ext == ".exr")
-        out = {base, fs::path(base).replace_extension(".png").string()};
+        out = {base, fs::path(base).replace_extension(".png").string(), ""};
+    out.checkpoint = fs::path(out.exr).replace_extension(".ckpt").string();
     fs::path dir = fs::path(out.exr).parent_path();
     if (!dir.empty() && !fs::is_directory(dir))
         throw UsageError("output directory '" + dir.string() + "' does not exist");
@@ -191,13 +241,26 @@ void warnHemisphereBlind(const RenderJob& job, const std::string& scenePath) {
             scenePath.c_str());
 }
 
-RenderStats renderInterruptibly(const RenderJob& job, Film& film) {
-    renderCancelFlag().store(false);
-    auto previous = std::signal(SIGINT, onInterrupt);
-    RenderStats stats = job.render(film);
-    std::signal(SIGINT, previous);
-    return stats;
-}
+// SIGINT and SIGTERM stop the render at a pixel boundary, SIGUSR1 asks for a checkpoint; the
+// handlers stay until the outputs are written. SA_RESTART: a signal does not fail a write.
+struct SignalScope {
+    struct sigaction previous[3]{};
+    static constexpr int kSignals[3] = {SIGINT, SIGTERM, SIGUSR1};
+    SignalScope() {
+        renderCancelFlag().store(false);
+        checkpointRequestFlag().store(false);
+        for (int i = 0; i < 3; ++i) {
+            struct sigaction act {};
+            act.sa_handler = kSignals[i] == SIGUSR1 ? onCheckpointRequest : onInterrupt;
+            sigemptyset(&act.sa_mask);
+            act.sa_flags = SA_RESTART;
+            sigaction(kSignals[i], &act, &previous[i]);
+        }
+    }
+    ~SignalScope() {
+        for (int i = 0; i < 3; ++i) sigaction(kSignals[i], &previous[i], nullptr);
+    }
+};
 
 void printSummary(const std::string& scenePath, const OutputPaths& out, const std::string& heat,
                   const RenderStats& stats, double load, double build, double write) {
@@ -224,9 +287,129 @@ void printSummary(const std::string& scenePath, const OutputPaths& out, const st
     }
 }
 
+constexpr const char* kExitCodes =
+    "\nexit status: 0 done; 1 failure (e.g. an output could not be written); 2 bad input; 3 "
+    "--time-limit reached, OUT.ckpt and the image so far saved (--resume continues); 130 "
+    "interrupted (SIGINT/SIGTERM), OUT.ckpt (with checkpoints on) and the image so far saved.\n"
+    "With --checkpoint-every, --resume, --sample-range or --time-limit, OUT.ckpt is written at "
+    "the end too (kiln merge combines such files). See docs/long-renders.md.\n";
+
+void applyLongRenderOptions(const RenderCommand& c, RenderJobOptions& o) {
+    RenderSettings& s = o.settings;
+    if (c.rangeStart >= 0) s.sampleStart = c.rangeStart, s.spp = c.rangeEnd;
+    if (s.sampleStart > 0 && s.adaptiveBatch > 0)
+        throw UsageError(
+            "--sample-range must start at 0 with -a: adaptive sampling decides from "
+            "the samples before");
+}
+
+// Before any expensive work: the directory takes files, the outputs fit its free space, and the
+// memory the EXR write needs (beside the film) is there.
+void checkOutputsFit(const RenderCommand& c, const RenderJobOptions& o, const OutputPaths& out) {
+    OutputSizes need = estimateOutputs(o, c.checkpoints());
+    fs::path dir = fs::path(out.exr).parent_path();
+    for (const std::string& path : {out.exr, out.preview, out.checkpoint})
+        if (int n = removeStaleTemporaries(path))
+            std::fprintf(stderr, "kiln: removed %d temporary file(s) of %s left by a killed kiln\n",
+                         n, path.c_str());
+    try {
+        checkOutputSpace(dir.empty() ? "." : dir.string(),
+                         need.exr + need.preview + need.checkpoint);
+    } catch (const std::runtime_error& e) {
+        throw UsageError(e.what());
+    }
+    uint64_t memory = need.film + need.writeMemory, available = availableMemoryBytes();
+    if (memory > available)
+        throw UsageError("the film and the EXR write need " + std::to_string(memory >> 20) +
+                         " MiB, " + std::to_string(available >> 20) +
+                         " MiB available (a smaller -r, --crop or fewer --aov fit)");
+}
+
+// Each output written and reported on its own: one failing write does not stop the others.
+int writeOutputs(const RenderCommand& c, const OutputPaths& out, const Film& film,
+                 const Metadata& meta, std::string& heatPath) {
+    int failures = 0;
+    auto attempt = [&failures](auto&& write) {
+        try {
+            write();
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "kiln: error: %s\n", e.what());
+            ++failures;
+        }
+    };
+    attempt([&] { writeExr(out.exr, film, meta, c.exr); });
+    attempt([&] { writePreview(out.preview, film, c.display, c.view, c.exposure); });
+    if (c.heatMap || c.job.job.settings.adaptiveBatch > 0) {
+        heatPath = fs::path(out.exr).replace_extension(".samples.png").string();
+        attempt([&] { writeSampleHeatMap(heatPath, film); });
+    }
+    return failures;
+}
+
+Metadata renderMetadata(const RenderJob& job, const RenderCommand& c, const std::string& scenePath,
+                        const RenderStats& stats, const Film& film) {
+    Metadata meta = job.metadata(stats, film);
+    meta["scene"] = scenePath;
+    meta["aovs"] = c.job.aovList;
+    meta["display"] = c.display;
+    meta["view"] = c.view;
+    meta["exposure"] = std::to_string(c.exposure);
+    // For kiln merge, which writes the EXR the way this render would.
+    meta["exr_storage"] = std::string(c.exr.half ? "half " : "float ") + c.exr.compression;
+    return meta;
+}
+
+int renderLong(const RenderCommand& c, const RenderJob& job,
+               const std::unique_ptr<Accelerator>& accel, const std::string& scenePath,
+               const OutputPaths& out, double loadTime, double buildTime) {
+    LongRenderOptions lo;
+    lo.checkpointPath = c.checkpoints() ? out.checkpoint : "";
+    lo.checkpointEverySeconds = c.checkpointEvery;
+    lo.timeLimitSeconds = c.timeLimit;
+    lo.start = c.started;  // the limit counts from kiln's start: the queue slot's time
+    lo.resume = c.resume;
+    if (c.checkpoints()) lo.fingerprint = checkpointFingerprint(job, scenePath, c.load);
+    lo.metadata = [&](const RenderStats& stats, const Film& film) {
+        return renderMetadata(job, c, scenePath, stats, film);
+    };
+    lo.report = [](const std::string& text) { std::fprintf(stderr, "kiln: %s\n", text.c_str()); };
+    LongRenderResult r = [&] {
+        try {
+            return runLongRender(job, lo);
+        } catch (const CheckpointError& e) {
+            throw UsageError(e.what());
+        }
+    }();
+    if (r.checkpointBytes)
+        std::fprintf(stderr, "kiln: checkpoint %s: %.1f MiB written in %.3fs\n",
+                     out.checkpoint.c_str(), double(r.checkpointBytes) / (1 << 20),
+                     r.checkpointSeconds);
+    auto t2 = std::chrono::steady_clock::now();
+    std::string heatPath;
+    int failures =
+        writeOutputs(c, out, r.film,
+                     r.totals.metadata.empty() ? renderMetadata(job, c, scenePath, r.stats, r.film)
+                                               : r.totals.metadata,
+                     heatPath);
+    printSummary(scenePath, out, heatPath, r.stats, loadTime, buildTime, seconds(t2));
+    if (failures) return 1;
+    if (r.stats.interrupted || r.stats.timeLimitReached) {
+        std::fprintf(stderr,
+                     "kiln: %s: wrote %sthe image so far (per-pixel sample counts in the EXR)\n",
+                     r.stats.interrupted ? "interrupted" : "time limit reached",
+                     lo.checkpointPath.empty() ? "" : (out.checkpoint + " and ").c_str());
+        return r.stats.interrupted ? kExitInterrupted : kExitTimeLimit;
+    }
+    if (c.traversalFloor) printTraversalFloor(*accel, job, r.stats);
+    return 0;
+}
+
 }  // namespace
 
 int runRender(const std::vector<std::string>& args) {
+    // From the start a signal stops the work and saves what it has (a farm may send SIGTERM or
+    // SIGUSR1 while the scene loads).
+    SignalScope signals;
     RenderCommand c;
     ArgParser parser("render", "SCENE [options]   (writes OUT.exr and OUT.png)");
     addOutputOptions(parser, c);
@@ -235,9 +418,11 @@ int runRender(const std::vector<std::string>& args) {
     addLoadOptions(parser, c.load);
     addCameraOptions(parser, c);
     addDebugOptions(parser, c);
+    addLongRenderOptions(parser, c);
     std::vector<std::string> pos = parser.parse(args);
     if (parser.helpRequested()) {
         std::fputs(parser.helpText().c_str(), stdout);
+        std::fputs(kExitCodes, stdout);
         return 0;
     }
     if (pos.size() != 1)
@@ -245,12 +430,14 @@ int runRender(const std::vector<std::string>& args) {
     const std::string& scenePath = pos[0];
     RenderJobOptions jobOptions = c.job.finish();
     jobOptions.settings.progress = !c.quiet;
+    applyLongRenderOptions(c, jobOptions);
     try {
         checkDisplayView(c.display, c.view);
     } catch (const std::invalid_argument& e) {
         throw UsageError(e.what());
     }
     OutputPaths out = outputPaths(c, scenePath);
+    checkOutputsFit(c, jobOptions, out);
 
     auto t0 = std::chrono::steady_clock::now();
     Scene scene = loadScene(scenePath, c.load);
@@ -265,31 +452,7 @@ int runRender(const std::vector<std::string>& args) {
     warnHemisphereBlind(job, scenePath);
     if (c.debugX >= 0 || c.debugSample >= 0) return printDebugSample(job, c);
 
-    Film film = job.makeFilm();
-    RenderStats stats = renderInterruptibly(job, film);
-    auto t2 = std::chrono::steady_clock::now();
-    Metadata meta = job.metadata(stats, film);
-    meta["scene"] = scenePath;
-    meta["aovs"] = c.job.aovList;
-    meta["display"] = c.display;
-    meta["view"] = c.view;
-    meta["exposure"] = std::to_string(c.exposure);
-    writeExr(out.exr, film, meta, c.exr);
-    writePreview(out.preview, film, c.display, c.view, c.exposure);
-    std::string heatPath;
-    if (c.heatMap || jobOptions.settings.adaptiveBatch > 0) {
-        heatPath = fs::path(out.exr).replace_extension(".samples.png").string();
-        writeSampleHeatMap(heatPath, film);
-    }
-    printSummary(scenePath, out, heatPath, stats, loadTime, buildTime, seconds(t2));
-    if (stats.interrupted) {
-        std::fprintf(
-            stderr,
-            "kiln: interrupted: wrote the image so far (per-pixel sample counts in the EXR)\n");
-        return 130;
-    }
-    if (c.traversalFloor) printTraversalFloor(*accel, job, stats);
-    return 0;
+    return renderLong(c, job, accel, scenePath, out, loadTime, buildTime);
 }
 
 }  // namespace kiln

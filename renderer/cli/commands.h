@@ -8,6 +8,7 @@
 namespace kiln {
 
 int runRender(const std::vector<std::string>& args);
+int runMerge(const std::vector<std::string>& args);  // kiln merge SHARD.ckpt... -o OUT
 int runInfo(const std::vector<std::string>& args);
 int runCrosscheck(const std::vector<std::string>& args);
 int runBench(const std::vector<std::string>& args);

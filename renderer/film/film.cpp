@@ -1,57 +1,91 @@
 #include "renderer/film/film.h"
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace kiln {
 
 Film::Film(int width, int height, const AovRequest& aovs)
-    : width_(width),
-      height_(height),
-      layout_(aovs),
-      sum_(size_t(width) * size_t(height)),
-      lum_(sum_.size()),
-      lumSq_(sum_.size()),
-      count_(sum_.size()),
-      aov_(sum_.size() * layout_.channels().size()) {}
+    : width_(width), height_(height), layout_(aovs) {
+    for (const AovChannel& c : layout_.channels())
+        slot_.push_back(c.firstSample ? firstChannels_++ : sumChannels_++);
+    size_t n = size_t(width) * size_t(height);
+    sum_.resize(3 * n);
+    lum_.resize(n);
+    lumSq_.resize(n);
+    count_.resize(n);
+    aovSum_.resize(n * sumChannels_);
+    aovFirst_.resize(n * firstChannels_);
+    converged_.resize(n);
+}
+
+std::vector<FilmBuffer> Film::buffers() {
+    auto sums = [](const char* name, std::vector<FixedSum>& v, size_t per) {
+        return FilmBuffer{name, Accumulation::Sum, sizeof(FixedSum), uint32_t(per), v.data()};
+    };
+    return {
+        sums("beauty", sum_, 3),
+        sums("luminance", lum_, 1),
+        sums("luminance_squared", lumSq_, 1),
+        sums("aov", aovSum_, sumChannels_),
+        {"aov_first", Accumulation::FirstSample, sizeof(double), uint32_t(firstChannels_),
+         aovFirst_.data()},
+        {"adaptive_converged", Accumulation::Flag, 1, 1, converged_.data()},
+        // Last: merging reads the counts before the shard's are added (FirstSample).
+        {"samples", Accumulation::Count, sizeof(uint32_t), 1, count_.data()},
+    };
+}
 
 bool Film::add(int x, int y, const SampleRecord& r) {
     size_t i = index(x, y);
     uint32_t previous = count_[i]++;
-    if (!isFinite(r.L)) return false;
     size_t nc = layout_.channels().size();
     double values[256];
-    if (nc) {
-        layout_.gather(r, values);
-        for (size_t c = 0; c < nc; ++c)
-            if (!std::isfinite(values[c])) return false;
-    }
-    sum_[i] += Vec3d(r.L);
+    if (nc) layout_.gather(r, values);
+    // Every value converted before any is added: a sample enters the film whole or not at all.
+    FixedSum fixed[256 + 5];
     double illum = luminance(r.L);
-    lum_[i] += illum;
-    lumSq_[i] += illum * illum;
-    double* dst = &aov_[i * nc];
+    if (!toFixed(r.L.x, fixed[0]) || !toFixed(r.L.y, fixed[1]) || !toFixed(r.L.z, fixed[2]) ||
+        !toFixed(illum, fixed[3]) || !toFixed(illum * illum, fixed[4]))
+        return false;
+    for (size_t c = 0; c < nc; ++c)
+        if (!toFixed(values[c], fixed[5 + c])) return false;
+    for (int k = 0; k < 3; ++k) sum_[3 * i + size_t(k)] += fixed[k];
+    lum_[i] += fixed[3];
+    lumSq_[i] += fixed[4];
+    FixedSum* sums = &aovSum_[i * sumChannels_];
+    double* firsts = &aovFirst_[i * firstChannels_];
     for (size_t c = 0; c < nc; ++c) {
-        if (layout_.channels()[c].firstSample) {
-            if (previous == 0) dst[c] = values[c];
-        } else {
-            dst[c] += values[c];
-        }
+        if (!layout_.channels()[c].firstSample)
+            sums[slot_[c]] += fixed[5 + c];
+        else if (previous == 0)
+            firsts[slot_[c]] = values[c];
     }
     return true;
 }
 
+Color Film::pixel(int x, int y) const {
+    size_t i = index(x, y);
+    if (!count_[i]) return Color(0.0f);
+    double n = count_[i];
+    return Color(float(fromFixed(sum_[3 * i]) / n), float(fromFixed(sum_[3 * i + 1]) / n),
+                 float(fromFixed(sum_[3 * i + 2]) / n));
+}
+
 float Film::aov(int x, int y, size_t c) const {
     size_t i = index(x, y);
-    double v = aov_[i * layout_.channels().size() + c];
-    if (layout_.channels()[c].firstSample) return count_[i] ? float(v) : -1.0f;
-    return count_[i] ? float(v / double(count_[i])) : 0.0f;
+    if (layout_.channels()[c].firstSample)
+        return count_[i] ? float(aovFirst_[i * firstChannels_ + slot_[c]]) : -1.0f;
+    return count_[i] ? float(fromFixed(aovSum_[i * sumChannels_ + slot_[c]]) / double(count_[i]))
+                     : 0.0f;
 }
 
 double Film::luminanceVariance(int x, int y) const {
     size_t i = index(x, y);
     double n = count_[i];
     if (n < 2) return 0.0;
-    double s1 = lum_[i], s2 = lumSq_[i];
+    double s1 = fromFixed(lum_[i]), s2 = fromFixed(lumSq_[i]);
     return std::max(0.0, (s2 - s1 * s1 / n) / (n - 1)) / n;
 }
 
@@ -59,6 +93,47 @@ uint64_t Film::totalSamples() const {
     uint64_t n = 0;
     for (uint32_t c : count_) n += c;
     return n;
+}
+
+void combineRun(const FilmBuffer& dst, const void* src, size_t dstPixel, size_t pixels,
+                const uint32_t* dstCounts) {
+    size_t per = dst.perPixel;
+    switch (dst.rule) {
+        case Accumulation::Sum: {
+            auto* d = static_cast<FixedSum*>(dst.data) + dstPixel * per;
+            auto* s = static_cast<const FixedSum*>(src);
+            for (size_t k = 0; k < pixels * per; ++k) d[k] += s[k];
+            break;
+        }
+        case Accumulation::Count: {
+            auto* d = static_cast<uint32_t*>(dst.data) + dstPixel;
+            auto* s = static_cast<const uint32_t*>(src);
+            for (size_t k = 0; k < pixels; ++k) d[k] += s[k];
+            break;
+        }
+        case Accumulation::FirstSample: {
+            auto* d = static_cast<double*>(dst.data) + dstPixel * per;
+            auto* s = static_cast<const double*>(src);
+            for (size_t p = 0; p < pixels; ++p)
+                if (dstCounts[dstPixel + p] == 0) std::copy_n(s + p * per, per, d + p * per);
+            break;
+        }
+        case Accumulation::Flag: {
+            auto* d = static_cast<uint8_t*>(dst.data) + dstPixel;
+            auto* s = static_cast<const uint8_t*>(src);
+            for (size_t k = 0; k < pixels; ++k) d[k] |= s[k];
+            break;
+        }
+    }
+}
+
+size_t Film::placeShard(int originX, int originY, int shardWidth, int shardHeight, int fullWidth,
+                        int fullHeight) const {
+    int dx = originX - originX_, dy = originY - originY_;
+    if (dx < 0 || dy < 0 || dx + shardWidth > width_ || dy + shardHeight > height_ ||
+        fullWidth != this->fullWidth() || fullHeight != this->fullHeight())
+        throw std::invalid_argument("shard region lies outside the merged image");
+    return index(dx, dy);
 }
 
 }  // namespace kiln

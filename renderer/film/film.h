@@ -1,20 +1,54 @@
 // Per-pixel accumulation with true sample counts, beauty plus the requested AOV channels; tiles own
 // disjoint pixels, so no locks.
+//
+// The sums are exact: each sample value is rounded once to a fixed-point number (48 fraction bits,
+// see fixed_sum.h) and added as an integer. Integer addition does not depend on order, so a render
+// resumed from a checkpoint, refined to more samples, or split into sample-range and region shards
+// and merged, holds the same bits as the render done in one go.
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "renderer/core/math.h"
 #include "renderer/film/aov.h"
+#include "renderer/film/fixed_sum.h"
 
 namespace kiln {
+
+// How a per-pixel buffer combines with the same buffer of a shard holding other samples.
+enum class Accumulation : uint8_t {
+    Sum = 1,          // FixedSum elements: added
+    Count = 2,        // uint32 elements: added
+    FirstSample = 3,  // double elements: the value of the pixel's earliest sample (ids)
+    Flag = 4,         // uint8 elements: or-ed (adaptive sampling's "converged")
+};
+
+// One raw per-pixel buffer of the film: checkpoints write and read these, merges combine them, so
+// a new accumulator is one more entry in Film::buffers().
+struct FilmBuffer {
+    std::string name;
+    Accumulation rule;
+    uint32_t elementBytes;
+    uint32_t perPixel;  // elements per pixel
+    void* data;
+    size_t bytes(size_t pixels) const { return pixels * perPixel * elementBytes; }
+};
+
+// Combines a run of pixels of a shard's buffer (src, laid out as dst) into dst from pixel dstPixel
+// on, by dst's rule. dstCounts: the film's sample counts before this shard (FirstSample).
+void combineRun(const FilmBuffer& dst, const void* src, size_t dstPixel, size_t pixels,
+                const uint32_t* dstCounts);
 
 class Film {
   public:
     Film(int width, int height, const AovRequest& aovs = {});
+    Film(Film&&) = default;
+    Film& operator=(Film&&) = default;
     int width() const { return width_; }
     int height() const { return height_; }
+    size_t pixelCount() const { return count_.size(); }
     // A film that holds a region of a larger image: where its pixel (0, 0) sits in that image (the
     // EXR's data window inside its display window).
     void setRegion(int originX, int originY, int fullWidth, int fullHeight) {
@@ -26,7 +60,8 @@ class Film {
     int fullHeight() const { return fullHeight_ > 0 ? fullHeight_ : height_; }
     const AovLayout& layout() const { return layout_; }
 
-    // Non-finite samples are counted (the caller reports them) and never enter the image.
+    // Non-finite samples, and samples beyond the fixed-point range (kMaxSampleValue), are counted
+    // (the caller reports them) and never enter the image.
     bool add(int x, int y, const SampleRecord& r);
     bool add(int x, int y, const Color& c) {
         SampleRecord r;
@@ -36,28 +71,42 @@ class Film {
     }
 
     uint32_t samples(int x, int y) const { return count_[index(x, y)]; }
-    Color pixel(int x, int y) const {
-        size_t i = index(x, y);
-        return count_[i] ? Color(sum_[i] / double(count_[i])) : Color(0.0f);
-    }
+    Color pixel(int x, int y) const;
     // AOV channel c of the layout: the mean over samples (ids: the first sample's value).
     float aov(int x, int y, size_t c) const;
     // Sums of the samples' illuminance and its square (adaptive sampling, variance).
-    double luminanceSum(int x, int y) const { return lum_[index(x, y)]; }
-    double luminanceSquareSum(int x, int y) const { return lumSq_[index(x, y)]; }
+    double luminanceSum(int x, int y) const { return fromFixed(lum_[index(x, y)]); }
+    double luminanceSquareSum(int x, int y) const { return fromFixed(lumSq_[index(x, y)]); }
     // Estimator variance of the pixel's luminance mean: sample variance / n.
     double luminanceVariance(int x, int y) const;
     uint64_t totalSamples() const;
+    // Adaptive sampling: the pixel met the confidence test and takes no more samples.
+    bool converged(int x, int y) const { return converged_[index(x, y)] != 0; }
+    void setConverged(int x, int y) { converged_[index(x, y)] = 1; }
+
+    // The whole per-pixel state, in a fixed order (the checkpoint's order).
+    std::vector<FilmBuffer> buffers();
+    // The same list for reading (checkpoint writes); its pointers must not be written through.
+    std::vector<FilmBuffer> buffers() const { return const_cast<Film*>(this)->buffers(); }
+    // Where a shard's pixel (0, 0) lands in this film (its index); throws std::invalid_argument if
+    // the shard's region does not lie inside this one.
+    size_t placeShard(int originX, int originY, int shardWidth, int shardHeight, int fullWidth,
+                      int fullHeight) const;
+    const uint32_t* sampleCounts() const { return count_.data(); }
 
   private:
     size_t index(int x, int y) const { return size_t(y) * size_t(width_) + size_t(x); }
     int width_, height_;
     int originX_ = 0, originY_ = 0, fullWidth_ = 0, fullHeight_ = 0;
     AovLayout layout_;
-    std::vector<Vec3d> sum_;
-    std::vector<double> lum_, lumSq_;
+    std::vector<size_t> slot_;   // per layout channel: its index in aovSum_ or aovFirst_
+    std::vector<FixedSum> sum_;  // beauty RGB, 3 per pixel
+    std::vector<FixedSum> lum_, lumSq_;
     std::vector<uint32_t> count_;
-    std::vector<double> aov_;  // channels per pixel, in layout order
+    std::vector<FixedSum> aovSum_;  // the averaged channels per pixel, in layout order
+    std::vector<double> aovFirst_;  // the first-sample channels per pixel, in layout order
+    std::vector<uint8_t> converged_;
+    size_t sumChannels_ = 0, firstChannels_ = 0;
 };
 
 }  // namespace kiln

@@ -1,0 +1,153 @@
+#include "color/atomic_file.h"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/statvfs.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+
+namespace kiln {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string systemError(int err) { return std::strerror(err); }
+
+// OpenImageIO's stdio proxy with the write counted: a short write is an error OIIO's PNG writer
+// would otherwise let pass.
+class CheckedProxy final : public OIIO::Filesystem::IOFile {
+  public:
+    CheckedProxy(FILE* f, bool& failed) : IOFile(f, Write), failed_(failed) {}
+    size_t write(const void* buf, size_t size) override {
+        size_t n = IOFile::write(buf, size);
+        if (n != size) failed_ = true;
+        return n;
+    }
+    size_t pwrite(const void* buf, size_t size, int64_t offset) override {
+        size_t n = IOFile::pwrite(buf, size, offset);
+        if (n != size) failed_ = true;
+        return n;
+    }
+
+  private:
+    bool& failed_;
+};
+
+std::string directoryOf(const std::string& path) {
+    fs::path dir = fs::path(path).parent_path();
+    return dir.empty() ? "." : dir.string();
+}
+
+std::string hostName() {
+    char host[256] = "";
+    if (gethostname(host, sizeof host - 1) != 0 || !*host) return "host";
+    for (char* c = host; *c; ++c)
+        if (*c == '/' || *c == '-') *c = '_';
+    return host;
+}
+
+// ".NAME.tmp-HOST-": hidden, and not matched by the target's own glob.
+std::string tempPrefix(const fs::path& p) {
+    std::string name = ".";
+    return name.append(p.filename().string()).append(".tmp-").append(hostName()).append("-");
+}
+
+// Unique per host, process and call: two renders to one -o never share a temporary file.
+std::string uniqueTempName(const std::string& path) {
+    static std::atomic<unsigned> counter{0};
+    fs::path p(path);
+    std::string name = tempPrefix(p);
+    name.append(std::to_string(getpid())).append("-").append(std::to_string(counter++));
+    return (p.parent_path() / name).string();
+}
+
+}  // namespace
+
+AtomicFile::AtomicFile(std::string path) : path_(std::move(path)), temp_(uniqueTempName(path_)) {
+    int fd = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    if (fd < 0)
+        throw std::runtime_error(path_ + ": cannot create a temporary file in " +
+                                 directoryOf(path_) + ": " + systemError(errno));
+    file_ = fdopen(fd, "wb");
+    if (!file_) {
+        ::close(fd);
+        ::unlink(temp_.c_str());
+        throw std::runtime_error(path_ + ": cannot open a temporary file: " + systemError(errno));
+    }
+}
+
+AtomicFile::~AtomicFile() {
+    proxy_.reset();
+    if (file_) std::fclose(file_);
+    if (!committed_) ::unlink(temp_.c_str());
+}
+
+void AtomicFile::write(const void* data, size_t bytes) {
+    if (bytes && std::fwrite(data, 1, bytes, file_) != bytes) failed_ = true;
+}
+
+OIIO::Filesystem::IOProxy* AtomicFile::proxy() {
+    if (!proxy_) proxy_ = std::make_unique<CheckedProxy>(file_, failed_);
+    return proxy_.get();
+}
+
+void AtomicFile::commit() {
+    proxy_.reset();
+    int err = 0;
+    if (std::fflush(file_) != 0 || std::ferror(file_)) err = errno ? errno : EIO;
+    if (!err && failed_) err = errno ? errno : EIO;
+    if (!err && ::fsync(fileno(file_)) != 0) err = errno;
+    if (std::fclose(file_) != 0 && !err) err = errno;
+    file_ = nullptr;
+    if (err) throw std::runtime_error(path_ + ": write failed: " + systemError(err));
+    if (::rename(temp_.c_str(), path_.c_str()) != 0)
+        throw std::runtime_error(path_ + ": cannot move into place: " + systemError(errno));
+    committed_ = true;
+    // The rename itself reaches the disk only with the directory.
+    int dir = ::open(directoryOf(path_).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (dir >= 0) {
+        ::fsync(dir);
+        ::close(dir);
+    }
+}
+
+int removeStaleTemporaries(const std::string& path) {
+    fs::path p(path);
+    fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
+    std::string prefix = tempPrefix(p);
+    int removed = 0;
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(dir, ec)) {
+        std::string name = entry.path().filename().string();
+        if (name.rfind(prefix, 0) != 0) continue;
+        long pid = std::strtol(name.c_str() + prefix.size(), nullptr, 10);
+        // Only this host's, and only of a process that is gone (SIGKILL during a write).
+        if (pid > 0 && ::kill(pid_t(pid), 0) != 0 && errno == ESRCH && fs::remove(entry.path(), ec))
+            ++removed;
+    }
+    return removed;
+}
+
+void checkOutputSpace(const std::string& dir, uint64_t bytesNeeded) {
+    std::string probe = uniqueTempName((fs::path(dir) / "probe").string());
+    int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    if (fd < 0)
+        throw std::runtime_error("output directory " + dir +
+                                 " is not writable: " + systemError(errno));
+    ::close(fd);
+    ::unlink(probe.c_str());
+    struct statvfs st {};
+    if (::statvfs(dir.c_str(), &st) != 0) return;  // unknown: the writes will report
+    uint64_t avail = uint64_t(st.f_bavail) * uint64_t(st.f_frsize);
+    if (bytesNeeded > avail)
+        throw std::runtime_error("output directory " + dir + " has " + std::to_string(avail >> 20) +
+                                 " MiB free, the outputs need about " +
+                                 std::to_string((bytesNeeded >> 20) + 1) + " MiB");
+}
+
+}  // namespace kiln

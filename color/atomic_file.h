@@ -1,0 +1,50 @@
+// Every file kiln writes goes through AtomicFile: the data lands in a temporary file with a name
+// unique to this process and call, is flushed to disk, and only then renamed over the target. A
+// reader never sees a half-written file, two processes writing the same target never mix, and a
+// write that failed (disk full, I/O error) is reported instead of leaving a truncated file.
+#pragma once
+
+#include <OpenImageIO/filesystem.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <memory>
+#include <string>
+
+namespace kiln {
+
+class AtomicFile {
+  public:
+    // Creates the temporary file beside path. Throws std::runtime_error naming path.
+    explicit AtomicFile(std::string path);
+    ~AtomicFile();  // removes the temporary file unless commit() succeeded
+    AtomicFile(const AtomicFile&) = delete;
+    AtomicFile& operator=(const AtomicFile&) = delete;
+
+    const std::string& path() const { return path_; }
+    const std::string& tempPath() const { return temp_; }
+    // Raw writes; errors are sticky and reported by commit().
+    void write(const void* data, size_t bytes);
+    // For OpenImageIO writers (ImageOutput::set_ioproxy): the same stream, same error checks.
+    OIIO::Filesystem::IOProxy* proxy();
+    // Flushes, checks every write, fsyncs, renames over path and fsyncs the directory. Throws
+    // std::runtime_error naming path and the system's reason.
+    void commit();
+
+  private:
+    std::string path_, temp_;
+    FILE* file_ = nullptr;
+    std::unique_ptr<OIIO::Filesystem::IOProxy> proxy_;
+    bool failed_ = false;  // a write came up short
+    bool committed_ = false;
+};
+
+// Removes the temporary files a killed process of this host left for path (SIGKILL during a
+// write); returns how many. Another live process's are kept.
+int removeStaleTemporaries(const std::string& path);
+
+// Before rendering: throws std::runtime_error unless a file can be created in dir and
+// bytesNeeded fit its free space.
+void checkOutputSpace(const std::string& dir, uint64_t bytesNeeded);
+
+}  // namespace kiln

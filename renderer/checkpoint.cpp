@@ -1,0 +1,378 @@
+#include "renderer/checkpoint.h"
+
+#include <zlib.h>
+
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+#include "color/atomic_file.h"
+
+namespace kiln {
+namespace {
+
+constexpr char kMagic[8] = {'K', 'I', 'L', 'N', 'C', 'K', 'P', 'T'};
+
+// CRC-32 of the bytes so far and n more. (zlib restarts the CRC on a null pointer, which an empty
+// buffer may have: skipped.)
+uLong checksum(uLong crc, const void* data, size_t n) {
+    return n ? crc32_z(crc, static_cast<const Bytef*>(data), n) : crc;
+}
+
+// Header values go one per line: newlines and backslashes escaped.
+std::string escape(const std::string& v) {
+    std::string out;
+    for (char c : v) {
+        if (c == '\\')
+            out += "\\\\";
+        else if (c == '\n')
+            out += "\\n";
+        else
+            out += c;
+    }
+    return out;
+}
+
+std::string unescape(const std::string& v) {
+    std::string out;
+    for (size_t i = 0; i < v.size(); ++i) {
+        if (v[i] == '\\' && i + 1 < v.size())
+            out += v[++i] == 'n' ? '\n' : v[i];
+        else
+            out += v[i];
+    }
+    return out;
+}
+
+std::string number(double v) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.17g", v);
+    return text;
+}
+
+std::string vec(const Vec3& v) { return number(v.x) + " " + number(v.y) + " " + number(v.z); }
+
+// Name, size and CRC-32 of a file's bytes: a scene edited since the checkpoint is another scene.
+std::string fileIdentity(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw std::runtime_error(path + ": cannot read for the checkpoint fingerprint");
+    uLong crc = crc32(0, nullptr, 0);
+    uint64_t size = 0;
+    std::vector<char> chunk(1 << 20);
+    while (in.read(chunk.data(), std::streamsize(chunk.size())) || in.gcount() > 0) {
+        crc = crc32(crc, reinterpret_cast<const Bytef*>(chunk.data()), uInt(in.gcount()));
+        size += uint64_t(in.gcount());
+    }
+    char text[64];
+    std::snprintf(text, sizeof text, " (%llu bytes, crc32 %08lx)", (unsigned long long)size, crc);
+    return std::filesystem::path(path).filename().string() + text;
+}
+
+std::string headerText(const CheckpointInfo& info) {
+    std::string h;
+    auto put = [&h](const std::string& k, const std::string& v) {
+        h += k + "=" + escape(v) + "\n";
+    };
+    for (const auto& [k, v] : info.fingerprint) put("fp." + k, v);
+    put("aov_mask", std::to_string(info.aovs.mask));
+    put("aov_bounce_layers", std::to_string(info.aovs.bounceLayers));
+    for (auto [k, v] : {std::pair<const char*, int>{"full_width", info.fullWidth},
+                        {"full_height", info.fullHeight},
+                        {"origin_x", info.originX},
+                        {"origin_y", info.originY},
+                        {"width", info.width},
+                        {"height", info.height},
+                        {"sample_start", info.sampleStart},
+                        {"sample_end", info.sampleEnd},
+                        {"complete", int(info.complete)}})
+        put(k, std::to_string(v));
+    put("rays", std::to_string(info.rays));
+    put("nonfinite_samples", std::to_string(info.nonFiniteSamples));
+    put("seconds", number(info.seconds));
+    for (const auto& [k, v] : info.metadata) put("meta." + k, v);
+    return h;
+}
+
+// Reads exactly n bytes, folding them into the checksum.
+class Reader {
+  public:
+    explicit Reader(const std::string& path) : path_(path), in_(std::fopen(path.c_str(), "rb")) {
+        if (!in_) throw CheckpointError(path + ": cannot open checkpoint: " + std::strerror(errno));
+    }
+    ~Reader() { std::fclose(in_); }
+    void read(void* to, size_t n) {
+        if (std::fread(to, 1, n, in_) != n)
+            throw CheckpointError(path_ + ": checkpoint is truncated");
+        crc_ = checksum(crc_, to, n);
+    }
+    template <class T>
+    T value() {
+        T v;
+        read(&v, sizeof v);
+        return v;
+    }
+    uLong crc() const { return crc_; }
+
+  private:
+    std::string path_;
+    FILE* in_;
+    uLong crc_ = crc32(0, nullptr, 0);
+};
+
+int toInt(const std::map<std::string, std::string>& h, const std::string& key,
+          const std::string& path) {
+    auto it = h.find(key);
+    if (it == h.end()) throw CheckpointError(path + ": checkpoint header lacks " + key);
+    try {
+        return std::stoi(it->second);
+    } catch (const std::exception&) {
+        throw CheckpointError(path + ": checkpoint header has a bad " + key);
+    }
+}
+
+CheckpointInfo parseHeader(const std::string& text, const std::string& path) {
+    std::map<std::string, std::string> h;
+    CheckpointInfo info;
+    size_t at = 0;
+    while (at < text.size()) {
+        size_t end = text.find('\n', at), eq = text.find('=', at);
+        if (end == std::string::npos || eq > end)
+            throw CheckpointError(path + ": checkpoint header is malformed");
+        std::string key = text.substr(at, eq - at),
+                    value = unescape(text.substr(eq + 1, end - eq - 1));
+        if (key.rfind("fp.", 0) == 0)
+            info.fingerprint.emplace_back(key.substr(3), value);
+        else if (key.rfind("meta.", 0) == 0)
+            info.metadata[key.substr(5)] = value;
+        else
+            h[key] = value;
+        at = end + 1;
+    }
+    info.aovs.mask = uint32_t(std::stoul(h["aov_mask"].empty() ? "0" : h["aov_mask"]));
+    info.aovs.bounceLayers = toInt(h, "aov_bounce_layers", path);
+    info.fullWidth = toInt(h, "full_width", path), info.fullHeight = toInt(h, "full_height", path);
+    info.originX = toInt(h, "origin_x", path), info.originY = toInt(h, "origin_y", path);
+    info.width = toInt(h, "width", path), info.height = toInt(h, "height", path);
+    info.sampleStart = toInt(h, "sample_start", path),
+    info.sampleEnd = toInt(h, "sample_end", path);
+    info.complete = toInt(h, "complete", path) != 0;
+    info.rays = std::strtoull(h["rays"].c_str(), nullptr, 10);
+    info.nonFiniteSamples = std::strtoull(h["nonfinite_samples"].c_str(), nullptr, 10);
+    info.seconds = std::strtod(h["seconds"].c_str(), nullptr);
+    if (info.width <= 0 || info.height <= 0 || info.width > 32768 || info.height > 32768 ||
+        info.originX < 0 || info.originY < 0 || info.originX + info.width > info.fullWidth ||
+        info.originY + info.height > info.fullHeight || info.sampleStart < 0 ||
+        info.sampleEnd < info.sampleStart || info.aovs.bounceLayers < 0 ||
+        info.aovs.bounceLayers > kMaxBounceLayers)
+        throw CheckpointError(path + ": checkpoint header holds an impossible region or range");
+    return info;
+}
+
+CheckpointInfo readHeader(Reader& in, const std::string& path) {
+    char magic[8];
+    in.read(magic, sizeof magic);
+    if (std::memcmp(magic, kMagic, sizeof magic) != 0)
+        throw CheckpointError(path + ": not a kiln checkpoint");
+    uint32_t format = in.value<uint32_t>();
+    if (format != kCheckpointFormat)
+        throw CheckpointError(path + ": checkpoint format " + std::to_string(format) +
+                              ", this kiln reads format " + std::to_string(kCheckpointFormat));
+    uint64_t bytes = in.value<uint64_t>();
+    if (bytes > (64u << 20)) throw CheckpointError(path + ": checkpoint header is malformed");
+    std::string text(bytes, '\0');
+    in.read(text.data(), bytes);
+    uint32_t expected = uint32_t(in.crc());
+    if (in.value<uint32_t>() != expected)
+        throw CheckpointError(path + ": checkpoint checksum mismatch (the header is corrupted)");
+    return parseHeader(text, path);
+}
+
+}  // namespace
+
+std::string CheckpointInfo::regionText() const {
+    return std::to_string(width) + "x" + std::to_string(height) + "+" + std::to_string(originX) +
+           "+" + std::to_string(originY) + " of " + std::to_string(fullWidth) + "x" +
+           std::to_string(fullHeight);
+}
+
+Fingerprint checkpointFingerprint(const RenderJob& job, const std::string& scenePath,
+                                  const LoadOptions& load) {
+    const RenderJobOptions& o = job.options();
+    const PathOptions& p = o.path;
+    const RenderSettings& s = o.settings;
+    const Camera& c = job.scene().camera;
+    Fingerprint f{
+        {"kiln_version", KILN_VERSION},
+        {"scene", fileIdentity(scenePath)},
+        {"environment_map",
+         load.environmentMap.empty() ? "none" : fileIdentity(load.environmentMap)},
+        {"environment_scale", number(load.environmentScale)},
+        {"camera", vec(c.position) + " / " + vec(c.forward) + " / " + vec(c.up) + " / fov " +
+                       number(c.hFovDeg) + " " + number(c.vFovDeg) + " / lens " +
+                       number(c.apertureRadius) + " " + number(c.focalDistance)},
+        {"resolution", std::to_string(s.width) + "x" + std::to_string(s.height)},
+        {"seed", std::to_string(s.seed)},
+        {"sampler", toString(s.sampler)},
+        {"integrator", job.integrator().name()},
+        {"plan", job.plan().compact()},
+        {"max_depth", std::to_string(p.maxDepth)},
+        {"light_samples", std::to_string(p.lightSamples)},
+        {"sampling", toString(p.sampling)},
+        {"mis_heuristic", p.powerHeuristic ? "power" : "balance"},
+        {"roulette", std::string(toString(p.roulette)) + " " + number(p.fixedContinuation) + " " +
+                         std::to_string(p.rouletteMinBounces)},
+        {"accumulate_bounces", p.accumulateBounces ? "yes" : "no"},
+        {"microfacet", toString(p.microfacet)},
+        {"aovs", std::to_string(o.aovs.mask) + " bounces " + std::to_string(o.aovs.bounceLayers)},
+        {"adaptive", s.adaptiveBatch > 0
+                         ? std::to_string(s.adaptiveBatch) + " " + number(s.adaptiveTolerance)
+                         : "off"},
+    };
+    return f;
+}
+
+std::string fingerprintDifference(const Fingerprint& saved, const Fingerprint& here,
+                                  const std::string& savedName) {
+    std::map<std::string, std::string> theirs(saved.begin(), saved.end());
+    for (const auto& [key, value] : here) {
+        auto it = theirs.find(key);
+        std::string was = it == theirs.end() ? "absent" : it->second;
+        if (was != value)
+            return key + " is '" + was + "' in " + savedName + ", '" + value + "' here";
+    }
+    if (saved.size() != here.size()) return savedName + " has other fingerprint fields";
+    return "";
+}
+
+CheckpointInfo checkpointInfo(const Fingerprint& fingerprint, const RenderJobOptions& options,
+                              const Film& film, const RenderStats& totals, const Metadata& meta) {
+    CheckpointInfo info;
+    info.fingerprint = fingerprint;
+    info.aovs = film.layout().request();
+    info.fullWidth = film.fullWidth(), info.fullHeight = film.fullHeight();
+    info.originX = film.originX(), info.originY = film.originY();
+    info.width = film.width(), info.height = film.height();
+    info.sampleStart = options.settings.sampleStart, info.sampleEnd = options.settings.spp;
+    info.complete = totals.complete;
+    info.rays = totals.rays, info.nonFiniteSamples = totals.nonFiniteSamples;
+    info.seconds = totals.seconds;
+    info.metadata = meta;
+    return info;
+}
+
+void writeCheckpoint(const std::string& path, const CheckpointInfo& info, const Film& film) {
+    AtomicFile file(path);
+    uLong crc = crc32(0, nullptr, 0);
+    auto put = [&](const void* data, size_t n) {
+        file.write(data, n);
+        crc = checksum(crc, data, n);
+    };
+    std::string header = headerText(info);
+    uint64_t headerBytes = header.size();
+    put(kMagic, sizeof kMagic);
+    put(&kCheckpointFormat, sizeof kCheckpointFormat);
+    put(&headerBytes, sizeof headerBytes);
+    put(header.data(), header.size());
+    uint32_t headerChecksum = uint32_t(crc);  // the header alone can be trusted before the film
+    put(&headerChecksum, sizeof headerChecksum);
+    std::vector<FilmBuffer> buffers = film.buffers();
+    uint32_t count = uint32_t(buffers.size());
+    put(&count, sizeof count);
+    for (const FilmBuffer& b : buffers) {
+        uint32_t nameBytes = uint32_t(b.name.size());
+        uint8_t rule = uint8_t(b.rule);
+        uint64_t bytes = b.bytes(film.pixelCount());
+        put(&nameBytes, sizeof nameBytes);
+        put(b.name.data(), nameBytes);
+        put(&rule, 1);
+        put(&b.elementBytes, sizeof b.elementBytes);
+        put(&b.perPixel, sizeof b.perPixel);
+        put(&bytes, sizeof bytes);
+        put(b.data, bytes);
+    }
+    uint32_t checksum = uint32_t(crc);
+    file.write(&checksum, sizeof checksum);
+    file.commit();
+}
+
+CheckpointInfo readCheckpointInfo(const std::string& path) {
+    Reader in(path);
+    return readHeader(in, path);
+}
+
+namespace {
+
+// The next buffer's header; throws unless it is the film's buffer b for pixels pixels.
+void expectBuffer(Reader& in, const FilmBuffer& b, size_t pixels, const std::string& path) {
+    uint32_t nameBytes = in.value<uint32_t>();
+    if (nameBytes > 256) throw CheckpointError(path + ": checkpoint is malformed");
+    std::string name(nameBytes, '\0');
+    in.read(name.data(), nameBytes);
+    uint8_t rule = in.value<uint8_t>();
+    uint32_t elementBytes = in.value<uint32_t>(), perPixel = in.value<uint32_t>();
+    uint64_t bytes = in.value<uint64_t>();
+    if (name != b.name || rule != uint8_t(b.rule) || elementBytes != b.elementBytes ||
+        perPixel != b.perPixel || bytes != b.bytes(pixels))
+        throw CheckpointError(path + ": checkpoint buffer '" + name +
+                              "' does not match this kiln's '" + b.name + "'");
+}
+
+void expectBufferCount(Reader& in, size_t count, const std::string& path) {
+    if (in.value<uint32_t>() != count)
+        throw CheckpointError(path + ": checkpoint holds other film buffers than this kiln's");
+}
+
+void expectChecksum(Reader& in, const std::string& path) {
+    uLong expected = in.crc();
+    if (in.value<uint32_t>() != uint32_t(expected))
+        throw CheckpointError(path + ": checkpoint checksum mismatch (the file is corrupted)");
+}
+
+}  // namespace
+
+Film readCheckpoint(const std::string& path, CheckpointInfo& info) {
+    Reader in(path);
+    info = readHeader(in, path);
+    Film film(info.width, info.height, info.aovs);
+    film.setRegion(info.originX, info.originY, info.fullWidth, info.fullHeight);
+    std::vector<FilmBuffer> buffers = film.buffers();
+    expectBufferCount(in, buffers.size(), path);
+    for (const FilmBuffer& b : buffers) {
+        expectBuffer(in, b, film.pixelCount(), path);
+        in.read(b.data, b.bytes(film.pixelCount()));
+    }
+    expectChecksum(in, path);
+    return film;
+}
+
+void mergeCheckpoint(const std::string& path, Film& into, CheckpointInfo& info) {
+    Reader in(path);
+    info = readHeader(in, path);
+    size_t at = [&] {
+        try {
+            return into.placeShard(info.originX, info.originY, info.width, info.height,
+                                   info.fullWidth, info.fullHeight);
+        } catch (const std::invalid_argument& e) {
+            throw CheckpointError(path + ": " + e.what());
+        }
+    }();
+    std::vector<FilmBuffer> buffers = into.buffers();
+    size_t width = size_t(info.width);
+    expectBufferCount(in, buffers.size(), path);
+    std::vector<char> row;
+    for (const FilmBuffer& b : buffers) {
+        expectBuffer(in, b, width * size_t(info.height), path);
+        row.resize(b.bytes(width));
+        // A row at a time straight into the merged film: no second film in memory.
+        for (int y = 0; y < info.height; ++y) {
+            in.read(row.data(), row.size());
+            combineRun(b, row.data(), at + size_t(y) * size_t(into.width()), width,
+                       into.sampleCounts());
+        }
+    }
+    expectChecksum(in, path);
+}
+
+}  // namespace kiln

@@ -1,0 +1,332 @@
+// Checkpoints and resume: the film saved exactly, a render killed at any moment and resumed equals
+// the uninterrupted one bit for bit, refinement, refusals, and a full disk during a checkpoint.
+#include <sys/mount.h>
+
+#include <random>
+
+#include "color/atomic_file.h"
+#include "long_render_support.h"
+#include "renderer/long_render.h"
+
+namespace kiln {
+namespace {
+
+namespace fs = std::filesystem;
+
+// An in-process render of CBspheres through runLongRender, checkpointing to ckpt.
+struct SmallRender : test::LoadedSpheres {
+    RenderJobOptions options(int spp, int adaptiveBatch = 0) const {
+        RenderJobOptions o = test::jobOptions(24, 18, spp, {}, AovRequest::defaults());
+        o.settings.adaptiveBatch = adaptiveBatch;
+        o.settings.adaptiveTolerance = 0.2f;
+        return o;
+    }
+    LongRenderResult run(const RenderJobOptions& o, const std::string& ckpt, bool resume) const {
+        RenderJob job(scene, *accel, o);
+        LongRenderOptions lo;
+        lo.checkpointPath = ckpt;
+        lo.resume = resume;
+        lo.fingerprint = checkpointFingerprint(job, test::spheres(), {});
+        return runLongRender(job, lo);
+    }
+};
+
+TEST(Checkpoint, RoundTripHoldsEveryBufferOfTheFilmExactly) {
+    SmallRender r;
+    std::string ckpt = (test::scratchDir() / "a.ckpt").string();
+    LongRenderResult done = r.run(r.options(8, 4), ckpt, false);
+    CheckpointInfo info;
+    Film back = readCheckpoint(ckpt, info);
+    EXPECT_EQ(test::filmState(back), test::filmState(done.film));
+    EXPECT_TRUE(info.complete);
+    EXPECT_EQ(info.sampleEnd, 8);
+    EXPECT_EQ(info.rays, done.stats.rays);
+}
+
+TEST(Checkpoint, RefineSixteenToSixtyFourEqualsSixtyFour) {
+    SmallRender r;
+    auto dir = test::scratchDir();
+    for (int adaptive : {0, 4}) {
+        std::string ckpt = (dir / ("r" + std::to_string(adaptive) + ".ckpt")).string();
+        r.run(r.options(16, adaptive), ckpt, false);
+        LongRenderResult refined = r.run(r.options(64, adaptive), ckpt, true);
+        EXPECT_TRUE(refined.resumed);
+        LongRenderResult direct = r.run(r.options(64, adaptive), "", false);
+        EXPECT_EQ(test::filmState(refined.film), test::filmState(direct.film)) << adaptive;
+        EXPECT_GT(refined.film.totalSamples(), uint64_t(16) * 24 * 18) << adaptive;
+    }
+}
+
+TEST(Checkpoint, ForeignCorruptedAndTruncatedCheckpointsAreRefused) {
+    SmallRender r;
+    auto dir = test::scratchDir();
+    std::string ckpt = (dir / "a.ckpt").string();
+    r.run(r.options(4), ckpt, false);
+    // Another depth, seed or size: refused, naming what differs.
+    RenderJobOptions deeper = r.options(8);
+    deeper.path.maxDepth = 7;
+    auto refusedResume = [&](const RenderJobOptions& o, const char* why) {
+        try {
+            r.run(o, ckpt, true);
+            ADD_FAILURE() << "resumed: " << why;
+        } catch (const CheckpointError& e) {
+            EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+        }
+    };
+    refusedResume(deeper, "max_depth is '5'");
+    RenderJobOptions cropped = r.options(8);
+    cropped.settings.regionX1 = 12, cropped.settings.regionY1 = 9;
+    refusedResume(cropped, "--crop differs");
+    refusedResume(r.options(2), "must not shrink");
+
+    std::string bytes = test::readText(ckpt);
+    auto refused = [&](const std::string& content, const char* why) {
+        std::string bad = (dir / "bad.ckpt").string();
+        test::writeFile(bad, content);
+        CheckpointInfo info;
+        try {
+            readCheckpoint(bad, info);
+            ADD_FAILURE() << "accepted: " << why;
+        } catch (const CheckpointError& e) {
+            EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+        }
+    };
+    std::string flipped = bytes;
+    flipped[bytes.size() / 2] ^= 0x10;  // inside the film's sums
+    refused(flipped, "checksum mismatch");
+    std::string header = bytes;
+    header[40] ^= 0x01;
+    refused(header, "header is corrupted");
+    refused(bytes.substr(0, bytes.size() - 100), "truncated");
+    refused(bytes.substr(0, 30), "truncated");
+    refused("P3\n1 1\n255\n0 0 0\n", "not a kiln checkpoint");
+}
+
+// The kiln command line of the resume tests: a render of about a second on two cores.
+std::vector<std::string> cliRender(const std::string& out, int spp, bool adaptive) {
+    std::vector<std::string> a{"render", test::spheres(),     "-r", "64", "48",
+                               "-s",     std::to_string(spp), "-q", "-o", out};
+    if (adaptive) a.insert(a.end(), {"-a", "8", "0.05"});
+    return a;
+}
+
+std::vector<std::string> plus(std::vector<std::string> a, std::vector<std::string> more) {
+    a.insert(a.end(), more.begin(), more.end());
+    return a;
+}
+
+// SIGKILL after a random delay (fixed seeds), then --resume until done: the pixels of the
+// uninterrupted render, whatever the moment of the kill.
+void killAndResume(bool adaptive) {
+    auto dir = test::scratchDir();
+    std::string ref = (dir / "ref").string();
+    ASSERT_EQ(test::runKilnProcess(cliRender(ref, 96, adaptive)), 0);
+    test::ExrPixels want = test::readExrPixels(ref + ".exr");
+    int resumedPartial = 0;
+    for (unsigned seed : {1u, 2u, 3u}) {
+        std::string out = (dir / ("k" + std::to_string(seed))).string();
+        std::vector<std::string> args =
+            plus(cliRender(out, 96, adaptive), {"--checkpoint-every", "0.03"});
+        // Once the first checkpoint is there (the process has started rendering), a random
+        // moment of the rest: mid-pixel, mid-wave or mid-checkpoint-write.
+        pid_t pid = test::startKiln(args);
+        for (int i = 0; i < 400 && !fs::exists(out + ".ckpt"); ++i)
+            std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        std::mt19937 rng(seed);
+        std::this_thread::sleep_for(
+            std::chrono::milliseconds(std::uniform_int_distribution<int>(0, 300)(rng)));
+        ::kill(pid, SIGKILL);
+        int status = 0;
+        ::waitpid(pid, &status, 0);
+        if (test::exitCode(status) == 128 + SIGKILL)
+            resumedPartial += !readCheckpointInfo(out + ".ckpt").complete;
+        ASSERT_EQ(test::runKilnProcess(plus(args, {"--resume"})), 0) << seed;
+        EXPECT_TRUE(test::readExrPixels(out + ".exr") == want) << "seed " << seed;
+        EXPECT_EQ(test::readText(out + ".png"), test::readText(ref + ".png")) << seed;
+    }
+    // A kill during a checkpoint write leaves a temporary file; the next run removes it.
+    for (const auto& entry : fs::directory_iterator(dir))
+        EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos)
+            << entry.path();
+    // At least one kill must have landed mid-render after a checkpoint, or nothing was tested.
+    EXPECT_GE(resumedPartial, 1);
+}
+
+TEST(Checkpoint, SigkillAtRandomMomentsThenResumeGivesTheSamePixels) { killAndResume(false); }
+
+TEST(Checkpoint, SigkillAtRandomMomentsThenResumeGivesTheSamePixelsAdaptive) {
+    killAndResume(true);
+}
+
+TEST(Checkpoint, SigtermSavesExits130AndResumes) {
+    auto dir = test::scratchDir();
+    std::string ref = (dir / "ref").string(), out = (dir / "t").string();
+    ASSERT_EQ(test::runKilnProcess(cliRender(ref, 96, false)), 0);
+    std::vector<std::string> args = plus(cliRender(out, 96, false), {"--checkpoint-every", "100"});
+    pid_t pid = test::startKiln(args);
+    ASSERT_TRUE(test::waitForHandler(pid, SIGTERM));
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    ::kill(pid, SIGTERM);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    EXPECT_EQ(test::exitCode(status), 130);
+    ASSERT_TRUE(fs::exists(out + ".ckpt"));
+    EXPECT_FALSE(readCheckpointInfo(out + ".ckpt").complete);
+    EXPECT_TRUE(fs::exists(out + ".exr"));
+    EXPECT_EQ(test::runKilnProcess(plus(args, {"--resume"})), 0);
+    EXPECT_TRUE(test::readExrPixels(out + ".exr") == test::readExrPixels(ref + ".exr"));
+}
+
+TEST(Checkpoint, Sigusr1WritesACheckpointAndTheRenderGoesOn) {
+    auto dir = test::scratchDir();
+    std::string out = (dir / "u").string();
+    std::vector<std::string> args = plus(cliRender(out, 96, false), {"--checkpoint-every", "100"});
+    pid_t pid = test::startKiln(args);
+    ASSERT_TRUE(test::waitForHandler(pid, SIGUSR1));
+    ::kill(pid, SIGUSR1);
+    // The checkpoint appears while the process still runs (its interval alone would not write
+    // one before the end).
+    bool seen = false, exited = false;
+    int status = 0;
+    while (!seen && !exited) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        exited = ::waitpid(pid, &status, WNOHANG) == pid;
+        seen = !exited && fs::exists(out + ".ckpt");
+    }
+    if (!exited) ::waitpid(pid, &status, 0);
+    EXPECT_TRUE(seen);
+    EXPECT_EQ(test::exitCode(status), 0);
+    EXPECT_TRUE(readCheckpointInfo(out + ".ckpt").complete);
+}
+
+TEST(Checkpoint, TimeLimitStopsWithAValidCheckpointAndExit3) {
+    auto dir = test::scratchDir();
+    std::string ref = (dir / "ref").string(), out = (dir / "t").string();
+    ASSERT_EQ(test::runKilnProcess(cliRender(ref, 96, false)), 0);
+    std::vector<std::string> args = plus(cliRender(out, 96, false), {"--time-limit", "0.3"});
+    EXPECT_EQ(test::runKilnProcess(args), 3);
+    EXPECT_FALSE(readCheckpointInfo(out + ".ckpt").complete);
+    EXPECT_EQ(test::runKilnProcess(plus(cliRender(out, 96, false), {"--resume"})), 0);
+    EXPECT_TRUE(test::readExrPixels(out + ".exr") == test::readExrPixels(ref + ".exr"));
+    EXPECT_TRUE(readCheckpointInfo(out + ".ckpt").complete);
+}
+
+TEST(Checkpoint, ResumeWithoutACheckpointStartsAndAForeignOneIsAOneLineExit2) {
+    auto dir = test::scratchDir();
+    std::string out = (dir / "f").string(), err = (dir / "err.txt").string();
+    std::vector<std::string> small{
+        "render", test::spheres(), "-r", "16", "12", "-s", "2", "-q", "-o", out};
+    EXPECT_EQ(test::runKilnProcess(plus(small, {"--resume"})), 0);
+    EXPECT_TRUE(fs::exists(out + ".ckpt"));
+    EXPECT_EQ(test::runKilnProcess(plus(small, {"--resume", "--seed", "5"}), -1, 0, err), 2);
+    std::string text = test::readText(err);
+    EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1) << text;
+    EXPECT_NE(text.find("seed is '0'"), std::string::npos) << text;
+}
+
+// A small tmpfs for the duration of a test (root only: CI runs as root), unmounted however the
+// test ends.
+struct ScopedTmpfs {
+    fs::path dir;
+    bool mounted = false;
+    ScopedTmpfs(fs::path where, const std::string& options) : dir(std::move(where)) {
+        fs::create_directories(dir);
+        mounted = ::mount("tmpfs", dir.c_str(), "tmpfs", 0, options.c_str()) == 0;
+    }
+    ~ScopedTmpfs() {
+        if (mounted) ::umount2(dir.c_str(), MNT_DETACH);
+    }
+};
+
+// Fills the filesystem of dir to the last byte.
+void fillDisk(const fs::path& dir) {
+    std::ofstream filler(dir / "filler", std::ios::binary);
+    std::string block(1 << 16, 'x');
+    while (filler.write(block.data(), std::streamsize(block.size()))) {
+    }
+}
+
+TEST(Checkpoint, DiskFullDuringACheckpointKeepsThePreviousOneAndReportsTheFailure) {
+    if (::geteuid() != 0) GTEST_SKIP() << "mounting a tmpfs needs root (CI runs as root)";
+    fs::path scratch = test::scratchDir();
+    ScopedTmpfs disk(scratch / "disk", "size=2m");
+    ASSERT_TRUE(disk.mounted);
+    SmallRender r;
+    std::string ckpt = (disk.dir / "a.ckpt").string();
+    LongRenderResult first = r.run(r.options(4), ckpt, false);
+    std::string before = test::readText(ckpt);
+    std::string png = (disk.dir / "a.png").string();
+    writePreview(png, first.film);
+    std::string pngBefore = test::readText(png);
+    fillDisk(disk.dir);
+    EXPECT_THROW(r.run(r.options(8), ckpt, true), std::runtime_error);
+    EXPECT_THROW(writePreview(png, first.film), std::runtime_error);
+    EXPECT_EQ(test::readText(ckpt), before);  // still the valid previous checkpoint
+    EXPECT_EQ(test::readText(png), pngBefore);
+    CheckpointInfo info;
+    EXPECT_EQ(test::filmState(readCheckpoint(ckpt, info)), test::filmState(first.film));
+    for (const auto& entry : fs::directory_iterator(disk.dir))  // no temporary file left
+        EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
+    // The command line finds the full disk before rendering: exit 2, one line.
+    std::string err = (scratch / "err.txt").string();
+    EXPECT_EQ(test::runKilnProcess({"render", test::spheres(), "-r", "64", "48", "-q", "-o",
+                                    (disk.dir / "b").string()},
+                                   -1, 0, err),
+              2);
+    EXPECT_NE(test::readText(err).find("free"), std::string::npos) << test::readText(err);
+    // A read-only filesystem likewise, and its message says so.
+    ASSERT_EQ(::mount("tmpfs", disk.dir.c_str(), "tmpfs", MS_REMOUNT | MS_RDONLY, "size=2m"), 0);
+    EXPECT_EQ(test::runKilnProcess({"render", test::spheres(), "-r", "8", "6", "-q", "-o",
+                                    (disk.dir / "c").string()},
+                                   -1, 0, err),
+              2);
+    EXPECT_NE(test::readText(err).find("not writable"), std::string::npos) << test::readText(err);
+}
+
+TEST(AtomicFile, TwoWritersOfOneTargetNeverShareATemporaryFile) {
+    auto dir = test::scratchDir();
+    std::string target = (dir / "out.bin").string();
+    AtomicFile a(target), b(target);
+    EXPECT_NE(a.tempPath(), b.tempPath());
+    a.write("first", 5);
+    b.write("second", 6);
+    b.commit();
+    EXPECT_EQ(test::readText(target), "second");
+    a.commit();
+    EXPECT_EQ(test::readText(target), "first");
+    int files = 0;
+    for (const auto& entry : fs::directory_iterator(dir)) files += entry.is_regular_file();
+    EXPECT_EQ(files, 1);
+}
+
+}  // namespace
+}  // namespace kiln
+
+namespace kiln {
+namespace {
+
+TEST(AtomicFile, TemporariesOfAKilledProcessAreRemovedALiveOnesKept) {
+    auto dir = test::scratchDir();
+    std::string target = (dir / "out.ckpt").string();
+    pid_t child = ::fork();
+    if (child == 0) {
+        AtomicFile left(target);
+        left.write("partial", 7);
+        ::_exit(0);  // as a SIGKILL would: no destructor, the temporary file stays
+    }
+    ::waitpid(child, nullptr, 0);
+    AtomicFile mine(target);  // this live process's write in progress
+    auto temporaries = [&] {
+        int n = 0;
+        for (const auto& entry : std::filesystem::directory_iterator(dir))
+            n += entry.path().filename().string().find(".tmp-") != std::string::npos;
+        return n;
+    };
+    EXPECT_EQ(temporaries(), 2);
+    EXPECT_EQ(removeStaleTemporaries(target), 1);
+    EXPECT_EQ(temporaries(), 1);
+    EXPECT_TRUE(std::filesystem::exists(mine.tempPath()));
+}
+
+}  // namespace
+}  // namespace kiln

@@ -5,8 +5,11 @@
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
+#include <fmt/format.h>
 
 #include <algorithm>
+#include <charconv>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <stdexcept>
@@ -14,7 +17,7 @@
 namespace kiln {
 namespace {
 
-// Beauty RGBA only (the preview's input).
+// Beauty RGB, opaque (the preview's input).
 OIIO::ImageBuf beautyBuffer(const Film& film) {
     OIIO::ImageSpec spec(film.width(), film.height(), 4, OIIO::TypeDesc::FLOAT);
     spec.channelnames = {"R", "G", "B", "A"};
@@ -23,6 +26,7 @@ OIIO::ImageBuf beautyBuffer(const Film& film) {
     for (int y = 0; y < film.height(); ++y)
         for (int x = 0; x < film.width(); ++x) {
             Color c = film.pixel(x, y);
+            // Opaque: the preview shows the premultiplied beauty over black, as rendered.
             float px[4] = {c.x, c.y, c.z, 1.0f};
             buf.setpixel(x, y, px, 4);
         }
@@ -41,36 +45,95 @@ std::string colorConfigPath() {
     return std::string(KILN_SOURCE_DIR) + "/color/config.ocio";
 }
 
-void writeExr(const std::string& path, const Film& film, const Metadata& metadata,
-              const ExrOptions& options) {
-    const AovLayout& layout = film.layout();
-    bool samples = layout.request().has(AovKind::Samples),
-         variance = layout.request().has(AovKind::Variance);
-    int nc = 4 + int(layout.channels().size()) + int(samples) + int(variance);
-    OIIO::ImageSpec spec(film.width(), film.height(), nc, OIIO::TypeDesc::FLOAT);
-    // A render region is the data window inside the full image's display window.
-    spec.x = film.originX(), spec.y = film.originY();
-    spec.full_x = 0, spec.full_y = 0;
-    spec.full_width = film.fullWidth(), spec.full_height = film.fullHeight();
-    spec.channelnames = {"R", "G", "B", "A"};
+const std::vector<std::string>& exrCompressions() {
+    static const std::vector<std::string> names = {"none",  "rle", "zip",  "zips", "piz",
+                                                   "pxr24", "b44", "b44a", "dwaa", "dwab"};
+    return names;
+}
+
+namespace {
+
+const char* kCryptoLayers[2] = {"CryptoObject", "CryptoMaterial"};
+
+bool hasCrypto(const Film& film, int type) {
+    return film.layout().request().has(type == 0 ? AovKind::CryptoObject : AovKind::CryptoMaterial);
+}
+
+// Every channel the file holds, in order, with its stored type.
+void addChannels(OIIO::ImageSpec& spec, const Film& film, const ExrOptions& options) {
+    const AovRequest& request = film.layout().request();
     OIIO::TypeDesc colourType = options.half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT;
-    spec.channelformats.assign(4, colourType);
-    for (const AovChannel& c : layout.channels()) {
-        spec.channelnames.push_back(c.name);
-        spec.channelformats.push_back(c.colour || c.name.rfind("N.", 0) == 0
-                                          ? colourType
-                                          : OIIO::TypeDesc(OIIO::TypeDesc::FLOAT));
-    }
-    if (samples)
-        spec.channelnames.push_back("samples"),
-            spec.channelformats.push_back(OIIO::TypeDesc::FLOAT);
-    if (variance)
-        spec.channelnames.push_back("variance"),
-            spec.channelformats.push_back(OIIO::TypeDesc::FLOAT);
+    auto add = [&](const std::string& name, OIIO::TypeDesc type) {
+        spec.channelnames.push_back(name);
+        spec.channelformats.push_back(type);
+    };
+    for (const char* c : {"R", "G", "B", "A"}) add(c, colourType);
     spec.alpha_channel = 3;
-    if (options.compression != "zip" && options.compression != "piz")
-        throw std::runtime_error(path + ": unknown EXR compression '" + options.compression +
-                                 "' (zip or piz)");
+    for (const AovChannel& c : film.layout().channels())
+        add(c.name, c.colour || c.name.rfind("N.", 0) == 0 ? colourType : OIIO::TypeDesc::FLOAT);
+    if (request.has(AovKind::Depth))
+        spec.z_channel = spec.nchannels, add("Z", OIIO::TypeDesc::FLOAT);
+    if (request.has(AovKind::Samples)) add("samples.count", OIIO::TypeDesc::FLOAT);
+    if (request.has(AovKind::Variance)) add("variance.V", OIIO::TypeDesc::FLOAT);
+    for (int type = 0; type < 2; ++type)
+        if (hasCrypto(film, type))
+            for (int layer = 0; layer < kCryptoRanks / 2; ++layer)
+                for (const char* c : {"R", "G", "B", "A"})
+                    add(fmt::format("{}{:02d}.{}", kCryptoLayers[type], layer, c),
+                        OIIO::TypeDesc::FLOAT);
+    spec.nchannels = int(spec.channelnames.size());
+}
+
+// One pixel's values in addChannels' order.
+void gatherPixel(const Film& film, int x, int y, std::vector<float>& px) {
+    const AovRequest& request = film.layout().request();
+    px.clear();
+    Color c = film.pixel(x, y);
+    px.insert(px.end(), {c.x, c.y, c.z, film.alpha(x, y)});
+    for (size_t a = 0; a < film.layout().channels().size(); ++a) px.push_back(film.aov(x, y, a));
+    if (request.has(AovKind::Depth)) px.push_back(film.depth(x, y));
+    if (request.has(AovKind::Samples)) px.push_back(float(film.samples(x, y)));
+    if (request.has(AovKind::Variance)) px.push_back(float(film.luminanceVariance(x, y)));
+    for (int type = 0; type < 2; ++type)
+        if (hasCrypto(film, type))
+            for (auto [id, coverage] : film.cryptoRanks(x, y, type))
+                px.push_back(id), px.push_back(coverage);
+}
+
+// Integers as int (or double beyond int's range), other numbers as double: a reader gets numbers,
+// not text to parse. Anything else stays a string.
+void addMetadataValue(OIIO::ImageSpec& spec, const std::string& key, const std::string& value) {
+    const char *first = value.data(), *last = value.data() + value.size();
+    long long i = 0;
+    if (auto [end, ec] = std::from_chars(first, last, i); ec == std::errc() && end == last) {
+        if (i >= INT32_MIN && i <= INT32_MAX) return spec.attribute(key, int(i));
+        if (std::llabs(i) < (1ll << 53)) {
+            double d = double(i);
+            return spec.attribute(key, OIIO::TypeDesc::DOUBLE, &d);
+        }
+    }
+    double d = 0;
+    if (auto [end, ec] = std::from_chars(first, last, d);
+        ec == std::errc() && end == last && std::isfinite(d))
+        return spec.attribute(key, OIIO::TypeDesc::DOUBLE, &d);
+    spec.attribute(key, value);
+}
+
+void addCryptoMetadata(OIIO::ImageSpec& spec, const Film& film, const ExrOptions& options) {
+    for (int type = 0; type < 2; ++type) {
+        if (!hasCrypto(film, type)) continue;
+        std::string prefix = "cryptomatte/" + cryptoLayerKey(kCryptoLayers[type]) + "/";
+        spec.attribute(prefix + "name", kCryptoLayers[type]);
+        spec.attribute(prefix + "hash", "MurmurHash3_32");
+        spec.attribute(prefix + "conversion", "uint32_to_float32");
+        auto manifest = options.cryptoManifests.find(kCryptoLayers[type]);
+        if (manifest != options.cryptoManifests.end())
+            spec.attribute(prefix + "manifest", manifest->second);
+    }
+}
+
+void addMetadata(OIIO::ImageSpec& spec, const Film& film, const Metadata& metadata,
+                 const ExrOptions& options) {
     spec.attribute("compression", options.compression);
     spec.attribute("Software", std::string("kiln ") + KILN_VERSION);
     spec.attribute("kiln:version", KILN_VERSION);
@@ -79,23 +142,50 @@ void writeExr(const std::string& path, const Film& film, const Metadata& metadat
     // Rec.709 primaries and D65 white, as OpenEXR's chromaticities attribute.
     static const float chroma[8] = {0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f};
     spec.attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), chroma);
-    for (const auto& [key, value] : metadata) spec.attribute("kiln:" + key, value);
+    const AovRequest& request = film.layout().request();
+    spec.attribute("kiln:alpha", request.transparent
+                                     ? "coverage by non-emitting surfaces; background transparent"
+                                     : "coverage by surfaces; colour premultiplied");
+    if (request.has(AovKind::Depth)) {
+        spec.attribute("kiln:depth", request.depth == DepthMode::CameraZ
+                                         ? "camera-space z (along the view axis)"
+                                         : "distance along the camera ray");
+        spec.attribute("kiln:depth_sample", "nearest first hit of the pixel's samples");
+        spec.attribute("kiln:depth_miss", "inf");
+    }
+    if (options.camera) {
+        spec.attribute("worldToCamera", OIIO::TypeMatrix, options.camera->worldToCamera.data());
+        spec.attribute("worldToNDC", OIIO::TypeMatrix, options.camera->worldToNDC.data());
+    }
+    addCryptoMetadata(spec, film, options);
+    for (const auto& [key, value] : metadata) addMetadataValue(spec, "kiln:" + key, value);
+}
+
+}  // namespace
+
+void writeExr(const std::string& path, const Film& film, const Metadata& metadata,
+              const ExrOptions& options) {
+    if (std::find(exrCompressions().begin(), exrCompressions().end(), options.compression) ==
+        exrCompressions().end())
+        throw std::runtime_error(path + ": unknown EXR compression '" + options.compression + "'");
+    OIIO::ImageSpec spec(film.width(), film.height(), 0, OIIO::TypeDesc::FLOAT);
+    // A render region is the data window inside the full image's display window.
+    spec.x = film.originX(), spec.y = film.originY();
+    spec.full_x = 0, spec.full_y = 0;
+    spec.full_width = film.fullWidth(), spec.full_height = film.fullHeight();
+    addChannels(spec, film, options);
+    addMetadata(spec, film, metadata, options);
 
     // Fill in float; OIIO converts each channel to its format on write.
     OIIO::ImageSpec memSpec = spec;
     memSpec.channelformats.clear();
     memSpec.set_format(OIIO::TypeDesc::FLOAT);
     OIIO::ImageBuf buf(memSpec);
-    std::vector<float> px(static_cast<size_t>(nc));
+    std::vector<float> px;
     for (int y = 0; y < film.height(); ++y)
         for (int x = 0; x < film.width(); ++x) {
-            Color c = film.pixel(x, y);
-            px[0] = c.x, px[1] = c.y, px[2] = c.z, px[3] = 1.0f;
-            size_t k = 4;
-            for (size_t a = 0; a < layout.channels().size(); ++a) px[k++] = film.aov(x, y, a);
-            if (samples) px[k++] = float(film.samples(x, y));
-            if (variance) px[k++] = float(film.luminanceVariance(x, y));
-            buf.setpixel(x + film.originX(), y + film.originY(), px.data(), nc);
+            gatherPixel(film, x, y, px);
+            buf.setpixel(x + film.originX(), y + film.originY(), px.data(), spec.nchannels);
         }
     std::string tmp = path + ".tmp";
     // Write under another name and rename, so a reader never sees a half-written EXR.

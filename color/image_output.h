@@ -2,8 +2,11 @@
 // preview (PNG/JPEG) through OpenColorIO.
 #pragma once
 
+#include <array>
 #include <map>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "renderer/film/film.h"
 
@@ -14,13 +17,27 @@ using Metadata = std::map<std::string, std::string>;
 // The OCIO config in force: $OCIO when set, else the one shipped in color/.
 std::string colorConfigPath();
 
-struct ExrOptions {
-    bool half = false;  // colour layers (beauty, light AOVs, albedo, N) as half; data stays float
-    std::string compression = "zip";  // zip or piz
+// OpenEXR's standard camera attributes (Imath row-vector matrices, p' = p M): world to the
+// left-handed camera space (+z along the view) and to NDC ((0, 0) top left, (1, 1) bottom right of
+// the display window, after the divide by w).
+struct ExrCamera {
+    std::array<float, 16> worldToCamera{}, worldToNDC{};
 };
 
-// Beauty R,G,B,A and every AOV of the film's layout as "layer.channel"; 'samples' and 'variance'
-// when requested. Metadata keys are written as "kiln:KEY" strings. Throws std::runtime_error.
+struct ExrOptions {
+    bool half = false;  // colour layers (beauty, light AOVs, albedo, N) as half; data stays float
+    std::string compression = "zip";  // one of exrCompressions()
+    std::optional<ExrCamera> camera;
+    // Cryptomatte manifests (JSON text) by layer name ("CryptoObject", "CryptoMaterial").
+    std::map<std::string, std::string> cryptoManifests;
+};
+
+// The EXR compressions OIIO writes: none rle zip zips piz pxr24 b44 b44a dwaa dwab.
+const std::vector<std::string>& exrCompressions();
+
+// Beauty R,G,B,A (A: coverage, colour premultiplied by it), every AOV of the film's layout as
+// "layer.channel", Z, samples.count, variance.V and the Cryptomatte layers when requested.
+// Metadata keys are written as "kiln:KEY", numbers as numbers. Throws std::runtime_error.
 void writeExr(const std::string& path, const Film& film, const Metadata& metadata,
               const ExrOptions& options = {});
 

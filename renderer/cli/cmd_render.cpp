@@ -11,6 +11,7 @@
 #include "renderer/cli/commands.h"
 #include "renderer/cli/render_options.h"
 #include "renderer/core/memory.h"
+#include "renderer/exr_scene.h"
 #include "renderer/render_job.h"
 #include "scene/scene_loader.h"
 
@@ -28,6 +29,8 @@ struct RenderCommand {
     std::string output;  // base path, or the -f file
     std::string display = "sRGB", view = "Standard";
     ExrOptions exr;
+    bool transparent = false;
+    DepthMode depth = DepthMode::Ray;
     bool heatMap = false, quiet = false, traversalFloor = false;
     float aperture = -1, focus = -1;
     int debugX = -1, debugY = -1, debugSample = -1;
@@ -68,16 +71,48 @@ void addOutputOptions(ArgParser& parser, RenderCommand& c) {
                   [&c](const std::vector<std::string>& v) { c.view = v[0]; });
     parser.flag("half", "", "write colour layers as half floats (data layers stay float)",
                 c.exr.half);
-    parser.option("compression", "", 1, "zip|piz", "EXR compression (default zip)",
-                  [&c](const std::vector<std::string>& v) {
-                      if (v[0] != "zip" && v[0] != "piz")
-                          throw UsageError("--compression takes zip or piz, got '" + v[0] + "'");
-                      c.exr.compression = v[0];
-                  });
     parser.flag("heatmap", "",
                 "also write OUT.samples.png, the per-pixel sample counts as a heat map "
                 "(always with -a)",
                 c.heatMap);
+}
+
+std::string joined(const std::vector<std::string>& names, const char* separator) {
+    std::string text;
+    for (const std::string& n : names) text += (text.empty() ? "" : separator) + n;
+    return text;
+}
+
+void addCompressionOption(ArgParser& parser, RenderCommand& c) {
+    const std::vector<std::string>& known = exrCompressions();
+    parser.option("compression", "", 1, joined(known, "|"),
+                  "EXR compression (default zip; pxr24, b44, b44a, dwaa, dwab are lossy)",
+                  [&c, &known](const std::vector<std::string>& v) {
+                      if (std::find(known.begin(), known.end(), v[0]) == known.end())
+                          throw UsageError("--compression takes " + joined(known, ", ") +
+                                           "; got '" + v[0] + "'");
+                      c.exr.compression = v[0];
+                  });
+}
+
+// Alpha and Z conventions of the EXR (see docs/output.md).
+void addCompositingOptions(ArgParser& parser, RenderCommand& c) {
+    parser.flag("transparent", "",
+                "transparent background (Cycles' Film > Transparent): background seen directly "
+                "leaves the image, alpha counts non-emitting surfaces only",
+                c.transparent);
+    parser.option("depth", "", 1, "ray|camera",
+                  "what Z holds: distance along the camera ray (default) or camera-space z",
+                  [&c](const std::vector<std::string>& v) {
+                      if (v[0] != "ray" && v[0] != "camera")
+                          throw UsageError("--depth takes 'ray' or 'camera', got '" + v[0] + "'");
+                      c.depth = v[0] == "camera" ? DepthMode::CameraZ : DepthMode::Ray;
+                  });
+}
+
+void applyCompositingOptions(const RenderCommand& c, RenderJobOptions& options) {
+    options.aovs.transparent = c.transparent;
+    options.aovs.depth = c.depth;
 }
 
 void addDebugOptions(ArgParser& parser, RenderCommand& c) {
@@ -234,6 +269,8 @@ int runRender(const std::vector<std::string>& args) {
     addLoadOptions(parser, c.load);
     addCameraOptions(parser, c);
     addDebugOptions(parser, c);
+    addCompressionOption(parser, c);
+    addCompositingOptions(parser, c);
     std::vector<std::string> pos = parser.parse(args);
     if (parser.helpRequested()) {
         std::fputs(parser.helpText().c_str(), stdout);
@@ -244,6 +281,7 @@ int runRender(const std::vector<std::string>& args) {
     const std::string& scenePath = pos[0];
     RenderJobOptions jobOptions = c.job.finish();
     jobOptions.settings.progress = !c.quiet;
+    applyCompositingOptions(c, jobOptions);
     try {
         checkDisplayView(c.display, c.view);
     } catch (const std::invalid_argument& e) {
@@ -272,6 +310,7 @@ int runRender(const std::vector<std::string>& args) {
     meta["aovs"] = c.job.aovList;
     meta["display"] = c.display;
     meta["view"] = c.view;
+    addSceneToExr(c.exr, scene, jobOptions.settings, jobOptions.aovs);
     writeExr(out.exr, film, meta, c.exr);
     writePreview(out.preview, film, c.display, c.view);
     std::string heatPath;

@@ -2,11 +2,14 @@
 // disjoint pixels, so no locks.
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "renderer/core/math.h"
 #include "renderer/film/aov.h"
+#include "renderer/film/cryptomatte.h"
 
 namespace kiln {
 
@@ -29,9 +32,10 @@ class Film {
     // Non-finite samples are counted (the caller reports them) and never enter the image.
     bool add(int x, int y, const SampleRecord& r);
     bool add(int x, int y, const Color& c) {
-        SampleRecord r;
+        SampleRecord r;  // a sample that covered the pixel with this colour
         r.reset(layout_.request());
         r.L = c;
+        r.hit = true;
         return add(x, y, r);
     }
 
@@ -48,6 +52,17 @@ class Film {
     // Estimator variance of the pixel's luminance mean: sample variance / n.
     double luminanceVariance(int x, int y) const;
     uint64_t totalSamples() const;
+    // Coverage: the fraction of the pixel's samples whose camera ray hit a surface (with
+    // transparent, a surface that does not emit). The beauty and light AOVs are premultiplied by
+    // it.
+    float alpha(int x, int y) const;
+    // The nearest first hit's Z over the pixel's samples (one sample's, never a mean); +inf where
+    // none hit. Only with the Depth AOV.
+    float depth(int x, int y) const { return depth_[index(x, y)]; }
+    // Cryptomatte type 0 (objects) or 1 (materials): (id, coverage) pairs ranked by coverage, empty
+    // ranks (0, 0).
+    using CryptoRanks = std::array<std::pair<float, float>, kCryptoRanks>;
+    CryptoRanks cryptoRanks(int x, int y, int type) const;
 
   private:
     size_t index(int x, int y) const { return size_t(y) * size_t(width_) + size_t(x); }
@@ -57,7 +72,11 @@ class Film {
     std::vector<Vec3d> sum_;
     std::vector<double> lum_, lumSq_;
     std::vector<uint32_t> count_;
-    std::vector<double> aov_;  // channels per pixel, in layout order
+    std::vector<double> aov_;            // channels per pixel, in layout order
+    std::vector<uint32_t> covered_;      // samples that covered the pixel (alpha)
+    std::vector<float> depth_;           // nearest first-hit Z (with the Depth AOV)
+    std::vector<CryptoSlot> crypto_[2];  // kCryptoSlots per pixel: objects, materials
+    void addCrypto(size_t i, int type, uint32_t id);
 };
 
 }  // namespace kiln

@@ -54,7 +54,7 @@ uint64_t fnv(const std::string& s, uint64_t h = 1469598103934665603ull) {
 
 // A reference render cached by an earlier run: beauty, variance and the colour AOV layers.
 Image fromCachedReference(const ChannelImage& file, const AccuracyOptions& o, int depth) {
-    const int nc = int(file.channelNames.size()), v = file.channel("variance");
+    const int nc = int(file.channelNames.size()), v = file.channel("variance.V");
     const size_t count = size_t(file.width) * file.height;
     Image img;
     img.width = file.width, img.height = file.height;
@@ -95,7 +95,7 @@ Image reference(const Scene& scene, const Accelerator& accel, const AccuracyOpti
     std::string path = (fs::path(o.outDir) / name).string();
     ChannelImage cachedImage;
     if (readChannelImage(path, cachedImage) && cachedImage.width == o.width &&
-        cachedImage.height == o.height && cachedImage.channel("variance") >= 0) {
+        cachedImage.height == o.height && cachedImage.channel("variance.V") >= 0) {
         cached = true;
         return fromCachedReference(cachedImage, o, depth);
     }

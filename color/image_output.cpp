@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <memory>
 #include <stdexcept>
 
 namespace kiln {
@@ -33,17 +34,29 @@ OIIO::ImageBuf beautyBuffer(const Film& film) {
     return buf;
 }
 
+// OIIO's view of the config in force (made again when $OCIO names another).
 OIIO::ColorConfig& colorConfig() {
-    static OIIO::ColorConfig config(colorConfigPath());
-    return config;
+    static std::string path;
+    static std::unique_ptr<OIIO::ColorConfig> config;
+    if (!config || path != colorConfigPath()) {
+        path = colorConfigPath();
+        config = std::make_unique<OIIO::ColorConfig>(path);
+    }
+    return *config;
+}
+
+// scene_linear -> display/view of a float RGB(A) buffer.
+OIIO::ImageBuf toDisplay(const OIIO::ImageBuf& linear, const std::string& display,
+                         const std::string& view) {
+    ColorSetup setup = checkColorConfig(display, view);
+    OIIO::ImageBuf shown;
+    if (!OIIO::ImageBufAlgo::ociodisplay(shown, linear, setup.display, setup.view,
+                                         setup.sceneLinear, "", false, "", "", &colorConfig()))
+        throw std::runtime_error("colour transform failed: " + shown.geterror());
+    return shown;
 }
 
 }  // namespace
-
-std::string colorConfigPath() {
-    if (const char* env = std::getenv("OCIO"); env && *env) return env;
-    return std::string(KILN_SOURCE_DIR) + "/color/config.ocio";
-}
 
 const std::vector<std::string>& exrCompressions() {
     static const std::vector<std::string> names = {"none",  "rle", "zip",  "zips", "piz",
@@ -204,11 +217,7 @@ void writeExr(const std::string& path, const Film& film, const Metadata& metadat
 
 void writePreview(const std::string& path, const Film& film, const std::string& display,
                   const std::string& view) {
-    OIIO::ImageBuf linear = beautyBuffer(film);
-    OIIO::ImageBuf shown;
-    if (!OIIO::ImageBufAlgo::ociodisplay(shown, linear, display, view, "lin_rec709", "", false, "",
-                                         "", &colorConfig()))
-        throw std::runtime_error(path + ": colour transform failed: " + shown.geterror());
+    OIIO::ImageBuf shown = toDisplay(beautyBuffer(film), display, view);
     std::string tmp = path + ".tmp" + std::filesystem::path(path).extension().string();
     if (!shown.write(tmp, OIIO::TypeDesc::UINT8)) {
         std::filesystem::remove(tmp);
@@ -287,42 +296,12 @@ void writeSampleHeatMap(const std::string& path, const Film& film) {
     std::filesystem::rename(tmp, path);
 }
 
-void checkDisplayView(const std::string& display, const std::string& view) {
-    namespace OCIO = OCIO_NAMESPACE;
-    OCIO::ConstConfigRcPtr config;
-    try {
-        config = OCIO::Config::CreateFromFile(colorConfigPath().c_str());
-    } catch (const OCIO::Exception& e) {
-        throw std::invalid_argument(colorConfigPath() + ": cannot load OCIO config: " + e.what());
-    }
-    std::string displays, views;
-    bool haveDisplay = false, haveView = false;
-    for (int d = 0; d < config->getNumDisplays(); ++d) {
-        std::string name = config->getDisplay(d);
-        displays += (d ? ", " : "") + name;
-        if (name != display) continue;
-        haveDisplay = true;
-        for (int v = 0; v < config->getNumViews(name.c_str()); ++v) {
-            std::string vn = config->getView(name.c_str(), v);
-            views += (v ? ", " : "") + vn;
-            haveView |= vn == view;
-        }
-    }
-    if (!haveDisplay)
-        throw std::invalid_argument("unknown display '" + display + "' (known: " + displays + ")");
-    if (!haveView)
-        throw std::invalid_argument("display '" + display + "' has no view '" + view +
-                                    "' (known: " + views + ")");
-}
-
 float displayTransform(float linear, const std::string& display, const std::string& view) {
     OIIO::ImageSpec spec(1, 1, 3, OIIO::TypeDesc::FLOAT);
-    OIIO::ImageBuf src(spec), dst;
+    OIIO::ImageBuf src(spec);
     float v[3] = {linear, linear, linear};
     src.setpixel(0, 0, v, 3);
-    if (!OIIO::ImageBufAlgo::ociodisplay(dst, src, display, view, "lin_rec709", "", false, "", "",
-                                         &colorConfig()))
-        throw std::runtime_error("colour transform failed: " + dst.geterror());
+    OIIO::ImageBuf dst = toDisplay(src, display, view);
     float out[3];
     dst.getpixel(0, 0, out, 3);
     return out[0];

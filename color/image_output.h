@@ -8,14 +8,12 @@
 #include <string>
 #include <vector>
 
+#include "color/color_config.h"
 #include "renderer/film/film.h"
 
 namespace kiln {
 
 using Metadata = std::map<std::string, std::string>;
-
-// The OCIO config in force: $OCIO when set, else the one shipped in color/.
-std::string colorConfigPath();
 
 // OpenEXR's standard camera attributes (Imath row-vector matrices, p' = p M): world to the
 // left-handed camera space (+z along the view) and to NDC ((0, 0) top left, (1, 1) bottom right of
@@ -44,16 +42,12 @@ void writeExr(const std::string& path, const Film& film, const Metadata& metadat
 // The per-pixel sample counts as a heat map (blue few, red many) with a legend bar and its range.
 void writeSampleHeatMap(const std::string& path, const Film& film);
 
-// Throws std::invalid_argument unless the OCIO config has this display and view (checked before
-// rendering).
-void checkDisplayView(const std::string& display, const std::string& view);
-
-// Display-referred 8-bit preview through the OCIO display/view.
-void writePreview(const std::string& path, const Film& film, const std::string& display = "sRGB",
-                  const std::string& view = "Standard");
+// Display-referred 8-bit preview through the OCIO display/view (empty: the config's defaults),
+// from the config's scene_linear.
+void writePreview(const std::string& path, const Film& film, const std::string& display = "",
+                  const std::string& view = "");
 
 // The scene-linear -> display transform of one value (for tests and tools).
-float displayTransform(float linear, const std::string& display = "sRGB",
-                       const std::string& view = "Standard");
+float displayTransform(float linear, const std::string& display = "", const std::string& view = "");
 
 }  // namespace kiln

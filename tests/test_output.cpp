@@ -154,9 +154,9 @@ TEST(ColourManagement, ViewsOfTheShippedConfig) {
     EXPECT_LT(grey, 0.5f);
     EXPECT_LT(displayTransform(1.0f, "sRGB", "ACES 1.0 SDR-video"),
               0.95f);  // the tone curve rolls off
-    EXPECT_NO_THROW(checkDisplayView("sRGB", "Raw"));
-    EXPECT_THROW(checkDisplayView("sRGB", "Filmic"), std::invalid_argument);
-    EXPECT_THROW(checkDisplayView("P3", "Standard"), std::invalid_argument);
+    EXPECT_NO_THROW(checkColorConfig("sRGB", "Raw"));
+    EXPECT_THROW(checkColorConfig("sRGB", "Filmic"), std::invalid_argument);
+    EXPECT_THROW(checkColorConfig("P3", "Standard"), std::invalid_argument);
 }
 
 TEST(HeatMap, BlueFewRedManyWithALegend) {

@@ -26,8 +26,8 @@ struct RenderCommand {
     RenderJobArgs job;
     AcceleratorChoice accel;
     LoadOptions load;
-    std::string output;  // base path, or the -f file
-    std::string display = "sRGB", view = "Standard";
+    std::string output;         // base path, or the -f file
+    std::string display, view;  // empty: the OCIO config's defaults
     ExrOptions exr;
     bool transparent = false;
     DepthMode depth = DepthMode::Ray;
@@ -65,9 +65,11 @@ void addOutputOptions(ArgParser& parser, RenderCommand& c) {
                   [&c](const std::vector<std::string>& v) { c.output = v[0]; });
     parser.option("file", "f", 1, "OUT.png", "CS184 form: preview file; the EXR goes beside it",
                   [&c](const std::vector<std::string>& v) { c.output = v[0]; });
-    parser.option("display", "", 1, "NAME", "OCIO display for the preview (default sRGB)",
+    parser.option("display", "", 1, "NAME",
+                  "OCIO display for the preview (default: the config's default display)",
                   [&c](const std::vector<std::string>& v) { c.display = v[0]; });
-    parser.option("view", "", 1, "NAME", "OCIO view for the preview (default Standard)",
+    parser.option("view", "", 1, "NAME",
+                  "OCIO view for the preview (default: the display's default view)",
                   [&c](const std::vector<std::string>& v) { c.view = v[0]; });
     parser.flag("half", "", "write colour layers as half floats (data layers stay float)",
                 c.exr.half);
@@ -113,6 +115,18 @@ void addCompositingOptions(ArgParser& parser, RenderCommand& c) {
 void applyCompositingOptions(const RenderCommand& c, RenderJobOptions& options) {
     options.aovs.transparent = c.transparent;
     options.aovs.depth = c.depth;
+}
+
+// The OCIO config, display and view checked before any work; the defaults filled in.
+void checkColour(RenderCommand& c) {
+    try {
+        ColorSetup setup = checkColorConfig(c.display, c.view);
+        c.display = setup.display, c.view = setup.view;
+        for (const std::string& w : setup.warnings)
+            std::fprintf(stderr, "kiln: warning: %s\n", w.c_str());
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+    }
 }
 
 void addDebugOptions(ArgParser& parser, RenderCommand& c) {
@@ -282,11 +296,7 @@ int runRender(const std::vector<std::string>& args) {
     RenderJobOptions jobOptions = c.job.finish();
     jobOptions.settings.progress = !c.quiet;
     applyCompositingOptions(c, jobOptions);
-    try {
-        checkDisplayView(c.display, c.view);
-    } catch (const std::invalid_argument& e) {
-        throw UsageError(e.what());
-    }
+    checkColour(c);
     OutputPaths out = outputPaths(c, scenePath);
 
     auto t0 = std::chrono::steady_clock::now();

@@ -10,8 +10,10 @@
 #include "renderer/cli/accel_options.h"
 #include "renderer/cli/commands.h"
 #include "renderer/cli/render_options.h"
+#include "renderer/core/json.h"
 #include "renderer/core/memory.h"
 #include "renderer/exr_scene.h"
+#include "renderer/progress.h"
 #include "renderer/render_job.h"
 #include "scene/scene_loader.h"
 
@@ -29,7 +31,9 @@ struct RenderCommand {
     std::string output;         // base path, or the -f file
     std::string display, view;  // empty: the OCIO config's defaults
     ExrOptions exr;
-    bool transparent = false;
+    bool transparent = false, json = false;
+    std::string progress = "bar";
+    std::vector<std::string> warnings;  // also in the --json result
     DepthMode depth = DepthMode::Ray;
     bool heatMap = false, quiet = false, traversalFloor = false;
     float aperture = -1, focus = -1;
@@ -127,6 +131,63 @@ void checkColour(RenderCommand& c) {
     } catch (const std::invalid_argument& e) {
         throw UsageError(e.what());
     }
+}
+
+// What a job queue drives: one JSON result on stdout, progress as JSON lines on stderr.
+void addQueueOptions(ArgParser& parser, RenderCommand& c) {
+    parser.flag("json", "",
+                "print one JSON result on stdout: outputs, times, rays, samples, peak memory, "
+                "warnings (docs/output.md)",
+                c.json);
+    parser.option(
+        "progress", "", 1, "bar|json|none",
+        "progress on stderr: a bar (plain lines when not a terminal), JSON lines, or "
+        "none (as -q)",
+        [&c](const std::vector<std::string>& v) {
+            if (v[0] != "bar" && v[0] != "json" && v[0] != "none")
+                throw UsageError("--progress takes bar, json or none, got '" + v[0] + "'");
+            c.progress = v[0];
+        });
+}
+
+void applyQueueOptions(const RenderCommand& c, RenderJobOptions& options) {
+    options.settings.progress = !c.quiet && c.progress != "none";
+    Progress::setStyle(c.progress == "json" ? ProgressStyle::Json : ProgressStyle::Text);
+}
+
+struct RenderTimes {
+    double load = 0, build = 0, write = 0;
+};
+
+void printJsonResult(const RenderCommand& c, const Scene& scene, const OutputPaths& out,
+                     const std::string& heat, const RenderStats& stats, const Film& film,
+                     const RenderTimes& times) {
+    std::vector<std::string> warnings = scene.warnings;
+    warnings.insert(warnings.end(), c.warnings.begin(), c.warnings.end());
+    if (stats.nonFiniteSamples)
+        warnings.push_back(std::to_string(stats.nonFiniteSamples) +
+                           " non-finite samples were dropped");
+    struct rusage usage {};
+    getrusage(RUSAGE_SELF, &usage);
+    Json outputs = {{"exr", out.exr}, {"preview", out.preview}};
+    if (!heat.empty()) outputs["heatmap"] = heat;
+    Json result = {
+        {"scene", scene.sourcePath},
+        {"outputs", outputs},
+        {"seconds",
+         {{"load", times.load},
+          {"build", times.build},
+          {"render", stats.seconds},
+          {"write", times.write}}},
+        {"rays", stats.rays},
+        {"samples", stats.samples},
+        {"spp",
+         film.width() > 0 ? double(stats.samples) / (double(film.width()) * film.height()) : 0.0},
+        {"nonfinite_samples", stats.nonFiniteSamples},
+        {"peak_memory_bytes", uint64_t(usage.ru_maxrss) * 1024},
+        {"interrupted", stats.interrupted},
+        {"warnings", warnings}};
+    std::puts(jsonText(result).c_str());
 }
 
 void addDebugOptions(ArgParser& parser, RenderCommand& c) {
@@ -285,6 +346,7 @@ int runRender(const std::vector<std::string>& args) {
     addDebugOptions(parser, c);
     addCompressionOption(parser, c);
     addCompositingOptions(parser, c);
+    addQueueOptions(parser, c);
     std::vector<std::string> pos = parser.parse(args);
     if (parser.helpRequested()) {
         std::fputs(parser.helpText().c_str(), stdout);
@@ -294,8 +356,8 @@ int runRender(const std::vector<std::string>& args) {
         throw UsageError("needs exactly one scene file (see 'kiln render --help')");
     const std::string& scenePath = pos[0];
     RenderJobOptions jobOptions = c.job.finish();
-    jobOptions.settings.progress = !c.quiet;
     applyCompositingOptions(c, jobOptions);
+    applyQueueOptions(c, jobOptions);
     checkColour(c);
     OutputPaths out = outputPaths(c, scenePath);
 
@@ -328,7 +390,10 @@ int runRender(const std::vector<std::string>& args) {
         heatPath = fs::path(out.exr).replace_extension(".samples.png").string();
         writeSampleHeatMap(heatPath, film);
     }
-    printSummary(scenePath, out, heatPath, stats, loadTime, buildTime, seconds(t2));
+    double writeTime = seconds(t2);
+    printSummary(scenePath, out, heatPath, stats, loadTime, buildTime, writeTime);
+    if (c.json)
+        printJsonResult(c, scene, out, heatPath, stats, film, {loadTime, buildTime, writeTime});
     if (stats.interrupted) {
         std::fprintf(
             stderr,

@@ -1,0 +1,79 @@
+// Every JSON kiln prints parses with a real parser (nlohmann-json), also for file names with
+// quotes, backslashes and bytes that are not UTF-8.
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "kiln_run.h"
+#include "test_support.h"
+
+namespace kiln {
+namespace {
+
+// A copy of the Cornell box under a name that broke the hand-written JSON.
+std::filesystem::path hostileScene(const std::filesystem::path& dir) {
+    std::string name = "q\"uo\\te'd \xff\xfe name.dae";
+    std::filesystem::path path = dir / name;
+    std::filesystem::copy_file(test::repo("scenes/cornell.dae"), path);
+    return path;
+}
+
+TEST(Json, InfoParsesWithAHostileFileName) {
+    auto dir = test::scratchDir();
+    auto scene = hostileScene(dir);
+    test::CliRun r = test::runKiln("info --json " + test::shellQuoted(scene.string()));
+    ASSERT_EQ(r.code, 0) << r.err;
+    nlohmann::json j = nlohmann::json::parse(r.out);
+    std::string name = j["scene"];
+    EXPECT_NE(name.find("q\"uo\\te'd "), std::string::npos) << name;
+    EXPECT_NE(name.find("\xef\xbf\xbd"), std::string::npos) << name;  // U+FFFD for the bad bytes
+    EXPECT_EQ(j["triangles"], 24);
+    EXPECT_EQ(j["camera"]["position"].size(), 3u);
+    EXPECT_TRUE(j["warnings"].is_array());
+}
+
+TEST(Json, CrosscheckParsesWithAHostileFileName) {
+    auto dir = test::scratchDir();
+    auto scene = hostileScene(dir);
+    test::CliRun r =
+        test::runKiln("crosscheck --json --rays 400 " + test::shellQuoted(scene.string()));
+    ASSERT_EQ(r.code, 0) << r.err;
+    nlohmann::json j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["genuine"], 0);
+    ASSERT_EQ(j["categories"].size(), 4u);
+    for (const auto& c : j["categories"]) EXPECT_EQ(c["rays"], 100) << c.dump();
+}
+
+TEST(Json, RenderPrintsOneResultAndProgressLines) {
+    auto dir = test::scratchDir();
+    auto scene = hostileScene(dir);
+    std::string out = (dir / "out \"x\"").string();
+    test::CliRun r =
+        test::runKiln("render " + test::shellQuoted(scene.string()) +
+                      " -r 32 24 -s 4 --json --progress json -o " + test::shellQuoted(out));
+    ASSERT_EQ(r.code, 0) << r.err;
+    nlohmann::json j = nlohmann::json::parse(r.out);  // the whole of stdout: one document
+    EXPECT_EQ(j["outputs"]["exr"], out + ".exr");
+    EXPECT_TRUE(std::filesystem::exists(j["outputs"]["exr"].get<std::string>()));
+    EXPECT_TRUE(std::filesystem::exists(j["outputs"]["preview"].get<std::string>()));
+    EXPECT_EQ(j["samples"], 32 * 24 * 4);
+    EXPECT_EQ(j["spp"], 4.0);
+    EXPECT_GT(j["rays"].get<uint64_t>(), uint64_t(32 * 24 * 4));
+    EXPECT_GT(j["peak_memory_bytes"].get<uint64_t>(), uint64_t(1) << 20);
+    EXPECT_GE(j["seconds"]["render"].get<double>(), 0.0);
+    EXPECT_EQ(j["interrupted"], false);
+    EXPECT_TRUE(j["warnings"].is_array());
+    // Progress: JSON lines on stderr, the last one "done" at fraction 1.
+    std::istringstream err(r.err);
+    std::string line;
+    nlohmann::json last;
+    int lines = 0;
+    while (std::getline(err, line))
+        if (!line.empty() && line[0] == '{') last = nlohmann::json::parse(line), ++lines;
+    ASSERT_GE(lines, 1) << r.err;
+    EXPECT_EQ(last["event"], "done");
+    EXPECT_EQ(last["fraction"], 1.0);
+    EXPECT_EQ(last["work_done"], 32 * 24 * 4);
+}
+
+}  // namespace
+}  // namespace kiln

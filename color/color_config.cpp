@@ -111,7 +111,7 @@ std::string colorConfigPath() {
     std::error_code ec;
     fs::path exe = fs::read_symlink("/proc/self/exe", ec);
     if (!ec) {
-        fs::path installed = exe.parent_path().parent_path() / "share" / "kiln" / "config.ocio";
+        fs::path installed = (exe.parent_path() / KILN_CONFIG_FROM_BINARY).lexically_normal();
         if (fs::exists(installed, ec)) return installed.string();
     }
     return std::string(KILN_SOURCE_DIR) + "/color/config.ocio";

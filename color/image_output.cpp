@@ -148,7 +148,8 @@ void addCryptoMetadata(OIIO::ImageSpec& spec, const Film& film, const ExrOptions
 void addMetadata(OIIO::ImageSpec& spec, const Film& film, const Metadata& metadata,
                  const ExrOptions& options) {
     spec.attribute("compression", options.compression);
-    spec.attribute("Software", std::string("kiln ") + KILN_VERSION);
+    spec.attribute("Software", options.software.empty() ? std::string("kiln ") + KILN_VERSION
+                                                        : options.software);
     spec.attribute("kiln:version", KILN_VERSION);
     spec.attribute("kiln:colorspace", "lin_rec709");
     spec.attribute("oiio:ColorSpace", "lin_rec709");

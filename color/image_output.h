@@ -26,6 +26,7 @@ struct ExrOptions {
     bool half = false;  // colour layers (beauty, light AOVs, albedo, N) as half; data stays float
     std::string compression = "zip";  // one of exrCompressions()
     std::optional<ExrCamera> camera;
+    std::string software;  // the Software attribute; empty: "kiln VERSION"
     // Cryptomatte manifests (JSON text) by layer name ("CryptoObject", "CryptoMaterial").
     std::map<std::string, std::string> cryptoManifests;
 };

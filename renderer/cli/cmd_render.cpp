@@ -1,4 +1,5 @@
 // kiln render: option parsing, then one RenderJob, then the outputs.
+#include <fmt/format.h>
 #include <sys/resource.h>
 
 #include <csignal>
@@ -7,6 +8,7 @@
 
 #include "color/image_output.h"
 #include "renderer/accel/recording_accelerator.h"
+#include "renderer/build_info.h"
 #include "renderer/cli/accel_options.h"
 #include "renderer/cli/commands.h"
 #include "renderer/cli/render_options.h"
@@ -34,6 +36,7 @@ struct RenderCommand {
     bool transparent = false, json = false;
     std::string progress = "bar";
     std::vector<std::string> warnings;  // also in the --json result
+    std::string colourConfig;           // the OCIO config in force
     DepthMode depth = DepthMode::Ray;
     bool heatMap = false, quiet = false, traversalFloor = false;
     float aperture = -1, focus = -1;
@@ -125,7 +128,7 @@ void applyCompositingOptions(const RenderCommand& c, RenderJobOptions& options) 
 void checkColour(RenderCommand& c) {
     try {
         ColorSetup setup = checkColorConfig(c.display, c.view);
-        c.display = setup.display, c.view = setup.view;
+        c.display = setup.display, c.view = setup.view, c.colourConfig = setup.configPath;
         for (const std::string& w : setup.warnings)
             std::fprintf(stderr, "kiln: warning: %s\n", w.c_str());
     } catch (const std::invalid_argument& e) {
@@ -153,6 +156,13 @@ void addQueueOptions(ArgParser& parser, RenderCommand& c) {
 void applyQueueOptions(const RenderCommand& c, RenderJobOptions& options) {
     options.settings.progress = !c.quiet && c.progress != "none";
     Progress::setStyle(c.progress == "json" ? ProgressStyle::Json : ProgressStyle::Text);
+}
+
+// Which kiln wrote the file: the commit in Software, the libraries as kiln:libraries.
+void addBuildToExr(ExrOptions& exr, Metadata& meta) {
+    exr.software = fmt::format("kiln {} (commit {})", KILN_VERSION, gitCommit());
+    meta["libraries"] = libraryVersions();
+    meta["ocio_config"] = colorConfigPath();
 }
 
 struct RenderTimes {
@@ -186,6 +196,9 @@ void printJsonResult(const RenderCommand& c, const Scene& scene, const OutputPat
         {"nonfinite_samples", stats.nonFiniteSamples},
         {"peak_memory_bytes", uint64_t(usage.ru_maxrss) * 1024},
         {"interrupted", stats.interrupted},
+        {"ocio_config", c.colourConfig},
+        {"display", c.display},
+        {"view", c.view},
         {"warnings", warnings}};
     std::puts(jsonText(result).c_str());
 }
@@ -383,6 +396,7 @@ int runRender(const std::vector<std::string>& args) {
     meta["display"] = c.display;
     meta["view"] = c.view;
     addSceneToExr(c.exr, scene, jobOptions.settings, jobOptions.aovs);
+    addBuildToExr(c.exr, meta);
     writeExr(out.exr, film, meta, c.exr);
     writePreview(out.preview, film, c.display, c.view);
     std::string heatPath;

@@ -2,6 +2,7 @@
 
 #include <OpenColorIO/OpenColorIO.h>
 #include <OpenImageIO/color.h>
+#include <OpenImageIO/fmath.h>
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
@@ -252,16 +253,20 @@ void drawNumber(std::vector<float>& rgb, int w, int h, int x0, int y0, uint32_t 
     }
 }
 
-// Blue (few) through cyan, green, yellow to red (many).
-Color heat(float t) {
-    t = std::clamp(t, 0.0f, 1.0f);
-    float r = std::clamp(1.5f - std::abs(4 * t - 3), 0.0f, 1.0f);
-    float g = std::clamp(1.5f - std::abs(4 * t - 2), 0.0f, 1.0f);
-    float b = std::clamp(1.5f - std::abs(4 * t - 1), 0.0f, 1.0f);
-    return {r, g, b};
-}
-
 }  // namespace
+
+// OIIO's turbo colour map (dark blue few, green, dark red many) of a one-channel image of [0, 1]
+// values.
+std::vector<float> turbo(const std::vector<float>& t, int w, int h) {
+    OIIO::ImageBuf src(OIIO::ImageSpec(w, h, 1, OIIO::TypeDesc::FLOAT), (void*)t.data());
+    OIIO::ImageBuf mapped = OIIO::ImageBufAlgo::color_map(src, 0, "turbo");
+    if (mapped.has_error()) throw std::runtime_error("heat map: " + mapped.geterror());
+    std::vector<float> rgb(size_t(w) * h * 3);
+    mapped.get_pixels(OIIO::ROI(0, w, 0, h, 0, 1, 0, 3), OIIO::TypeDesc::FLOAT, rgb.data());
+    // OIIO's maps are linear values; the PNG holds sRGB-encoded ones.
+    for (float& v : rgb) v = OIIO::linear_to_sRGB(v);
+    return rgb;
+}
 
 void writeSampleHeatMap(const std::string& path, const Film& film) {
     int w = film.width(), h = film.height();
@@ -272,18 +277,18 @@ void writeSampleHeatMap(const std::string& path, const Film& film) {
     // The legend: a gradient bar under the image with the range's ends written at its ends.
     int scale = std::max(1, w / 200), barH = 8 * scale, legendH = barH + 7 * scale;
     int H = h + legendH;
-    std::vector<float> rgb(size_t(w) * H * 3, 0.0f);
+    std::vector<float> t(size_t(w) * H, 0.0f);
     float span = hi > lo ? float(hi - lo) : 1.0f;
     for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            Color c = heat((float(film.samples(x, y)) - float(lo)) / span);
-            for (int k = 0; k < 3; ++k) rgb[(size_t(y) * w + x) * 3 + k] = c[k];
-        }
+        for (int x = 0; x < w; ++x)
+            t[size_t(y) * w + x] = (float(film.samples(x, y)) - float(lo)) / span;
     for (int y = h + scale; y < h + barH; ++y)
-        for (int x = 0; x < w; ++x) {
-            Color c = heat(float(x) / float(std::max(1, w - 1)));
-            for (int k = 0; k < 3; ++k) rgb[(size_t(y) * w + x) * 3 + k] = c[k];
-        }
+        for (int x = 0; x < w; ++x) t[size_t(y) * w + x] = float(x) / float(std::max(1, w - 1));
+    std::vector<float> rgb = turbo(t, w, H);
+    // Black around the bar, under the numbers.
+    for (int y = h; y < H; ++y)
+        if (y < h + scale || y >= h + barH)
+            std::fill_n(&rgb[size_t(y) * w * 3], size_t(w) * 3, 0.0f);
     drawNumber(rgb, w, H, scale, h + barH + scale, lo, scale);
     std::string hiText = std::to_string(hi);
     drawNumber(rgb, w, H, w - int(hiText.size()) * 4 * scale, h + barH + scale, hi, scale);

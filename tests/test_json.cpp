@@ -1,9 +1,12 @@
 // Every JSON kiln prints parses with a real parser (nlohmann-json), also for file names with
-// quotes, backslashes and bytes that are not UTF-8.
+// quotes, backslashes and bytes that are not UTF-8; the SVG plots parse as XML.
+#include <algorithm>
 #include <nlohmann/json.hpp>
+#include <pugixml.hpp>
 #include <sstream>
 
 #include "kiln_run.h"
+#include "renderer/validation/svg_plot.h"
 #include "test_support.h"
 
 namespace kiln {
@@ -73,6 +76,27 @@ TEST(Json, RenderPrintsOneResultAndProgressLines) {
     EXPECT_EQ(last["event"], "done");
     EXPECT_EQ(last["fraction"], 1.0);
     EXPECT_EQ(last["work_done"], 32 * 24 * 4);
+}
+
+}  // namespace
+}  // namespace kiln
+
+namespace kiln {
+namespace {
+
+TEST(SvgPlot, HostileNamesStayValidXml) {
+    std::string title = "R&D <\"plot\"> 'x'";
+    std::string svg =
+        svgLogLogPlot(title, "a<b", "c&d", {{"s&<1", {1, 2, 4}, {1, 0.5, 0.25}}}, true);
+    pugi::xml_document doc;
+    ASSERT_TRUE(doc.load_string(svg.c_str())) << svg;
+    pugi::xml_node root = doc.child("svg");
+    ASSERT_TRUE(root);
+    std::vector<std::string> texts;
+    for (pugi::xml_node t : root.children("text")) texts.push_back(t.text().get());
+    EXPECT_NE(std::find(texts.begin(), texts.end(), title), texts.end());
+    EXPECT_NE(std::find(texts.begin(), texts.end(), "s&<1"), texts.end());
+    EXPECT_EQ(std::distance(root.children("polyline").begin(), root.children("polyline").end()), 1);
 }
 
 }  // namespace

@@ -173,10 +173,13 @@ TEST(HeatMap, BlueFewRedManyWithALegend) {
     std::vector<uint8_t> px(size_t(in->spec().width) * in->spec().height * 3);
     ASSERT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, px.data()));
     auto at = [&](int x, int y, int c) { return px[(size_t(y) * 20 + x) * 3 + c]; };
-    EXPECT_GT(at(0, 0, 2), 100);  // fewest samples: blue
-    EXPECT_LT(at(0, 0, 0), 50);
-    EXPECT_GT(at(19, 0, 0), 100);  // most samples: red
-    EXPECT_LT(at(19, 0, 2), 50);
+    // OIIO's turbo map: fewest samples dark blue, the middle green, most dark red.
+    EXPECT_GT(at(0, 0, 2), at(0, 0, 0));
+    EXPECT_GT(at(0, 0, 2), at(0, 0, 1));
+    EXPECT_GT(at(10, 0, 1), at(10, 0, 0));
+    EXPECT_GT(at(10, 0, 1), at(10, 0, 2));
+    EXPECT_GT(at(19, 0, 0), 100);
+    EXPECT_LT(at(19, 0, 2), 10);
 }
 
 }  // namespace

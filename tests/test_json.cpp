@@ -84,6 +84,15 @@ TEST(Json, RenderPrintsOneResultAndProgressLines) {
 namespace kiln {
 namespace {
 
+TEST(JobQueue, UnwritableOutputDirectoryIsRefusedBeforeTheSceneLoads) {
+    // /proc exists but takes no new files, even from root; the scene does not exist either, and
+    // the refusal names the directory, not the scene.
+    test::CliRun r = test::runKiln("render /nonexistent/scene.dae -q -o /proc/out");
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_NE(r.err.find("'/proc' is not writable"), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+}
+
 TEST(SvgPlot, HostileNamesStayValidXml) {
     std::string title = "R&D <\"plot\"> 'x'";
     std::string svg =

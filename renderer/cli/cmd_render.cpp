@@ -1,9 +1,12 @@
 // kiln render: option parsing, then one RenderJob, then the outputs.
 #include <fmt/format.h>
 #include <sys/resource.h>
+#include <unistd.h>
 
+#include <cerrno>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 
 #include "color/image_output.h"
@@ -117,6 +120,19 @@ void addCompositingOptions(ArgParser& parser, RenderCommand& c) {
                           throw UsageError("--depth takes 'ray' or 'camera', got '" + v[0] + "'");
                       c.depth = v[0] == "camera" ? DepthMode::CameraZ : DepthMode::Ray;
                   });
+}
+
+// Writability tried by creating a file (permission bits say nothing for root or read-only mounts),
+// so a job fails before loading, not after rendering.
+void checkOutputWritable(const OutputPaths& out) {
+    fs::path dir = fs::path(out.exr).parent_path();
+    std::string probe = ((dir.empty() ? fs::path(".") : dir) / ".kiln-write-test-XXXXXX").string();
+    int fd = ::mkstemp(probe.data());
+    if (fd < 0)
+        throw UsageError(fmt::format("output directory '{}' is not writable: {}",
+                                     dir.empty() ? "." : dir.string(), std::strerror(errno)));
+    ::close(fd);
+    ::unlink(probe.c_str());
 }
 
 void applyCompositingOptions(const RenderCommand& c, RenderJobOptions& options) {
@@ -373,6 +389,7 @@ int runRender(const std::vector<std::string>& args) {
     applyQueueOptions(c, jobOptions);
     checkColour(c);
     OutputPaths out = outputPaths(c, scenePath);
+    checkOutputWritable(out);
 
     auto t0 = std::chrono::steady_clock::now();
     Scene scene = loadScene(scenePath, c.load);

@@ -152,8 +152,8 @@ void addMetadata(OIIO::ImageSpec& spec, const Film& film, const Metadata& metada
     spec.attribute("Software", options.software.empty() ? std::string("kiln ") + KILN_VERSION
                                                         : options.software);
     spec.attribute("kiln:version", KILN_VERSION);
-    spec.attribute("kiln:colorspace", "lin_rec709");
-    spec.attribute("oiio:ColorSpace", "lin_rec709");
+    spec.attribute("kiln:colorspace", options.colorSpace);
+    spec.attribute("oiio:ColorSpace", options.colorSpace);
     // Rec.709 primaries and D65 white, as OpenEXR's chromaticities attribute.
     static const float chroma[8] = {0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f};
     spec.attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), chroma);

@@ -27,6 +27,8 @@ struct ExrOptions {
     std::string compression = "zip";  // one of exrCompressions()
     std::optional<ExrCamera> camera;
     std::string software;  // the Software attribute; empty: "kiln VERSION"
+    // The OCIO config's name for kiln's working space (its scene_linear): kiln:colorspace.
+    std::string colorSpace = "lin_rec709";
     // Cryptomatte manifests (JSON text) by layer name ("CryptoObject", "CryptoMaterial").
     std::map<std::string, std::string> cryptoManifests;
 };

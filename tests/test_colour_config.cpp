@@ -81,6 +81,7 @@ TEST(ColourConfig, DefaultsAndWorkingSpaceComeFromOcio) {
     ASSERT_TRUE(in);
     EXPECT_EQ(in->spec().get_string_attribute("kiln:display"), "Studio Monitor");
     EXPECT_EQ(in->spec().get_string_attribute("kiln:view"), "Show Look");
+    EXPECT_EQ(in->spec().get_string_attribute("kiln:colorspace"), "linear_srgb");
     // By alias when there is no role.
     std::string aliased =
         config("  default: linear_srgb\n  aces_interchange: aces\n", "", "    aliases: [linear]\n");

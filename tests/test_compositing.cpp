@@ -8,6 +8,7 @@
 
 #include "color/image_output.h"
 #include "integrators/crypto_names.h"
+#include "kiln_run.h"
 #include "renderer/exr_scene.h"
 #include "renderer/film/cryptomatte.h"
 #include "renderer/render_job.h"
@@ -273,6 +274,28 @@ TEST(Compositing, EveryAovHasALayerAndCameraMetadataAndNumbersAreNumbers) {
     EXPECT_NEAR(c[0], 0, 1e-6);
     EXPECT_NEAR(c[1], 0, 1e-6);
     EXPECT_NEAR(c[2], 5, 1e-6);
+}
+
+TEST(Compositing, CommandLineOptionsReachTheFile) {
+    auto dir = test::scratchDir();
+    test::CliRun r = test::runKiln("render " + test::cs184("sky/CBspheres.dae") +
+                                   " -r 24 18 -s 2 -q --transparent --depth camera --compression "
+                                   "dwab --aov Z,crypto_material -o " +
+                                   (dir / "o").string());
+    ASSERT_EQ(r.code, 0) << r.err;
+    auto in = OIIO::ImageInput::open((dir / "o.exr").string());
+    ASSERT_TRUE(in);
+    const OIIO::ImageSpec& spec = in->spec();
+    EXPECT_EQ(spec.get_string_attribute("compression"), "dwab");
+    EXPECT_EQ(spec.get_string_attribute("kiln:depth"), "camera-space z (along the view axis)");
+    EXPECT_NE(spec.get_string_attribute("kiln:alpha").find("transparent"), std::string::npos);
+    EXPECT_GE(spec.channelindex("CryptoMaterial00.R"), 0);
+    EXPECT_NE(spec.find_attribute("worldToNDC", OIIO::TypeMatrix), nullptr);
+    EXPECT_NE(spec.get_string_attribute("Software").find("commit"), std::string::npos);
+    test::CliRun bad = test::runKiln("render " + test::cs184("sky/CBspheres.dae") +
+                                     " -q --compression lzma -o " + (dir / "b").string());
+    EXPECT_EQ(bad.code, 2);
+    EXPECT_NE(bad.err.find("dwab"), std::string::npos) << bad.err;  // names the choices
 }
 
 }  // namespace

@@ -145,6 +145,7 @@ void checkColour(RenderCommand& c) {
     try {
         ColorSetup setup = checkColorConfig(c.display, c.view);
         c.display = setup.display, c.view = setup.view, c.colourConfig = setup.configPath;
+        c.exr.colorSpace = setup.sceneLinear;
         for (const std::string& w : setup.warnings)
             std::fprintf(stderr, "kiln: warning: %s\n", w.c_str());
     } catch (const std::invalid_argument& e) {

@@ -1,6 +1,7 @@
 // Every JSON kiln prints parses with a real parser (nlohmann-json), also for file names with
 // quotes, backslashes and bytes that are not UTF-8; the SVG plots parse as XML.
 #include <algorithm>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <pugixml.hpp>
 #include <sstream>
@@ -91,6 +92,31 @@ TEST(JobQueue, UnwritableOutputDirectoryIsRefusedBeforeTheSceneLoads) {
     EXPECT_EQ(r.code, 2) << r.err;
     EXPECT_NE(r.err.find("'/proc' is not writable"), std::string::npos) << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+}
+
+// The bar is as wide as the terminal: rendered on a pseudo-terminal (util-linux script) of 60 and
+// of 120 columns, every bar line fits, and the wider terminal gets the wider bar.
+TEST(JobQueue, ProgressBarFitsTheTerminal) {
+    if (test::runProgram("which", "script >/dev/null").code != 0) GTEST_SKIP() << "no script(1)";
+    auto dir = test::scratchDir();
+    std::map<int, size_t> widest;
+    for (int cols : {60, 120}) {
+        std::string inner = "stty cols " + std::to_string(cols) + "; " + KILN_BINARY + " render " +
+                            test::repo("scenes/cornell.dae") + " -r 32 24 -s 8 -o " +
+                            (dir / "bar").string();
+        test::CliRun r =
+            test::runProgram("script", "-q -e -c " + test::shellQuoted(inner) + " /dev/null");
+        ASSERT_EQ(r.code, 0) << r.err;
+        std::string line;
+        std::istringstream all(r.out);
+        while (std::getline(all, line, '\r'))
+            if (line.rfind("render [", 0) == 0) {
+                EXPECT_LT(line.size(), size_t(cols)) << line;
+                widest[cols] = std::max(widest[cols], line.size());
+            }
+        EXPECT_GT(widest[cols], 0u) << r.out;
+    }
+    EXPECT_GT(widest[120], widest[60] + 40);
 }
 
 TEST(SvgPlot, HostileNamesStayValidXml) {

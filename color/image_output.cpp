@@ -2,14 +2,18 @@
 
 #include <OpenColorIO/OpenColorIO.h>
 #include <OpenImageIO/color.h>
+#include <OpenImageIO/fmath.h>
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
+#include <fmt/format.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <memory>
 #include <stdexcept>
 
 #include "color/atomic_file.h"
@@ -17,7 +21,7 @@
 namespace kiln {
 namespace {
 
-// Beauty RGBA only (the preview's input).
+// Beauty RGB, opaque (the preview's input).
 OIIO::ImageBuf beautyBuffer(const Film& film) {
     OIIO::ImageSpec spec(film.width(), film.height(), 4, OIIO::TypeDesc::FLOAT);
     spec.channelnames = {"R", "G", "B", "A"};
@@ -26,15 +30,33 @@ OIIO::ImageBuf beautyBuffer(const Film& film) {
     for (int y = 0; y < film.height(); ++y)
         for (int x = 0; x < film.width(); ++x) {
             Color c = film.pixel(x, y);
+            // Opaque: the preview shows the premultiplied beauty over black, as rendered.
             float px[4] = {c.x, c.y, c.z, 1.0f};
             buf.setpixel(x, y, px, 4);
         }
     return buf;
 }
 
+// OIIO's view of the config in force (made again when $OCIO names another).
 OIIO::ColorConfig& colorConfig() {
-    static OIIO::ColorConfig config(colorConfigPath());
-    return config;
+    static std::string path;
+    static std::unique_ptr<OIIO::ColorConfig> config;
+    if (!config || path != colorConfigPath()) {
+        path = colorConfigPath();
+        config = std::make_unique<OIIO::ColorConfig>(path);
+    }
+    return *config;
+}
+
+// scene_linear -> display/view of a float RGB(A) buffer.
+OIIO::ImageBuf toDisplay(const OIIO::ImageBuf& linear, const std::string& display,
+                         const std::string& view) {
+    ColorSetup setup = checkColorConfig(display, view);
+    OIIO::ImageBuf shown;
+    if (!OIIO::ImageBufAlgo::ociodisplay(shown, linear, setup.display, setup.view,
+                                         setup.sceneLinear, "", false, "", "", &colorConfig()))
+        throw std::runtime_error("colour transform failed: " + shown.geterror());
+    return shown;
 }
 
 // The OpenImageIO writer for a file name's extension (png, jpeg, ...).
@@ -65,66 +87,148 @@ void writeAtomically(const std::string& path, const std::string& format, OIIO::I
 
 }  // namespace
 
-std::string colorConfigPath() {
-    if (const char* env = std::getenv("OCIO"); env && *env) return env;
-    return std::string(KILN_SOURCE_DIR) + "/color/config.ocio";
+const std::vector<std::string>& exrCompressions() {
+    static const std::vector<std::string> names = {"none",  "rle", "zip",  "zips", "piz",
+                                                   "pxr24", "b44", "b44a", "dwaa", "dwab"};
+    return names;
 }
+
+namespace {
+
+const char* kCryptoLayers[2] = {"CryptoObject", "CryptoMaterial"};
+
+bool hasCrypto(const Film& film, int type) {
+    return film.layout().request().has(type == 0 ? AovKind::CryptoObject : AovKind::CryptoMaterial);
+}
+
+// Every channel the file holds, in order, with its stored type.
+void addChannels(OIIO::ImageSpec& spec, const Film& film, const ExrOptions& options) {
+    const AovRequest& request = film.layout().request();
+    OIIO::TypeDesc colourType = options.half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT;
+    auto add = [&](const std::string& name, OIIO::TypeDesc type) {
+        spec.channelnames.push_back(name);
+        spec.channelformats.push_back(type);
+    };
+    for (const char* c : {"R", "G", "B", "A"}) add(c, colourType);
+    spec.alpha_channel = 3;
+    for (const AovChannel& c : film.layout().channels())
+        add(c.name, c.colour || c.name.rfind("N.", 0) == 0 ? colourType : OIIO::TypeDesc::FLOAT);
+    if (request.has(AovKind::Depth))
+        spec.z_channel = spec.nchannels, add("Z", OIIO::TypeDesc::FLOAT);
+    if (request.has(AovKind::Samples)) add("samples.count", OIIO::TypeDesc::FLOAT);
+    if (request.has(AovKind::Variance)) add("variance.V", OIIO::TypeDesc::FLOAT);
+    for (int type = 0; type < 2; ++type)
+        if (hasCrypto(film, type))
+            for (int layer = 0; layer < kCryptoRanks / 2; ++layer)
+                for (const char* c : {"R", "G", "B", "A"})
+                    add(fmt::format("{}{:02d}.{}", kCryptoLayers[type], layer, c),
+                        OIIO::TypeDesc::FLOAT);
+    spec.nchannels = int(spec.channelnames.size());
+}
+
+// One pixel's values in addChannels' order.
+void gatherPixel(const Film& film, int x, int y, std::vector<float>& px) {
+    const AovRequest& request = film.layout().request();
+    px.clear();
+    Color c = film.pixel(x, y);
+    px.insert(px.end(), {c.x, c.y, c.z, film.alpha(x, y)});
+    for (size_t a = 0; a < film.layout().channels().size(); ++a) px.push_back(film.aov(x, y, a));
+    if (request.has(AovKind::Depth)) px.push_back(film.depth(x, y));
+    if (request.has(AovKind::Samples)) px.push_back(float(film.samples(x, y)));
+    if (request.has(AovKind::Variance)) px.push_back(float(film.luminanceVariance(x, y)));
+    for (int type = 0; type < 2; ++type)
+        if (hasCrypto(film, type))
+            for (auto [id, coverage] : film.cryptoRanks(x, y, type))
+                px.push_back(id), px.push_back(coverage);
+}
+
+// Integers as int (or double beyond int's range), other numbers as double: a reader gets numbers,
+// not text to parse. Anything else stays a string.
+void addMetadataValue(OIIO::ImageSpec& spec, const std::string& key, const std::string& value) {
+    const char *first = value.data(), *last = value.data() + value.size();
+    long long i = 0;
+    if (auto [end, ec] = std::from_chars(first, last, i); ec == std::errc() && end == last) {
+        if (i >= INT32_MIN && i <= INT32_MAX) return spec.attribute(key, int(i));
+        if (std::llabs(i) < (1ll << 53)) {
+            double d = double(i);
+            return spec.attribute(key, OIIO::TypeDesc::DOUBLE, &d);
+        }
+    }
+    double d = 0;
+    if (auto [end, ec] = std::from_chars(first, last, d);
+        ec == std::errc() && end == last && std::isfinite(d))
+        return spec.attribute(key, OIIO::TypeDesc::DOUBLE, &d);
+    spec.attribute(key, value);
+}
+
+void addCryptoMetadata(OIIO::ImageSpec& spec, const Film& film, const ExrOptions& options) {
+    for (int type = 0; type < 2; ++type) {
+        if (!hasCrypto(film, type)) continue;
+        std::string prefix = "cryptomatte/" + cryptoLayerKey(kCryptoLayers[type]) + "/";
+        spec.attribute(prefix + "name", kCryptoLayers[type]);
+        spec.attribute(prefix + "hash", "MurmurHash3_32");
+        spec.attribute(prefix + "conversion", "uint32_to_float32");
+        auto manifest = options.cryptoManifests.find(kCryptoLayers[type]);
+        if (manifest != options.cryptoManifests.end())
+            spec.attribute(prefix + "manifest", manifest->second);
+    }
+}
+
+void addMetadata(OIIO::ImageSpec& spec, const Film& film, const Metadata& metadata,
+                 const ExrOptions& options) {
+    spec.attribute("compression", options.compression);
+    spec.attribute("Software", options.software.empty() ? std::string("kiln ") + KILN_VERSION
+                                                        : options.software);
+    spec.attribute("kiln:version", KILN_VERSION);
+    spec.attribute("kiln:colorspace", options.colorSpace);
+    spec.attribute("oiio:ColorSpace", options.colorSpace);
+    // Rec.709 primaries and D65 white, as OpenEXR's chromaticities attribute.
+    static const float chroma[8] = {0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f};
+    spec.attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), chroma);
+    const AovRequest& request = film.layout().request();
+    spec.attribute("kiln:alpha", request.transparent
+                                     ? "coverage by non-emitting surfaces; background transparent"
+                                     : "coverage by surfaces; colour premultiplied");
+    if (request.has(AovKind::Depth)) {
+        spec.attribute("kiln:depth", request.depth == DepthMode::CameraZ
+                                         ? "camera-space z (along the view axis)"
+                                         : "distance along the camera ray");
+        spec.attribute("kiln:depth_sample", "nearest first hit of the pixel's samples");
+        spec.attribute("kiln:depth_miss", "inf");
+    }
+    if (options.camera) {
+        spec.attribute("worldToCamera", OIIO::TypeMatrix, options.camera->worldToCamera.data());
+        spec.attribute("worldToNDC", OIIO::TypeMatrix, options.camera->worldToNDC.data());
+    }
+    addCryptoMetadata(spec, film, options);
+    for (const auto& [key, value] : metadata) addMetadataValue(spec, "kiln:" + key, value);
+}
+
+}  // namespace
 
 void writeExr(const std::string& path, const Film& film, const Metadata& metadata,
               const ExrOptions& options) {
-    const AovLayout& layout = film.layout();
-    bool samples = layout.request().has(AovKind::Samples),
-         variance = layout.request().has(AovKind::Variance);
-    int nc = 4 + int(layout.channels().size()) + int(samples) + int(variance);
-    OIIO::ImageSpec spec(film.width(), film.height(), nc, OIIO::TypeDesc::FLOAT);
+    if (std::find(exrCompressions().begin(), exrCompressions().end(), options.compression) ==
+        exrCompressions().end())
+        throw std::runtime_error(path + ": unknown EXR compression '" + options.compression + "'");
+    OIIO::ImageSpec spec(film.width(), film.height(), 0, OIIO::TypeDesc::FLOAT);
     // A render region is the data window inside the full image's display window.
     spec.x = film.originX(), spec.y = film.originY();
     spec.full_x = 0, spec.full_y = 0;
     spec.full_width = film.fullWidth(), spec.full_height = film.fullHeight();
-    spec.channelnames = {"R", "G", "B", "A"};
-    OIIO::TypeDesc colourType = options.half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT;
-    spec.channelformats.assign(4, colourType);
-    for (const AovChannel& c : layout.channels()) {
-        spec.channelnames.push_back(c.name);
-        spec.channelformats.push_back(c.colour || c.name.rfind("N.", 0) == 0
-                                          ? colourType
-                                          : OIIO::TypeDesc(OIIO::TypeDesc::FLOAT));
-    }
-    if (samples)
-        spec.channelnames.push_back("samples"),
-            spec.channelformats.push_back(OIIO::TypeDesc::FLOAT);
-    if (variance)
-        spec.channelnames.push_back("variance"),
-            spec.channelformats.push_back(OIIO::TypeDesc::FLOAT);
-    spec.alpha_channel = 3;
-    if (options.compression != "zip" && options.compression != "piz")
-        throw std::runtime_error(path + ": unknown EXR compression '" + options.compression +
-                                 "' (zip or piz)");
-    spec.attribute("compression", options.compression);
-    spec.attribute("Software", std::string("kiln ") + KILN_VERSION);
-    spec.attribute("kiln:version", KILN_VERSION);
-    spec.attribute("kiln:colorspace", "lin_rec709");
-    spec.attribute("oiio:ColorSpace", "lin_rec709");
-    // Rec.709 primaries and D65 white, as OpenEXR's chromaticities attribute.
-    static const float chroma[8] = {0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f};
-    spec.attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), chroma);
-    for (const auto& [key, value] : metadata) spec.attribute("kiln:" + key, value);
+    addChannels(spec, film, options);
+    addMetadata(spec, film, metadata, options);
 
     // Fill in float; OIIO converts each channel to its format on write.
     OIIO::ImageSpec memSpec = spec;
     memSpec.channelformats.clear();
     memSpec.set_format(OIIO::TypeDesc::FLOAT);
     OIIO::ImageBuf buf(memSpec);
-    std::vector<float> px(static_cast<size_t>(nc));
+    std::vector<float> px;
     for (int y = 0; y < film.height(); ++y)
         for (int x = 0; x < film.width(); ++x) {
-            Color c = film.pixel(x, y);
-            px[0] = c.x, px[1] = c.y, px[2] = c.z, px[3] = 1.0f;
-            size_t k = 4;
-            for (size_t a = 0; a < layout.channels().size(); ++a) px[k++] = film.aov(x, y, a);
-            if (samples) px[k++] = float(film.samples(x, y));
-            if (variance) px[k++] = float(film.luminanceVariance(x, y));
-            buf.setpixel(x + film.originX(), y + film.originY(), px.data(), nc);
+            gatherPixel(film, x, y, px);
+            buf.setpixel(x + film.originX(), y + film.originY(), px.data(), spec.nchannels);
         }
     writeAtomically(path, "openexr", spec, buf, "EXR");
 }
@@ -134,10 +238,7 @@ void writePreview(const std::string& path, const Film& film, const std::string& 
     OIIO::ImageBuf linear = beautyBuffer(film);
     if (exposureStops != 0)
         OIIO::ImageBufAlgo::mul(linear, linear, std::exp2(exposureStops));  // --exposure
-    OIIO::ImageBuf shown;
-    if (!OIIO::ImageBufAlgo::ociodisplay(shown, linear, display, view, "lin_rec709", "", false, "",
-                                         "", &colorConfig()))
-        throw std::runtime_error(path + ": colour transform failed: " + shown.geterror());
+    OIIO::ImageBuf shown = toDisplay(linear, display, view);
     writeAtomically(path, formatOf(path), shown.spec(), shown, "preview", OIIO::TypeDesc::UINT8);
 }
 
@@ -164,16 +265,20 @@ void drawNumber(std::vector<float>& rgb, int w, int h, int x0, int y0, uint32_t 
     }
 }
 
-// Blue (few) through cyan, green, yellow to red (many).
-Color heat(float t) {
-    t = std::clamp(t, 0.0f, 1.0f);
-    float r = std::clamp(1.5f - std::abs(4 * t - 3), 0.0f, 1.0f);
-    float g = std::clamp(1.5f - std::abs(4 * t - 2), 0.0f, 1.0f);
-    float b = std::clamp(1.5f - std::abs(4 * t - 1), 0.0f, 1.0f);
-    return {r, g, b};
-}
-
 }  // namespace
+
+// OIIO's turbo colour map (dark blue few, green, dark red many) of a one-channel image of [0, 1]
+// values.
+std::vector<float> turbo(const std::vector<float>& t, int w, int h) {
+    OIIO::ImageBuf src(OIIO::ImageSpec(w, h, 1, OIIO::TypeDesc::FLOAT), (void*)t.data());
+    OIIO::ImageBuf mapped = OIIO::ImageBufAlgo::color_map(src, 0, "turbo");
+    if (mapped.has_error()) throw std::runtime_error("heat map: " + mapped.geterror());
+    std::vector<float> rgb(size_t(w) * h * 3);
+    mapped.get_pixels(OIIO::ROI(0, w, 0, h, 0, 1, 0, 3), OIIO::TypeDesc::FLOAT, rgb.data());
+    // OIIO's maps are linear values; the PNG holds sRGB-encoded ones.
+    for (float& v : rgb) v = OIIO::linear_to_sRGB(v);
+    return rgb;
+}
 
 void writeSampleHeatMap(const std::string& path, const Film& film) {
     int w = film.width(), h = film.height();
@@ -184,18 +289,18 @@ void writeSampleHeatMap(const std::string& path, const Film& film) {
     // The legend: a gradient bar under the image with the range's ends written at its ends.
     int scale = std::max(1, w / 200), barH = 8 * scale, legendH = barH + 7 * scale;
     int H = h + legendH;
-    std::vector<float> rgb(size_t(w) * H * 3, 0.0f);
+    std::vector<float> t(size_t(w) * H, 0.0f);
     float span = hi > lo ? float(hi - lo) : 1.0f;
     for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            Color c = heat((float(film.samples(x, y)) - float(lo)) / span);
-            for (int k = 0; k < 3; ++k) rgb[(size_t(y) * w + x) * 3 + k] = c[k];
-        }
+        for (int x = 0; x < w; ++x)
+            t[size_t(y) * w + x] = (float(film.samples(x, y)) - float(lo)) / span;
     for (int y = h + scale; y < h + barH; ++y)
-        for (int x = 0; x < w; ++x) {
-            Color c = heat(float(x) / float(std::max(1, w - 1)));
-            for (int k = 0; k < 3; ++k) rgb[(size_t(y) * w + x) * 3 + k] = c[k];
-        }
+        for (int x = 0; x < w; ++x) t[size_t(y) * w + x] = float(x) / float(std::max(1, w - 1));
+    std::vector<float> rgb = turbo(t, w, H);
+    // Black around the bar, under the numbers.
+    for (int y = h; y < H; ++y)
+        if (y < h + scale || y >= h + barH)
+            std::fill_n(&rgb[size_t(y) * w * 3], size_t(w) * 3, 0.0f);
     drawNumber(rgb, w, H, scale, h + barH + scale, lo, scale);
     std::string hiText = std::to_string(hi);
     drawNumber(rgb, w, H, w - int(hiText.size()) * 4 * scale, h + barH + scale, hi, scale);
@@ -204,42 +309,12 @@ void writeSampleHeatMap(const std::string& path, const Film& film) {
     writeAtomically(path, "png", buf.spec(), buf, "heat map", OIIO::TypeDesc::UINT8);
 }
 
-void checkDisplayView(const std::string& display, const std::string& view) {
-    namespace OCIO = OCIO_NAMESPACE;
-    OCIO::ConstConfigRcPtr config;
-    try {
-        config = OCIO::Config::CreateFromFile(colorConfigPath().c_str());
-    } catch (const OCIO::Exception& e) {
-        throw std::invalid_argument(colorConfigPath() + ": cannot load OCIO config: " + e.what());
-    }
-    std::string displays, views;
-    bool haveDisplay = false, haveView = false;
-    for (int d = 0; d < config->getNumDisplays(); ++d) {
-        std::string name = config->getDisplay(d);
-        displays += (d ? ", " : "") + name;
-        if (name != display) continue;
-        haveDisplay = true;
-        for (int v = 0; v < config->getNumViews(name.c_str()); ++v) {
-            std::string vn = config->getView(name.c_str(), v);
-            views += (v ? ", " : "") + vn;
-            haveView |= vn == view;
-        }
-    }
-    if (!haveDisplay)
-        throw std::invalid_argument("unknown display '" + display + "' (known: " + displays + ")");
-    if (!haveView)
-        throw std::invalid_argument("display '" + display + "' has no view '" + view +
-                                    "' (known: " + views + ")");
-}
-
 float displayTransform(float linear, const std::string& display, const std::string& view) {
     OIIO::ImageSpec spec(1, 1, 3, OIIO::TypeDesc::FLOAT);
-    OIIO::ImageBuf src(spec), dst;
+    OIIO::ImageBuf src(spec);
     float v[3] = {linear, linear, linear};
     src.setpixel(0, 0, v, 3);
-    if (!OIIO::ImageBufAlgo::ociodisplay(dst, src, display, view, "lin_rec709", "", false, "", "",
-                                         &colorConfig()))
-        throw std::runtime_error("colour transform failed: " + dst.geterror());
+    OIIO::ImageBuf dst = toDisplay(src, display, view);
     float out[3];
     dst.getpixel(0, 0, out, 3);
     return out[0];

@@ -2,42 +2,55 @@
 // preview (PNG/JPEG) through OpenColorIO.
 #pragma once
 
+#include <array>
 #include <map>
+#include <optional>
 #include <string>
+#include <vector>
 
+#include "color/color_config.h"
 #include "renderer/film/film.h"
 
 namespace kiln {
 
 using Metadata = std::map<std::string, std::string>;
 
-// The OCIO config in force: $OCIO when set, else the one shipped in color/.
-std::string colorConfigPath();
+// OpenEXR's standard camera attributes (Imath row-vector matrices, p' = p M): world to the
+// left-handed camera space (+z along the view) and to NDC ((0, 0) top left, (1, 1) bottom right of
+// the display window, after the divide by w).
+struct ExrCamera {
+    std::array<float, 16> worldToCamera{}, worldToNDC{};
+};
 
 struct ExrOptions {
     bool half = false;  // colour layers (beauty, light AOVs, albedo, N) as half; data stays float
-    std::string compression = "zip";  // zip or piz
+    std::string compression = "zip";  // one of exrCompressions()
+    std::optional<ExrCamera> camera;
+    std::string software;  // the Software attribute; empty: "kiln VERSION"
+    // The OCIO config's name for kiln's working space (its scene_linear): kiln:colorspace.
+    std::string colorSpace = "lin_rec709";
+    // Cryptomatte manifests (JSON text) by layer name ("CryptoObject", "CryptoMaterial").
+    std::map<std::string, std::string> cryptoManifests;
 };
 
-// Beauty R,G,B,A and every AOV of the film's layout as "layer.channel"; 'samples' and 'variance'
-// when requested. Metadata keys are written as "kiln:KEY" strings. Throws std::runtime_error.
+// The EXR compressions OIIO writes: none rle zip zips piz pxr24 b44 b44a dwaa dwab.
+const std::vector<std::string>& exrCompressions();
+
+// Beauty R,G,B,A (A: coverage, colour premultiplied by it), every AOV of the film's layout as
+// "layer.channel", Z, samples.count, variance.V and the Cryptomatte layers when requested.
+// Metadata keys are written as "kiln:KEY", numbers as numbers. Throws std::runtime_error.
 void writeExr(const std::string& path, const Film& film, const Metadata& metadata,
               const ExrOptions& options = {});
 
 // The per-pixel sample counts as a heat map (blue few, red many) with a legend bar and its range.
 void writeSampleHeatMap(const std::string& path, const Film& film);
 
-// Throws std::invalid_argument unless the OCIO config has this display and view (checked before
-// rendering).
-void checkDisplayView(const std::string& display, const std::string& view);
-
-// Display-referred 8-bit preview through the OCIO display/view, the scene light first scaled by
-// 2^exposureStops.
-void writePreview(const std::string& path, const Film& film, const std::string& display = "sRGB",
-                  const std::string& view = "Standard", float exposureStops = 0);
+// Display-referred 8-bit preview through the OCIO display/view (empty: the config's defaults),
+// from the config's scene_linear, the scene light first scaled by 2^exposureStops.
+void writePreview(const std::string& path, const Film& film, const std::string& display = "",
+                  const std::string& view = "", float exposureStops = 0);
 
 // The scene-linear -> display transform of one value (for tests and tools).
-float displayTransform(float linear, const std::string& display = "sRGB",
-                       const std::string& view = "Standard");
+float displayTransform(float linear, const std::string& display = "", const std::string& view = "");
 
 }  // namespace kiln

@@ -5,6 +5,7 @@
 #include <span>
 #include <string>
 
+#include "integrators/crypto_names.h"
 #include "renderer/accel/accelerator.h"
 #include "renderer/core/sampler.h"
 #include "renderer/film/aov.h"
@@ -27,8 +28,7 @@ struct CameraSample {
 class Integrator {
   public:
     // aovs: what every camera sample records beside the beauty (fixed for the integrator's life).
-    Integrator(const Scene& scene, const Accelerator& accel, const AovRequest& aovs = {})
-        : scene_(scene), accel_(accel), aovs_(aovs) {}
+    Integrator(const Scene& scene, const Accelerator& accel, const AovRequest& aovs = {});
     virtual ~Integrator() = default;
     // Radiance along a camera ray into record.L, and the AOVs requested at construction.
     virtual void Li(const Ray& ray, Sampler& sampler, RayCounter& counter,
@@ -55,6 +55,10 @@ class Integrator {
     const Scene& scene_;
     const Accelerator& accel_;
     const AovRequest aovs_;
+
+  private:
+    Vec3 cameraForward_;
+    CryptoIds cryptoIds_;  // only with a Cryptomatte AOV
 };
 
 }  // namespace kiln

@@ -1,11 +1,31 @@
 #include "renderer/progress.h"
 
+#include <fmt/format.h>
+#include <sys/ioctl.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
+
+#include "renderer/core/json.h"
 
 namespace kiln {
+namespace {
+
+std::atomic<ProgressStyle> style{ProgressStyle::Text};
+
+// Columns of the terminal on stderr ($COLUMNS when the ioctl cannot tell; 80 otherwise).
+int terminalColumns() {
+    struct winsize ws {};
+    if (ioctl(2, TIOCGWINSZ, &ws) == 0 && ws.ws_col > 0) return ws.ws_col;
+    if (const char* c = std::getenv("COLUMNS"); c && std::atoi(c) > 0) return std::atoi(c);
+    return 80;
+}
+
+}  // namespace
+
+void Progress::setStyle(ProgressStyle s) { style.store(s); }
 
 Progress::Progress(std::string title, uint64_t totalWork, bool enabled)
     : title_(std::move(title)),
@@ -15,7 +35,9 @@ Progress::Progress(std::string title, uint64_t totalWork, bool enabled)
       start_(std::chrono::steady_clock::now()) {
     if (!enabled_) return;
     thread_ = std::thread([this] {
-        auto period = tty_ ? std::chrono::milliseconds(250) : std::chrono::milliseconds(5000);
+        auto period = style.load() == ProgressStyle::Json ? std::chrono::milliseconds(1000)
+                      : tty_                              ? std::chrono::milliseconds(250)
+                                                          : std::chrono::milliseconds(5000);
         std::unique_lock lock(mutex_);
         while (!cv_.wait_for(lock, period, [this] { return stop_; })) print(false);
     });
@@ -43,18 +65,42 @@ void Progress::print(bool final) {
     double frac = std::min(1.0, double(done_.load()) / double(total_));
     double mrays = t > 0 ? double(rays_.load()) / t * 1e-6 : 0.0;
     double eta = frac > 0 ? t * (1 - frac) / frac : 0.0;
-    if (tty_) {
-        constexpr int kWidth = 30;
-        int filled = int(frac * kWidth);
-        std::fprintf(stderr, "\r%s [%.*s%*s] %5.1f%%  %.2f Mrays/s  %.1fs elapsed  ETA %.1fs ",
-                     title_.c_str(), filled, "##############################", kWidth - filled, "",
-                     100 * frac, mrays, t, eta);
-        if (final) std::fputc('\n', stderr);
-    } else {
-        std::fprintf(stderr, "%s: %.1f%%  %.2f Mrays/s  %.1fs elapsed  ETA %.1fs\n", title_.c_str(),
-                     100 * frac, mrays, t, eta);
-    }
+    if (style.load() == ProgressStyle::Json)
+        printJson(frac, mrays, t, eta, final);
+    else if (tty_)
+        printBar(frac, mrays, t, eta, final);
+    else
+        std::fputs(fmt::format("{}: {:.1f}%  {:.2f} Mrays/s  {:.1f}s elapsed  ETA {:.1f}s\n",
+                               title_, 100 * frac, mrays, t, eta)
+                       .c_str(),
+                   stderr);
     std::fflush(stderr);
+}
+
+void Progress::printBar(double frac, double mrays, double t, double eta, bool final) {
+    std::string tail = fmt::format("] {:5.1f}%  {:.2f} Mrays/s  {:.1f}s elapsed  ETA {:.1f}s ",
+                                   100 * frac, mrays, t, eta);
+    // The bar takes what the line leaves, so the line never wraps.
+    int width = std::max(0, terminalColumns() - 1 - int(title_.size() + 2 + tail.size()));
+    int filled = int(frac * width);
+    std::string line = "\r" + title_ + " [" + std::string(size_t(filled), '#') +
+                       std::string(size_t(width - filled), ' ') + tail;
+    if (width == 0) line = "\r" + title_ + tail.substr(1);
+    std::fputs(line.c_str(), stderr);
+    if (final) std::fputc('\n', stderr);
+}
+
+void Progress::printJson(double frac, double mrays, double t, double eta, bool final) {
+    Json line = {{"event", final ? "done" : "progress"},
+                 {"title", title_},
+                 {"fraction", frac},
+                 {"work_done", done_.load()},
+                 {"work_total", total_},
+                 {"rays", rays_.load()},
+                 {"mrays_per_second", mrays},
+                 {"elapsed_seconds", t},
+                 {"eta_seconds", eta}};
+    std::fputs((jsonText(line, -1) + "\n").c_str(), stderr);
 }
 
 }  // namespace kiln

@@ -1,5 +1,6 @@
-// Progress on stderr: a bar with percentage, rays/s and ETA on a terminal; plain periodic lines
-// otherwise.
+// Progress on stderr: a bar as wide as the terminal with percentage, rays/s and ETA; plain
+// periodic lines when stderr is not a terminal; or JSON lines (one object a second and a final one)
+// for a job queue.
 #pragma once
 
 #include <atomic>
@@ -11,8 +12,12 @@
 
 namespace kiln {
 
+enum class ProgressStyle { Text, Json };
+
 class Progress {
   public:
+    // Process-wide, set once by the command line before rendering.
+    static void setStyle(ProgressStyle style);
     Progress(std::string title, uint64_t totalWork, bool enabled);
     ~Progress();
     void add(uint64_t work, uint64_t rays) {
@@ -25,6 +30,8 @@ class Progress {
 
   private:
     void print(bool final);
+    void printBar(double frac, double mrays, double t, double eta, bool final);
+    void printJson(double frac, double mrays, double t, double eta, bool final);
     std::string title_;
     uint64_t total_;
     bool enabled_, tty_;

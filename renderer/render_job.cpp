@@ -1,5 +1,7 @@
 #include "renderer/render_job.h"
 
+#include <tbb/info.h>
+
 #include <string>
 
 #include "renderer/geometry/camera.h"
@@ -65,7 +67,7 @@ Metadata RenderJob::metadata(const RenderStats& stats, const Film& film) const {
         {"camera", scene_.framedByCourseRule ? "cs184-framing"
                    : scene_.hasFileCamera    ? "file"
                                              : "default-framing"},
-        {"threads", text(s.threads)},
+        {"threads", text(s.threads > 0 ? s.threads : tbb::info::default_concurrency())},
         {"rays", text(stats.rays)},
         {"working_space", "lin_rec709 (linear Rec.709 primaries, D65)"},
         {"plan", plan_.compact()},

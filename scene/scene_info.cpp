@@ -1,38 +1,23 @@
 #include "scene/scene_info.h"
 
-#include <cstdio>
+#include <fmt/format.h>
+
 #include <set>
 #include <sstream>
+
+#include "renderer/core/json.h"
 
 namespace kiln {
 namespace {
 
-std::string num(double v) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.9g", v);
-    return buf;
-}
-// One snprintf, not string concatenation, which GCC 12 warns about falsely (-Wrestrict).
-std::string vec3(double x, double y, double z) {
-    char buf[96];
-    std::snprintf(buf, sizeof buf, "[%.9g, %.9g, %.9g]", x, y, z);
-    return buf;
-}
-std::string vec(const Vec3d& v) { return vec3(v.x, v.y, v.z); }
-std::string vec(const Vec3& v) { return vec3(v.x, v.y, v.z); }
-std::string quote(const std::string& s) {
-    std::string out = "\"";
-    for (char c : s) {
-        if (c == '"' || c == '\\')
-            out += '\\', out += c;
-        else if (c == '\n')
-            out += "\\n";
-        else if (static_cast<unsigned char>(c) < 0x20)
-            out += ' ';
-        else
-            out += c;
-    }
-    return out + "\"";
+std::string num(double v) { return fmt::format("{:.9g}", v); }
+std::string vec(const Vec3d& v) { return fmt::format("[{:.9g}, {:.9g}, {:.9g}]", v.x, v.y, v.z); }
+std::string vec(const Vec3& v) { return vec(Vec3d(v)); }
+// Floats as the nearest short decimal of the float (0.75, not 0.75000000298...).
+Json jsonNumber(float v) { return std::stod(fmt::format("{}", v)); }
+Json jsonVec(const Vec3d& v) { return Json::array({v.x, v.y, v.z}); }
+Json jsonVec(const Vec3& v) {
+    return Json::array({jsonNumber(v.x), jsonNumber(v.y), jsonNumber(v.z)});
 }
 
 }  // namespace
@@ -154,36 +139,27 @@ std::string sceneInfoJson(const Scene& scene) {
     SceneSummary s = summarize(scene);
     Bounds3T<double> b = worldBoundsExact(scene);
     const Camera& c = scene.camera;
-    std::ostringstream os;
-    auto map = [&](const std::map<std::string, int>& m) {
-        std::string out = "{";
-        for (auto it = m.begin(); it != m.end(); ++it)
-            out += (it == m.begin() ? "" : ", ") + quote(it->first) + ": " +
-                   std::to_string(it->second);
-        return out + "}";
-    };
-    os << "{\n";
-    os << "  \"scene\": " << quote(scene.sourcePath) << ",\n";
-    os << "  \"triangles\": " << s.triangles << ",\n";
-    os << "  \"unique_triangles\": " << s.uniqueTriangles << ",\n";
-    os << "  \"vertices\": " << s.vertices << ",\n";
-    os << "  \"spheres\": " << s.spheres << ",\n";
-    os << "  \"meshes\": " << s.meshes << ",\n";
-    os << "  \"instances\": " << s.instances << ",\n";
-    os << "  \"materials\": " << map(s.materials) << ",\n";
-    os << "  \"lights\": " << map(s.lights) << ",\n";
-    os << "  \"camera\": {\"position\": " << vec(Vec3d(c.position) + scene.origin)
-       << ", \"direction\": " << vec(c.forward) << ", \"up\": " << vec(c.up)
-       << ", \"hfov\": " << num(c.hFovDeg) << ", \"vfov\": " << num(c.vFovDeg)
-       << ", \"from_file\": " << (scene.hasFileCamera ? "true" : "false") << "},\n";
-    os << "  \"bbox\": {\"min\": " << vec(b.lo) << ", \"max\": " << vec(b.hi) << "},\n";
-    os << "  \"geometry_bytes\": " << s.geometryBytes << ",\n";
-    os << "  \"load_seconds\": " << num(scene.loadSeconds) << ",\n";
-    os << "  \"warnings\": [";
-    for (size_t i = 0; i < scene.warnings.size(); ++i)
-        os << (i ? ", " : "") << quote(scene.warnings[i]);
-    os << "]\n}\n";
-    return os.str();
+    Json doc = {{"scene", scene.sourcePath},
+                {"triangles", s.triangles},
+                {"unique_triangles", s.uniqueTriangles},
+                {"vertices", s.vertices},
+                {"spheres", s.spheres},
+                {"meshes", s.meshes},
+                {"instances", s.instances},
+                {"materials", s.materials},
+                {"lights", s.lights},
+                {"camera",
+                 {{"position", jsonVec(Vec3d(c.position) + scene.origin)},
+                  {"direction", jsonVec(c.forward)},
+                  {"up", jsonVec(c.up)},
+                  {"hfov", jsonNumber(c.hFovDeg)},
+                  {"vfov", jsonNumber(c.vFovDeg)},
+                  {"from_file", scene.hasFileCamera}}},
+                {"bbox", {{"min", jsonVec(b.lo)}, {"max", jsonVec(b.hi)}}},
+                {"geometry_bytes", s.geometryBytes},
+                {"load_seconds", scene.loadSeconds},
+                {"warnings", scene.warnings}};
+    return jsonText(doc) + "\n";
 }
 
 }  // namespace kiln

@@ -9,32 +9,14 @@
 #include <thread>
 
 #include "long_render_support.h"
+#include "kiln_run.h"
 #include "test_support.h"
 
 namespace kiln {
 namespace {
 
-struct CliRun {
-    int code;
-    std::string out, err;
-};
-
-CliRun runKiln(const std::string& args) {
-    auto dir = std::filesystem::temp_directory_path() / "kiln-tests";
-    std::filesystem::create_directories(dir);
-    std::string errFile = (dir / ("stderr-" + std::to_string(::getpid()))).string();
-    std::string cmd = std::string(KILN_BINARY) + " " + args + " 2>" + errFile;
-    CliRun r{};
-    FILE* p = ::popen(cmd.c_str(), "r");
-    std::array<char, 4096> buf;
-    size_t n;
-    while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
-    int status = ::pclose(p);
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    std::ifstream e(errFile);
-    r.err.assign(std::istreambuf_iterator<char>(e), {});
-    return r;
-}
+using test::CliRun;
+using test::runKiln;
 
 int lines(const std::string& s) { return int(std::count(s.begin(), s.end(), '\n')); }
 

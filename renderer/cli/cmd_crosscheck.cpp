@@ -79,21 +79,7 @@ int runCrosscheck(const std::vector<std::string>& args) {
     CrosscheckReport report =
         crosscheck(scene, *embree, *reference, size_t(rays) / 4, uint64_t(seed));
     if (json) {
-        std::printf("{\n  \"scene\": \"%s\",\n  \"categories\": [\n", pos[0].c_str());
-        for (size_t i = 0; i < report.categories.size(); ++i) {
-            const CrosscheckCategory& c = report.categories[i];
-            std::printf(
-                "    {\"kind\": \"%s\", \"rays\": %llu, \"hits_embree\": %llu, \"hits_reference\": "
-                "%llu, "
-                "\"agree\": %llu, \"edge\": %llu, \"coplanar\": %llu, \"genuine\": %llu, "
-                "\"max_relative_dt\": %.3g, \"max_bary_diff\": %.3g}%s\n",
-                toString(c.kind), (unsigned long long)c.rays, (unsigned long long)c.hitsA,
-                (unsigned long long)c.hitsB, (unsigned long long)c.agree,
-                (unsigned long long)c.edge, (unsigned long long)c.coplanar,
-                (unsigned long long)c.genuine, c.maxRelativeDt, c.maxBaryDiff,
-                i + 1 < report.categories.size() ? "," : "");
-        }
-        std::printf("  ],\n  \"genuine\": %llu\n}\n", (unsigned long long)report.totalGenuine());
+        std::puts(jsonText(crosscheckJson(report, pos[0])).c_str());
     } else {
         std::printf("crosscheck %s: embree (%s) vs reference (%s)\n", pos[0].c_str(),
                     embree->stats().description.c_str(), reference->stats().description.c_str());

@@ -1,18 +1,26 @@
 // kiln render: option parsing, then one RenderJob, then the outputs.
+#include <fmt/format.h>
 #include <sys/resource.h>
+#include <unistd.h>
 
+#include <cerrno>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 
 #include "color/atomic_file.h"
 #include "color/image_output.h"
 #include "renderer/accel/recording_accelerator.h"
+#include "renderer/build_info.h"
 #include "renderer/cli/accel_options.h"
 #include "renderer/cli/commands.h"
 #include "renderer/cli/render_options.h"
+#include "renderer/core/json.h"
 #include "renderer/core/memory.h"
 #include "renderer/long_render.h"
+#include "renderer/exr_scene.h"
+#include "renderer/progress.h"
 #include "renderer/render_job.h"
 #include "scene/scene_loader.h"
 
@@ -30,10 +38,15 @@ struct RenderCommand {
     RenderJobArgs job;
     AcceleratorChoice accel;
     LoadOptions load;
-    std::string output;  // base path, or the -f file
-    std::string display = "sRGB", view = "Standard";
-    float exposure = 0;  // stops
+    std::string output;         // base path, or the -f file
+    std::string display, view;  // empty: the OCIO config's defaults
+    float exposure = 0;         // stops
     ExrOptions exr;
+    bool transparent = false, json = false;
+    std::string progress = "bar";
+    std::vector<std::string> warnings;  // also in the --json result
+    std::string colourConfig;           // the OCIO config in force
+    DepthMode depth = DepthMode::Ray;
     bool heatMap = false, quiet = false, traversalFloor = false;
     float aperture = -1, focus = -1;
     int debugX = -1, debugY = -1, debugSample = -1;
@@ -78,20 +91,16 @@ void addOutputOptions(ArgParser& parser, RenderCommand& c) {
     addOutputNameOptions(parser, c.output, c.job.job.path);
     parser.option("file", "f", 1, "OUT.png", "CS184 form: preview file; the EXR goes beside it",
                   [&c](const std::vector<std::string>& v) { c.output = v[0]; });
-    parser.option("display", "", 1, "NAME", "OCIO display for the preview (default sRGB)",
+    parser.option("display", "", 1, "NAME",
+                  "OCIO display for the preview (default: the config's default display)",
                   [&c](const std::vector<std::string>& v) { c.display = v[0]; });
     parser.option("view", "", 1, "NAME",
-                  "OCIO view for the preview (default Standard; CS184: the course's display)",
+                  "OCIO view for the preview (default: the display's default view; CS184: the "
+                  "course's display)",
                   [&c](const std::vector<std::string>& v) { c.view = v[0]; });
     addExposureOption(parser, c.exposure);
     parser.flag("half", "", "write colour layers as half floats (data layers stay float)",
                 c.exr.half);
-    parser.option("compression", "", 1, "zip|piz", "EXR compression (default zip)",
-                  [&c](const std::vector<std::string>& v) {
-                      if (v[0] != "zip" && v[0] != "piz")
-                          throw UsageError("--compression takes zip or piz, got '" + v[0] + "'");
-                      c.exr.compression = v[0];
-                  });
     parser.flag("heatmap", "",
                 "also write OUT.samples.png, the per-pixel sample counts as a heat map "
                 "(always with -a)",
@@ -128,6 +137,136 @@ void addLongRenderOptions(ArgParser& parser, RenderCommand& c) {
                   [&c, seconds](const std::vector<std::string>& v) {
                       c.timeLimit = seconds("--time-limit", v[0]);
                   });
+}
+
+std::string joined(const std::vector<std::string>& names, const char* separator) {
+    std::string text;
+    for (const std::string& n : names) text += (text.empty() ? "" : separator) + n;
+    return text;
+}
+
+void addCompressionOption(ArgParser& parser, RenderCommand& c) {
+    const std::vector<std::string>& known = exrCompressions();
+    parser.option("compression", "", 1, joined(known, "|"),
+                  "EXR compression (default zip; pxr24, b44, b44a, dwaa, dwab are lossy)",
+                  [&c, &known](const std::vector<std::string>& v) {
+                      if (std::find(known.begin(), known.end(), v[0]) == known.end())
+                          throw UsageError("--compression takes " + joined(known, ", ") +
+                                           "; got '" + v[0] + "'");
+                      c.exr.compression = v[0];
+                  });
+}
+
+// Alpha and Z conventions of the EXR (see docs/output.md).
+void addCompositingOptions(ArgParser& parser, RenderCommand& c) {
+    parser.flag("transparent", "",
+                "transparent background (Cycles' Film > Transparent): background seen directly "
+                "leaves the image, alpha counts non-emitting surfaces only",
+                c.transparent);
+    parser.option("depth", "", 1, "ray|camera",
+                  "what Z holds: distance along the camera ray (default) or camera-space z",
+                  [&c](const std::vector<std::string>& v) {
+                      if (v[0] != "ray" && v[0] != "camera")
+                          throw UsageError("--depth takes 'ray' or 'camera', got '" + v[0] + "'");
+                      c.depth = v[0] == "camera" ? DepthMode::CameraZ : DepthMode::Ray;
+                  });
+}
+
+// Writability tried by creating a file (permission bits say nothing for root or read-only mounts),
+// so a job fails before loading, not after rendering.
+void checkOutputWritable(const OutputPaths& out) {
+    fs::path dir = fs::path(out.exr).parent_path();
+    std::string probe = ((dir.empty() ? fs::path(".") : dir) / ".kiln-write-test-XXXXXX").string();
+    int fd = ::mkstemp(probe.data());
+    if (fd < 0)
+        throw UsageError(fmt::format("output directory '{}' is not writable: {}",
+                                     dir.empty() ? "." : dir.string(), std::strerror(errno)));
+    ::close(fd);
+    ::unlink(probe.c_str());
+}
+
+void applyCompositingOptions(const RenderCommand& c, RenderJobOptions& options) {
+    options.aovs.transparent = c.transparent;
+    options.aovs.depth = c.depth;
+}
+
+// The OCIO config, display and view checked before any work; the defaults filled in.
+void checkColour(RenderCommand& c) {
+    try {
+        ColorSetup setup = checkColorConfig(c.display, c.view);
+        c.display = setup.display, c.view = setup.view, c.colourConfig = setup.configPath;
+        c.exr.colorSpace = setup.sceneLinear;
+        for (const std::string& w : setup.warnings)
+            std::fprintf(stderr, "kiln: warning: %s\n", w.c_str());
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+    }
+}
+
+// What a job queue drives: one JSON result on stdout, progress as JSON lines on stderr.
+void addQueueOptions(ArgParser& parser, RenderCommand& c) {
+    parser.flag("json", "",
+                "print one JSON result on stdout: outputs, times, rays, samples, peak memory, "
+                "warnings (docs/output.md)",
+                c.json);
+    parser.option(
+        "progress", "", 1, "bar|json|none",
+        "progress on stderr: a bar (plain lines when not a terminal), JSON lines, or "
+        "none (as -q)",
+        [&c](const std::vector<std::string>& v) {
+            if (v[0] != "bar" && v[0] != "json" && v[0] != "none")
+                throw UsageError("--progress takes bar, json or none, got '" + v[0] + "'");
+            c.progress = v[0];
+        });
+}
+
+void applyQueueOptions(const RenderCommand& c, RenderJobOptions& options) {
+    options.settings.progress = !c.quiet && c.progress != "none";
+    Progress::setStyle(c.progress == "json" ? ProgressStyle::Json : ProgressStyle::Text);
+}
+
+// Which kiln wrote the file: the libraries as kiln:libraries (the commit goes in Software).
+void addBuildToMetadata(Metadata& meta) {
+    meta["libraries"] = libraryVersions();
+    meta["ocio_config"] = colorConfigPath();
+}
+
+struct RenderTimes {
+    double load = 0, build = 0, write = 0;
+};
+
+void printJsonResult(const RenderCommand& c, const Scene& scene, const OutputPaths& out,
+                     const std::string& heat, const RenderStats& stats, const Film& film,
+                     const RenderTimes& times) {
+    std::vector<std::string> warnings = scene.warnings;
+    warnings.insert(warnings.end(), c.warnings.begin(), c.warnings.end());
+    if (stats.nonFiniteSamples)
+        warnings.push_back(std::to_string(stats.nonFiniteSamples) +
+                           " non-finite samples were dropped");
+    struct rusage usage {};
+    getrusage(RUSAGE_SELF, &usage);
+    Json outputs = {{"exr", out.exr}, {"preview", out.preview}};
+    if (!heat.empty()) outputs["heatmap"] = heat;
+    Json result = {
+        {"scene", scene.sourcePath},
+        {"outputs", outputs},
+        {"seconds",
+         {{"load", times.load},
+          {"build", times.build},
+          {"render", stats.seconds},
+          {"write", times.write}}},
+        {"rays", stats.rays},
+        {"samples", stats.samples},
+        {"spp",
+         film.width() > 0 ? double(stats.samples) / (double(film.width()) * film.height()) : 0.0},
+        {"nonfinite_samples", stats.nonFiniteSamples},
+        {"peak_memory_bytes", uint64_t(usage.ru_maxrss) * 1024},
+        {"interrupted", stats.interrupted},
+        {"ocio_config", c.colourConfig},
+        {"display", c.display},
+        {"view", c.view},
+        {"warnings", warnings}};
+    std::puts(jsonText(result).c_str());
 }
 
 void addDebugOptions(ArgParser& parser, RenderCommand& c) {
@@ -354,6 +493,7 @@ Metadata renderMetadata(const RenderJob& job, const RenderCommand& c, const std:
     meta["display"] = c.display;
     meta["view"] = c.view;
     meta["exposure"] = std::to_string(c.exposure);
+    addBuildToMetadata(meta);
     // For kiln merge, which writes the EXR the way this render would.
     meta["exr_storage"] = std::string(c.exr.half ? "half " : "float ") + c.exr.compression;
     return meta;
@@ -391,7 +531,11 @@ int renderLong(const RenderCommand& c, const RenderJob& job,
                      r.totals.metadata.empty() ? renderMetadata(job, c, scenePath, r.stats, r.film)
                                                : r.totals.metadata,
                      heatPath);
-    printSummary(scenePath, out, heatPath, r.stats, loadTime, buildTime, seconds(t2));
+    double writeTime = seconds(t2);
+    printSummary(scenePath, out, heatPath, r.stats, loadTime, buildTime, writeTime);
+    if (c.json)
+        printJsonResult(c, job.scene(), out, heatPath, r.stats, r.film,
+                        {loadTime, buildTime, writeTime});
     if (failures) return 1;
     if (r.stats.interrupted || r.stats.timeLimitReached) {
         std::fprintf(stderr,
@@ -419,6 +563,9 @@ int runRender(const std::vector<std::string>& args) {
     addCameraOptions(parser, c);
     addDebugOptions(parser, c);
     addLongRenderOptions(parser, c);
+    addCompressionOption(parser, c);
+    addCompositingOptions(parser, c);
+    addQueueOptions(parser, c);
     std::vector<std::string> pos = parser.parse(args);
     if (parser.helpRequested()) {
         std::fputs(parser.helpText().c_str(), stdout);
@@ -429,14 +576,12 @@ int runRender(const std::vector<std::string>& args) {
         throw UsageError("needs exactly one scene file (see 'kiln render --help')");
     const std::string& scenePath = pos[0];
     RenderJobOptions jobOptions = c.job.finish();
-    jobOptions.settings.progress = !c.quiet;
     applyLongRenderOptions(c, jobOptions);
-    try {
-        checkDisplayView(c.display, c.view);
-    } catch (const std::invalid_argument& e) {
-        throw UsageError(e.what());
-    }
+    applyCompositingOptions(c, jobOptions);
+    applyQueueOptions(c, jobOptions);
+    checkColour(c);
     OutputPaths out = outputPaths(c, scenePath);
+    checkOutputWritable(out);
     checkOutputsFit(c, jobOptions, out);
 
     auto t0 = std::chrono::steady_clock::now();
@@ -452,6 +597,8 @@ int runRender(const std::vector<std::string>& args) {
     warnHemisphereBlind(job, scenePath);
     if (c.debugX >= 0 || c.debugSample >= 0) return printDebugSample(job, c);
 
+    addSceneToExr(c.exr, scene, jobOptions.settings, jobOptions.aovs);
+    c.exr.software = fmt::format("kiln {} (commit {})", KILN_VERSION, gitCommit());
     return renderLong(c, job, accel, scenePath, out, loadTime, buildTime);
 }
 

@@ -388,7 +388,7 @@ int runReport(const std::vector<std::string>& args) {
     if (o.scenes.empty()) throw UsageError("needs at least one scene file");
     if (o.dir.empty()) throw UsageError("needs -o DIR");
     try {
-        checkDisplayView("sRGB", o.view);
+        checkColorConfig("sRGB", o.view);
     } catch (const std::invalid_argument& e) {
         throw UsageError(e.what());
     }

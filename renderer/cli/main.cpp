@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "renderer/build_info.h"
 #include "renderer/cli/cli_args.h"
 #include "renderer/cli/commands.h"
 #include "scene/scene_error.h"
@@ -36,7 +37,7 @@ int main(int argc, char** argv) {
         return args.empty() ? 2 : 0;
     }
     if (args[0] == "--version") {
-        std::printf("kiln %s\n", KILN_VERSION);
+        std::fputs(kiln::versionText().c_str(), stdout);
         return 0;
     }
     std::string command = args[0];

@@ -29,6 +29,8 @@ constexpr NamedAov kNames[] = {
     {"variance", AovKind::Variance},
     {"primid", AovKind::PrimId},
     {"objectid", AovKind::ObjectId},
+    {"crypto_object", AovKind::CryptoObject},
+    {"crypto_material", AovKind::CryptoMaterial},
 };
 
 // Flattened field numbering used by gather(): colours take 3 consecutive fields.
@@ -41,8 +43,7 @@ enum Field {
     kAlbedo = kBounces + 3 * kMaxBounceLayers,
     kNormal = kAlbedo + 3,
     kPosition = kNormal + 3,
-    kDepth = kPosition + 3,
-    kPrimId = kDepth + 1,
+    kPrimId = kPosition + 3,
     kObjectId = kPrimId + 1
 };
 
@@ -69,8 +70,7 @@ const char* AovRequest::names() {
     return "emission, direct, indirect, direct_diffuse, direct_specular, direct_transmission, "
            "indirect_diffuse, "
            "indirect_specular, indirect_transmission, bounces, albedo, N, P, Z, samples, variance, "
-           "primid, "
-           "objectid; or all, none, default";
+           "primid, objectid, crypto_object, crypto_material; or all, none, default";
 }
 
 AovRequest AovRequest::parse(const std::string& list, int maxDepth) {
@@ -120,9 +120,10 @@ AovLayout::AovLayout(const AovRequest& request) : request_(request) {
     if (request.has(AovKind::Albedo)) colour("albedo", kAlbedo);
     if (request.has(AovKind::Normal)) colour("N", kNormal, "XYZ");
     if (request.has(AovKind::Position)) colour("P", kPosition, "XYZ");
-    if (request.has(AovKind::Depth)) channels_.push_back({"Z", false, false, kDepth});
-    if (request.has(AovKind::PrimId)) channels_.push_back({"primid", false, true, kPrimId});
-    if (request.has(AovKind::ObjectId)) channels_.push_back({"objectid", false, true, kObjectId});
+    // Z, samples, variance and Cryptomatte have accumulators of their own in the film.
+    if (request.has(AovKind::PrimId)) channels_.push_back({"primid.id", false, true, kPrimId});
+    if (request.has(AovKind::ObjectId))
+        channels_.push_back({"objectid.id", false, true, kObjectId});
 }
 
 void AovLayout::gather(const SampleRecord& r, double* out) const {
@@ -138,7 +139,7 @@ void AovLayout::gather(const SampleRecord& r, double* out) const {
     put(kAlbedo, r.albedo);
     put(kNormal, r.normal);
     put(kPosition, r.position);
-    f[kDepth] = r.depth, f[kPrimId] = r.primId, f[kObjectId] = r.objectId;
+    f[kPrimId] = r.primId, f[kObjectId] = r.objectId;
     for (size_t c = 0; c < channels_.size(); ++c) out[c] = f[channels_[c].field];
 }
 

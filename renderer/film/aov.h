@@ -29,14 +29,24 @@ enum class AovKind : uint32_t {
     Variance,  // per pixel: sample count, estimator variance of the luminance mean
     PrimId,
     ObjectId,
+    CryptoObject,
+    CryptoMaterial,  // Cryptomatte layers (ranked id/coverage pairs), see film/cryptomatte.h
     Count
 };
+
+// What Z holds: the distance along the camera ray, or camera-space z (the distance along the view
+// axis, as OpenEXR's worldToCamera space and Nuke's/Blender's depth passes have it).
+enum class DepthMode { Ray, CameraZ };
 
 constexpr int kMaxBounceLayers = 16;
 
 struct AovRequest {
     uint32_t mask = 0;
     int bounceLayers = 0;  // with Bounces: bounce1..bounceN
+    // Cycles' Film > Transparent: light seen straight through to the background leaves the image,
+    // and emitters seen directly do not cover (alpha counts only non-emitting surfaces).
+    bool transparent = false;
+    DepthMode depth = DepthMode::Ray;
     bool has(AovKind k) const { return mask & (1u << uint32_t(k)); }
     void add(AovKind k) { mask |= 1u << uint32_t(k); }
     // Any of the light-path AOVs (the integrator must classify its contributions).
@@ -65,13 +75,16 @@ struct SampleRecord {
     }
     Color albedo{0.0f};
     Vec3 normal{0.0f}, position{0.0f};
-    float depth = 1e10f;  // no hit: far away, finite (compositors dislike inf)
+    bool hit = false;                              // the camera ray hit a surface (alpha coverage)
+    bool hitEmitter = false;                       // ... and that surface emits light
+    float depth = kInfinity, cameraZ = kInfinity;  // first hit: along the ray, along the view axis
     float primId = -1, objectId = -1;
+    uint32_t cryptoObject = 0, cryptoMaterial = 0;  // Cryptomatte id float bits; 0: none
 };
 
 // One EXR channel fed from a SampleRecord field.
 struct AovChannel {
-    std::string name;          // "direct.R", "N.X", "Z", ...
+    std::string name;          // "direct.R", "N.X", "primid.id", ...
     bool colour = true;        // may be written as half
     bool firstSample = false;  // ids: the first sample's value, never averaged
     int field = 0;             // index into the record's flattened values (see AovLayout::gather)

@@ -18,6 +18,10 @@ Film::Film(int width, int height, const AovRequest& aovs)
     aovSum_.resize(n * sumChannels_);
     aovFirst_.resize(n * firstChannels_);
     converged_.resize(n);
+    covered_.resize(n);
+    if (aovs.has(AovKind::Depth)) depth_.assign(n, kInfinity);
+    if (aovs.has(AovKind::CryptoObject)) crypto_[0].resize(n * kCryptoSlots);
+    if (aovs.has(AovKind::CryptoMaterial)) crypto_[1].resize(n * kCryptoSlots);
 }
 
 std::vector<FilmBuffer> Film::buffers() {
@@ -32,6 +36,12 @@ std::vector<FilmBuffer> Film::buffers() {
         {"aov_first", Accumulation::FirstSample, sizeof(double), uint32_t(firstChannels_),
          aovFirst_.data()},
         {"adaptive_converged", Accumulation::Flag, 1, 1, converged_.data()},
+        {"covered", Accumulation::Count, sizeof(uint32_t), 1, covered_.data()},
+        {"depth", Accumulation::Min, sizeof(float), depth_.empty() ? 0u : 1u, depth_.data()},
+        {"crypto_object", Accumulation::CryptoIds, sizeof(CryptoSlot),
+         crypto_[0].empty() ? 0u : uint32_t(kCryptoSlots), crypto_[0].data()},
+        {"crypto_material", Accumulation::CryptoIds, sizeof(CryptoSlot),
+         crypto_[1].empty() ? 0u : uint32_t(kCryptoSlots), crypto_[1].data()},
         // Last: merging reads the counts before the shard's are added (FirstSample).
         {"samples", Accumulation::Count, sizeof(uint32_t), 1, count_.data()},
     };
@@ -43,10 +53,14 @@ bool Film::add(int x, int y, const SampleRecord& r) {
     size_t nc = layout_.channels().size();
     double values[256];
     if (nc) layout_.gather(r, values);
+    // A transparent background: a ray that left the scene took nothing but the background's light.
+    const AovRequest& request = layout_.request();
+    const bool keepsLight = r.hit || !request.transparent;
+    const Color L = keepsLight ? r.L : Color(0.0f);
     // Every value converted before any is added: a sample enters the film whole or not at all.
     FixedSum fixed[256 + 5];
-    double illum = luminance(r.L);
-    if (!toFixed(r.L.x, fixed[0]) || !toFixed(r.L.y, fixed[1]) || !toFixed(r.L.z, fixed[2]) ||
+    double illum = luminance(L);
+    if (!toFixed(L.x, fixed[0]) || !toFixed(L.y, fixed[1]) || !toFixed(L.z, fixed[2]) ||
         !toFixed(illum, fixed[3]) || !toFixed(illum * illum, fixed[4]))
         return false;
     for (size_t c = 0; c < nc; ++c)
@@ -57,12 +71,57 @@ bool Film::add(int x, int y, const SampleRecord& r) {
     FixedSum* sums = &aovSum_[i * sumChannels_];
     double* firsts = &aovFirst_[i * firstChannels_];
     for (size_t c = 0; c < nc; ++c) {
-        if (!layout_.channels()[c].firstSample)
-            sums[slot_[c]] += fixed[5 + c];
-        else if (previous == 0)
+        if (!layout_.channels()[c].firstSample) {
+            if (keepsLight) sums[slot_[c]] += fixed[5 + c];
+        } else if (previous == 0) {
             firsts[slot_[c]] = values[c];
+        }
     }
+    covered_[i] += r.hit && !(request.transparent && r.hitEmitter);
+    if (!depth_.empty() && r.hit)
+        depth_[i] = std::min(depth_[i], request.depth == DepthMode::CameraZ ? r.cameraZ : r.depth);
+    if (!crypto_[0].empty()) addCrypto(i, 0, r.cryptoObject);
+    if (!crypto_[1].empty()) addCrypto(i, 1, r.cryptoMaterial);
     return true;
+}
+
+namespace {
+
+// One (id, count) into a pixel's slots: the same id adds its count, a new one takes a free slot.
+// With every slot taken the count is dropped (a documented limit: ids beyond kCryptoSlots).
+void addToSlots(CryptoSlot* slots, uint32_t id, uint32_t count) {
+    if (id == 0 || count == 0) return;  // nothing hit
+    for (int k = 0; k < kCryptoSlots; ++k)
+        if (slots[k].id == id || slots[k].count == 0) {
+            slots[k].id = id;
+            slots[k].count += count;
+            return;
+        }
+}
+
+}  // namespace
+
+void Film::addCrypto(size_t i, int type, uint32_t id) {
+    addToSlots(&crypto_[type][i * kCryptoSlots], id, 1);
+}
+
+float Film::alpha(int x, int y) const {
+    size_t i = index(x, y);
+    return count_[i] ? float(double(covered_[i]) / double(count_[i])) : 0.0f;
+}
+
+Film::CryptoRanks Film::cryptoRanks(int x, int y, int type) const {
+    size_t i = index(x, y);
+    std::array<CryptoSlot, kCryptoSlots> slots;
+    std::copy_n(&crypto_[type][i * kCryptoSlots], kCryptoSlots, slots.begin());
+    // Most coverage first; equal coverage by id, so the order never depends on sample order.
+    std::sort(slots.begin(), slots.end(), [](const CryptoSlot& a, const CryptoSlot& b) {
+        return a.count != b.count ? a.count > b.count : a.id < b.id;
+    });
+    CryptoRanks ranks{};
+    for (int k = 0; k < kCryptoRanks && slots[k].count; ++k)
+        ranks[k] = {cryptoIdFloat(slots[k].id), float(double(slots[k].count) / double(count_[i]))};
+    return ranks;
 }
 
 Color Film::pixel(int x, int y) const {
@@ -116,6 +175,20 @@ void combineRun(const FilmBuffer& dst, const void* src, size_t dstPixel, size_t 
             auto* s = static_cast<const double*>(src);
             for (size_t p = 0; p < pixels; ++p)
                 if (dstCounts[dstPixel + p] == 0) std::copy_n(s + p * per, per, d + p * per);
+            break;
+        }
+        case Accumulation::Min: {
+            auto* d = static_cast<float*>(dst.data) + dstPixel * per;
+            auto* s = static_cast<const float*>(src);
+            for (size_t k = 0; k < pixels * per; ++k) d[k] = std::min(d[k], s[k]);
+            break;
+        }
+        case Accumulation::CryptoIds: {
+            auto* d = static_cast<CryptoSlot*>(dst.data) + dstPixel * per;
+            auto* s = static_cast<const CryptoSlot*>(src);
+            for (size_t p = 0; p < pixels; ++p)
+                for (size_t k = 0; k < per; ++k)
+                    addToSlots(d + p * per, s[p * per + k].id, s[p * per + k].count);
             break;
         }
         case Accumulation::Flag: {

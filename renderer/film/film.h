@@ -7,12 +7,15 @@
 // and merged, holds the same bits as the render done in one go.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "renderer/core/math.h"
 #include "renderer/film/aov.h"
+#include "renderer/film/cryptomatte.h"
 #include "renderer/film/fixed_sum.h"
 
 namespace kiln {
@@ -23,6 +26,8 @@ enum class Accumulation : uint8_t {
     Count = 2,        // uint32 elements: added
     FirstSample = 3,  // double elements: the value of the pixel's earliest sample (ids)
     Flag = 4,         // uint8 elements: or-ed (adaptive sampling's "converged")
+    Min = 5,          // float elements: the smaller (nearest depth)
+    CryptoIds = 6,    // CryptoSlot elements: counts of the same id added, new ids take free slots
 };
 
 // One raw per-pixel buffer of the film: checkpoints write and read these, merges combine them, so
@@ -64,9 +69,10 @@ class Film {
     // (the caller reports them) and never enter the image.
     bool add(int x, int y, const SampleRecord& r);
     bool add(int x, int y, const Color& c) {
-        SampleRecord r;
+        SampleRecord r;  // a sample that covered the pixel with this colour
         r.reset(layout_.request());
         r.L = c;
+        r.hit = true;
         return add(x, y, r);
     }
 
@@ -80,6 +86,17 @@ class Film {
     // Estimator variance of the pixel's luminance mean: sample variance / n.
     double luminanceVariance(int x, int y) const;
     uint64_t totalSamples() const;
+    // Coverage: the fraction of the pixel's samples whose camera ray hit a surface (with
+    // transparent, a surface that does not emit). The beauty and light AOVs are premultiplied by
+    // it.
+    float alpha(int x, int y) const;
+    // The nearest first hit's Z over the pixel's samples (one sample's, never a mean); +inf where
+    // none hit. Only with the Depth AOV.
+    float depth(int x, int y) const { return depth_[index(x, y)]; }
+    // Cryptomatte type 0 (objects) or 1 (materials): (id, coverage) pairs ranked by coverage, empty
+    // ranks (0, 0).
+    using CryptoRanks = std::array<std::pair<float, float>, kCryptoRanks>;
+    CryptoRanks cryptoRanks(int x, int y, int type) const;
     // Adaptive sampling: the pixel met the confidence test and takes no more samples.
     bool converged(int x, int y) const { return converged_[index(x, y)] != 0; }
     void setConverged(int x, int y) { converged_[index(x, y)] = 1; }
@@ -106,7 +123,11 @@ class Film {
     std::vector<FixedSum> aovSum_;  // the averaged channels per pixel, in layout order
     std::vector<double> aovFirst_;  // the first-sample channels per pixel, in layout order
     std::vector<uint8_t> converged_;
+    std::vector<uint32_t> covered_;      // samples that covered the pixel (alpha)
+    std::vector<float> depth_;           // nearest first-hit Z (with the Depth AOV)
+    std::vector<CryptoSlot> crypto_[2];  // kCryptoSlots per pixel: objects, materials
     size_t sumChannels_ = 0, firstChannels_ = 0;
+    void addCrypto(size_t i, int type, uint32_t id);
 };
 
 }  // namespace kiln

@@ -7,6 +7,7 @@
 
 #include "color/image_input.h"
 #include "renderer/film/film.h"
+#include "renderer/validation/svg_plot.h"
 
 namespace kiln {
 
@@ -49,15 +50,6 @@ double logLogSlope(const std::vector<double>& x, const std::vector<double>& y);
 inline double efficiency(double relMse, double seconds) {
     return relMse > 0 && seconds > 0 ? 1.0 / (relMse * seconds) : 0.0;
 }
-
-// A log-log line plot as SVG: one polyline per series, optional reference line of slope -1.
-struct PlotSeries {
-    std::string name;
-    std::vector<double> x, y;
-};
-std::string svgLogLogPlot(const std::string& title, const std::string& xLabel,
-                          const std::string& yLabel, const std::vector<PlotSeries>& series,
-                          bool slopeMinusOne);
 
 }  // namespace kiln
 

@@ -1,4 +1,6 @@
 // kiln bench accuracy's report: CSV, SVG plots and a plain-words summary of error against time.
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -13,11 +15,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string fmt(double v) {
-    char b[32];
-    std::snprintf(b, sizeof b, "%.4g", v);
-    return b;
-}
+std::string fmt(double v) { return fmt::format("{:.4g}", v); }
 
 // Time at which the uniform series reaches a given relMSE: log-log interpolation between the
 // bracketing points, or extrapolation along the last two points' slope below the smallest measured

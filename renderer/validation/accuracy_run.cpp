@@ -67,7 +67,7 @@ Image reference(const Scene& scene, const Accelerator& accel, const AccuracyOpti
     std::string path = (fs::path(o.outDir) / name).string();
     ChannelImage cachedImage;
     if (readChannelImage(path, cachedImage) && cachedImage.width == o.width &&
-        cachedImage.height == o.height && cachedImage.channel("variance") >= 0) {
+        cachedImage.height == o.height && cachedImage.channel("variance.V") >= 0) {
         cached = true;
         std::vector<std::string> layers;
         AovLayout layout(AovRequest::parse(o.aovs, depth));

@@ -190,4 +190,20 @@ bool parseRay(const std::string& text, Ray& r) {
     return true;
 }
 
+Json crosscheckJson(const CrosscheckReport& report, const std::string& scenePath) {
+    Json categories = Json::array();
+    for (const CrosscheckCategory& c : report.categories)
+        categories.push_back({{"kind", toString(c.kind)},
+                              {"rays", c.rays},
+                              {"hits_embree", c.hitsA},
+                              {"hits_reference", c.hitsB},
+                              {"agree", c.agree},
+                              {"edge", c.edge},
+                              {"coplanar", c.coplanar},
+                              {"genuine", c.genuine},
+                              {"max_relative_dt", c.maxRelativeDt},
+                              {"max_bary_diff", c.maxBaryDiff}});
+    return {{"scene", scenePath}, {"categories", categories}, {"genuine", report.totalGenuine()}};
+}
+
 }  // namespace kiln

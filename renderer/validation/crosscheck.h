@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "renderer/accel/accelerator.h"
+#include "renderer/core/json.h"
 #include "renderer/validation/ray_sets.h"
 
 namespace kiln {
@@ -52,6 +53,9 @@ struct CrosscheckReport {
         return n;
     }
 };
+
+// `kiln crosscheck --json`: the scene, each category's counts and worst errors, the genuine total.
+Json crosscheckJson(const CrosscheckReport& report, const std::string& scenePath);
 
 RayComparison compareRay(const Scene& scene, const Accelerator& a, const Accelerator& b,
                          const Ray& ray, bool shadowRay);

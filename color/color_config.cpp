@@ -1,0 +1,146 @@
+#include "color/color_config.h"
+
+#include <OpenColorIO/OpenColorIO.h>
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <stdexcept>
+
+namespace kiln {
+namespace OCIO = OCIO_NAMESPACE;
+namespace fs = std::filesystem;
+
+namespace {
+
+// Rec.709 primaries to CIE XYZ, D65 white (IEC 61966-2-1), rows X Y Z.
+constexpr double kRec709ToXyz[3][3] = {{0.4123908, 0.3575843, 0.1804808},
+                                       {0.2126390, 0.7151687, 0.0721923},
+                                       {0.0193308, 0.1191948, 0.9505322}};
+
+std::string joinedNames(int n, auto nameOf) {
+    std::string text;
+    for (int i = 0; i < n; ++i) text += (i ? ", " : "") + std::string(nameOf(i));
+    return text;
+}
+
+std::string resolveSceneLinear(const OCIO::ConstConfigRcPtr& config) {
+    for (const char* name : {"scene_linear", "linear"})
+        if (OCIO::ConstColorSpaceRcPtr cs = config->getColorSpace(name)) return cs->getName();
+    return "";
+}
+
+void resolveDisplayView(const OCIO::ConstConfigRcPtr& config, ColorSetup& setup) {
+    const std::string& path = setup.configPath;
+    if (setup.display.empty()) setup.display = config->getDefaultDisplay();
+    int nd = config->getNumDisplays();
+    auto displayName = [&](int i) { return config->getDisplay(i); };
+    bool found = false;
+    for (int d = 0; d < nd; ++d) found |= setup.display == config->getDisplay(d);
+    if (!found)
+        throw std::invalid_argument(fmt::format("{}: unknown display '{}' (known: {})", path,
+                                                setup.display, joinedNames(nd, displayName)));
+    const char* display = setup.display.c_str();
+    if (setup.view.empty()) setup.view = config->getDefaultView(display);
+    int nv = config->getNumViews(display);
+    auto viewName = [&](int i) { return config->getView(display, i); };
+    found = false;
+    for (int v = 0; v < nv; ++v) found |= setup.view == config->getView(display, v);
+    if (!found)
+        throw std::invalid_argument(fmt::format("{}: display '{}' has no view '{}' (known: {})",
+                                                path, setup.display, setup.view,
+                                                joinedNames(nv, viewName)));
+}
+
+// The config's scene_linear -> XYZ D65 of the three primaries, through whichever interchange
+// role it has; false when it has none.
+bool primariesToXyz(const OCIO::ConstConfigRcPtr& config, const std::string& sceneLinear,
+                    double xyz[3][3]) {
+    OCIO::ConstProcessorRcPtr processor;
+    if (config->getColorSpace("cie_xyz_d65_interchange")) {
+        processor = config->getProcessor(sceneLinear.c_str(), "cie_xyz_d65_interchange");
+    } else if (config->getColorSpace("aces_interchange")) {
+        auto group = OCIO::GroupTransform::Create();
+        auto toAces = OCIO::ColorSpaceTransform::Create();
+        toAces->setSrc(sceneLinear.c_str());
+        toAces->setDst("aces_interchange");
+        auto toXyz = OCIO::BuiltinTransform::Create();
+        toXyz->setStyle("UTILITY - ACES-AP0_to_CIE-XYZ-D65_BFD");
+        group->appendTransform(toAces);
+        group->appendTransform(toXyz);
+        processor = config->getProcessor(group);
+    } else {
+        return false;
+    }
+    OCIO::ConstCPUProcessorRcPtr cpu = processor->getDefaultCPUProcessor();
+    for (int c = 0; c < 3; ++c) {
+        float rgb[3] = {0, 0, 0};
+        rgb[c] = 1;
+        cpu->applyRGB(rgb);
+        for (int r = 0; r < 3; ++r) xyz[r][c] = rgb[r];
+    }
+    return true;
+}
+
+void checkWorkingSpace(const OCIO::ConstConfigRcPtr& config, ColorSetup& setup) {
+    double xyz[3][3];
+    if (!primariesToXyz(config, setup.sceneLinear, xyz)) {
+        setup.warnings.push_back(fmt::format(
+            "{}: no aces_interchange or cie_xyz_d65_interchange role: cannot check that "
+            "scene_linear '{}' is linear Rec.709, as kiln renders",
+            setup.configPath, setup.sceneLinear));
+        return;
+    }
+    double worst = 0;
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+            worst = std::max(worst, std::abs(xyz[r][c] - kRec709ToXyz[r][c]));
+    // 2e-3 admits the chromatic adaptations configs use between D60 and D65.
+    if (worst > 2e-3)
+        throw std::invalid_argument(fmt::format(
+            "{}: scene_linear '{}' is not linear Rec.709/D65 (kiln's working space): its "
+            "primaries differ by {:.3g} in XYZ",
+            setup.configPath, setup.sceneLinear, worst));
+}
+
+}  // namespace
+
+std::string colorConfigPath() {
+    if (const char* env = std::getenv("OCIO"); env && *env) return env;
+    std::error_code ec;
+    fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    if (!ec) {
+        fs::path installed = (exe.parent_path() / KILN_CONFIG_FROM_BINARY).lexically_normal();
+        if (fs::exists(installed, ec)) return installed.string();
+    }
+    return std::string(KILN_SOURCE_DIR) + "/color/config.ocio";
+}
+
+ColorSetup checkColorConfig(const std::string& display, const std::string& view) {
+    ColorSetup setup{colorConfigPath(), "", display, view, {}};
+    try {
+        OCIO::ConstConfigRcPtr config = OCIO::Config::CreateFromFile(setup.configPath.c_str());
+        setup.sceneLinear = resolveSceneLinear(config);
+        if (setup.sceneLinear.empty())
+            throw std::invalid_argument(
+                setup.configPath +
+                ": OCIO config has no scene_linear role (nor a 'linear' "
+                "colour space or alias): kiln cannot name its working space");
+        resolveDisplayView(config, setup);
+        config
+            ->getProcessor(setup.sceneLinear.c_str(), setup.display.c_str(), setup.view.c_str(),
+                           OCIO::TRANSFORM_DIR_FORWARD)
+            ->getDefaultCPUProcessor();
+        checkWorkingSpace(config, setup);
+        // Last: what kiln uses has been tried above, with the more precise messages.
+        config->validate();
+    } catch (const OCIO::Exception& e) {
+        std::string what = e.what();
+        std::replace(what.begin(), what.end(), '\n', ' ');
+        throw std::invalid_argument(setup.configPath + ": OCIO config unusable: " + what);
+    }
+    return setup;
+}
+
+}  // namespace kiln

@@ -103,10 +103,13 @@ TEST(Checkpoint, ForeignCorruptedAndTruncatedCheckpointsAreRefused) {
 }
 
 // The kiln command line of the resume tests: a render of about a second on two cores.
+constexpr int kSpp = 768;
+
 std::vector<std::string> cliRender(const std::string& out, int spp, bool adaptive) {
-    std::vector<std::string> a{"render", test::spheres(),     "-r", "64", "48",
-                               "-s",     std::to_string(spp), "-q", "-o", out};
-    if (adaptive) a.insert(a.end(), {"-a", "8", "0.05"});
+    // One thread: long enough on an idle machine for signals and limits to land mid-render.
+    std::vector<std::string> a{"render", test::spheres(), "-r", "64", "48", "-t", "1",
+                               "-s", std::to_string(spp), "-q", "-o", out};
+    if (adaptive) a.insert(a.end(), {"-a", "8", "0.02"});
     return a;
 }
 
@@ -120,13 +123,13 @@ std::vector<std::string> plus(std::vector<std::string> a, std::vector<std::strin
 void killAndResume(bool adaptive) {
     auto dir = test::scratchDir();
     std::string ref = (dir / "ref").string();
-    ASSERT_EQ(test::runKilnProcess(cliRender(ref, 96, adaptive)), 0);
+    ASSERT_EQ(test::runKilnProcess(cliRender(ref, kSpp, adaptive)), 0);
     test::ExrPixels want = test::readExrPixels(ref + ".exr");
     int resumedPartial = 0;
     for (unsigned seed : {1u, 2u, 3u}) {
         std::string out = (dir / ("k" + std::to_string(seed))).string();
         std::vector<std::string> args =
-            plus(cliRender(out, 96, adaptive), {"--checkpoint-every", "0.03"});
+            plus(cliRender(out, kSpp, adaptive), {"--checkpoint-every", "0.03"});
         // Once the first checkpoint is there (the process has started rendering), a random
         // moment of the rest: mid-pixel, mid-wave or mid-checkpoint-write.
         pid_t pid = test::startKiln(args);
@@ -161,8 +164,8 @@ TEST(Checkpoint, SigkillAtRandomMomentsThenResumeGivesTheSamePixelsAdaptive) {
 TEST(Checkpoint, SigtermSavesExits130AndResumes) {
     auto dir = test::scratchDir();
     std::string ref = (dir / "ref").string(), out = (dir / "t").string();
-    ASSERT_EQ(test::runKilnProcess(cliRender(ref, 96, false)), 0);
-    std::vector<std::string> args = plus(cliRender(out, 96, false), {"--checkpoint-every", "100"});
+    ASSERT_EQ(test::runKilnProcess(cliRender(ref, kSpp, false)), 0);
+    std::vector<std::string> args = plus(cliRender(out, kSpp, false), {"--checkpoint-every", "100"});
     pid_t pid = test::startKiln(args);
     ASSERT_TRUE(test::waitForHandler(pid, SIGTERM));
     std::this_thread::sleep_for(std::chrono::milliseconds(200));
@@ -180,7 +183,7 @@ TEST(Checkpoint, SigtermSavesExits130AndResumes) {
 TEST(Checkpoint, Sigusr1WritesACheckpointAndTheRenderGoesOn) {
     auto dir = test::scratchDir();
     std::string out = (dir / "u").string();
-    std::vector<std::string> args = plus(cliRender(out, 96, false), {"--checkpoint-every", "100"});
+    std::vector<std::string> args = plus(cliRender(out, kSpp, false), {"--checkpoint-every", "100"});
     pid_t pid = test::startKiln(args);
     ASSERT_TRUE(test::waitForHandler(pid, SIGUSR1));
     ::kill(pid, SIGUSR1);
@@ -202,11 +205,11 @@ TEST(Checkpoint, Sigusr1WritesACheckpointAndTheRenderGoesOn) {
 TEST(Checkpoint, TimeLimitStopsWithAValidCheckpointAndExit3) {
     auto dir = test::scratchDir();
     std::string ref = (dir / "ref").string(), out = (dir / "t").string();
-    ASSERT_EQ(test::runKilnProcess(cliRender(ref, 96, false)), 0);
-    std::vector<std::string> args = plus(cliRender(out, 96, false), {"--time-limit", "0.3"});
+    ASSERT_EQ(test::runKilnProcess(cliRender(ref, kSpp, false)), 0);
+    std::vector<std::string> args = plus(cliRender(out, kSpp, false), {"--time-limit", "0.3"});
     EXPECT_EQ(test::runKilnProcess(args), 3);
     EXPECT_FALSE(readCheckpointInfo(out + ".ckpt").complete);
-    EXPECT_EQ(test::runKilnProcess(plus(cliRender(out, 96, false), {"--resume"})), 0);
+    EXPECT_EQ(test::runKilnProcess(plus(cliRender(out, kSpp, false), {"--resume"})), 0);
     EXPECT_TRUE(test::readExrPixels(out + ".exr") == test::readExrPixels(ref + ".exr"));
     EXPECT_TRUE(readCheckpointInfo(out + ".ckpt").complete);
 }

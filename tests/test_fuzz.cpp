@@ -35,7 +35,7 @@ std::string mutate(std::string s, Rng& rng) {
     for (int e = 0; e < edits && !s.empty(); ++e) {
         size_t at = rng.below(s.size()), len = 1 + rng.below(std::min<size_t>(16, s.size() - at));
         switch (rng.below(11) / 2) {  // truncation (10) half as often
-            case 0:  // flip a byte
+            case 0:                   // flip a byte
                 s[at] = char(s[at] ^ (1 << rng.below(8)));
                 break;
             case 1:  // delete a run

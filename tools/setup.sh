@@ -7,7 +7,7 @@ cd "$(dirname "$0")/.."
 packages=(build-essential cmake pkg-config
   libembree-dev libopenimageio-dev openimageio-tools libopenexr-dev openexr
   libopencolorio-dev opencolorio-tools libtbb-dev libassimp-dev libgtest-dev
-  libbenchmark-dev libpugixml-dev)
+  libbenchmark-dev libpugixml-dev assimp-testmodels)
 
 missing=()
 for p in "${packages[@]}"; do

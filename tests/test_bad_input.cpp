@@ -335,5 +335,20 @@ TEST(BadInput, SceneSpanningBeyondFloatIsRefused) {
                 "kiln traces at most");
 }
 
+// Assimp's OFF reader loops over the counts its header declares (minutes for this one, from
+// assimp-testmodels' invalid/OutOfMemory.off).
+TEST(BadInput, OffHeaderBeyondTheFileIsRefused) {
+    auto dir = test::scratchDir();
+    expectError(
+        test::writeFile(dir / "huge.off",
+                        "OFF\n353535235358 6 0\n-0.5 -0.5 0.5\n0.5 -0.5 0.5\n-0.5 0.5 0.5\n"),
+        "353535235358 vertices, more than the file can hold");
+    expectError(test::writeFile(dir / "neg.off", "OFF\n-3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
+                "not a non-negative integer");
+    Scene ok =
+        loadScene(test::writeFile(dir / "ok.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"));
+    EXPECT_EQ(ok.uniqueTriangles(), 1u);
+}
+
 }  // namespace
 }  // namespace kiln

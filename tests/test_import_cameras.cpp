@@ -8,10 +8,10 @@
 namespace kiln {
 namespace {
 
-// A one-triangle glTF 2.0 scene (base64 buffer) with `cameraNodes` and `cameras` spliced in.
-std::string gltf(const std::string& cameraNodes, const std::string& cameras) {
-    return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1]}], "nodes": [{"mesh": 0}, )" +
-           cameraNodes + R"(], "cameras": [)" + cameras +
+// A one-triangle glTF 2.0 scene (base64 buffer) with this camera on a node at (0.5, 0.5, 3).
+std::string gltfWithCamera(const std::string& camera) {
+    return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1]}], "nodes": [{"mesh": 0}, {"translation": [0.5, 0.5, 3.0], "camera": 0}], "cameras": [)" +
+           camera +
            R"(], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}], "buffers": [{"byteLength": 44, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAABAAIAAAA="}], "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6}], "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}, {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}]})";
 }
 
@@ -33,8 +33,7 @@ TEST(ImportCameras, GltfFieldOfViewAndPositionAsWritten) {
     auto dir = test::scratchDir();
     Scene s = loadAsFile(test::writeFile(
         dir / "cam.gltf",
-        gltf(
-            R"({"translation": [0.5, 0.5, 3.0], "camera": 0})",
+        gltfWithCamera(
             R"({"type": "perspective", "perspective": {"aspectRatio": 1.5, "yfov": 0.7, "zfar": 100, "znear": 0.01}})")));
     ASSERT_TRUE(s.hasFileCamera);
     EXPECT_NEAR(s.camera.vFovDeg, 0.7 * 180 / 3.14159265358979, 1e-3);
@@ -52,8 +51,7 @@ TEST(ImportCameras, OrthographicCameraWarnsAndFramesTheScene) {
     auto dir = test::scratchDir();
     Scene s = loadScene(test::writeFile(
         dir / "ortho.gltf",
-        gltf(
-            R"({"translation": [0.5, 0.5, 3.0], "camera": 0})",
+        gltfWithCamera(
             R"({"type": "orthographic", "orthographic": {"xmag": 1.0, "ymag": 1.0, "zfar": 100, "znear": 0.01}})")));
     EXPECT_FALSE(s.hasFileCamera);
     EXPECT_TRUE(hasWarning(s, "orthographic")) << (s.warnings.empty() ? "" : s.warnings[0]);

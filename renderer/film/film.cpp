@@ -29,7 +29,7 @@ bool Film::add(int x, int y, const SampleRecord& r) {
     double illum = luminance(r.L);
     lum_[i] += illum;
     lumSq_[i] += illum * illum;
-    double* dst = &aov_[i * nc];
+    double* dst = aov_.data() + i * nc;  // no element to index when there are no AOVs
     for (size_t c = 0; c < nc; ++c) {
         if (layout_.channels()[c].firstSample) {
             if (previous == 0) dst[c] = values[c];

@@ -5,8 +5,11 @@
 #include <assimp/DefaultLogger.hpp>
 #include <assimp/Importer.hpp>
 #include <assimp/LogStream.hpp>
+#include <charconv>
 #include <filesystem>
+#include <fstream>
 #include <map>
+#include <sstream>
 
 #include "scene/importers.h"
 #include "scene/scene_error.h"
@@ -63,6 +66,32 @@ class AssimpLog {
     };
     std::vector<std::string> messages_;
 };
+
+// Assimp's OFF reader reserves what the header declares and then loops over it: a header claiming
+// 353535235358 vertices (assimp-testmodels' invalid/OutOfMemory.off) runs for minutes. Counts the
+// file cannot hold are refused first (each vertex or face takes at least 6 bytes of text).
+void checkOffHeader(const std::string& path) {
+    std::ifstream in(path);
+    std::vector<std::string> tokens;
+    std::string line;
+    while (tokens.size() < 4 && std::getline(in, line)) {
+        std::istringstream words(line.substr(0, line.find('#')));
+        for (std::string w; tokens.size() < 4 && words >> w;) tokens.push_back(w);
+    }
+    if (tokens.size() < 3) return;  // Assimp reports it
+    size_t first = tokens[0].find("OFF") != std::string::npos ? 1 : 0;
+    uint64_t limit = std::filesystem::file_size(path) / 6 + 1, counts[2] = {0, 0};
+    for (int i = 0; i < 2 && first + size_t(i) < tokens.size(); ++i) {
+        const std::string& t = tokens[first + size_t(i)];
+        auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), counts[i]);
+        if (ec != std::errc() || end != t.data() + t.size())
+            throw SceneError(path, "OFF header count '" + t + "' is not a non-negative integer");
+        if (counts[i] > limit)
+            throw SceneError(path, "OFF header declares " + t + (i ? " faces" : " vertices") +
+                                       ", more than the file can hold");
+    }
+    checkMemoryFor(path, counts[0], counts[1]);
+}
 
 struct NodeVisit {
     const aiNode* node;
@@ -223,8 +252,10 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
     if (extras && extras->patchedXml)
         as = importer.ReadFileFromMemory(extras->patchedXml->data(), extras->patchedXml->size(),
                                          flags, "dae");
-    else
+    else {
+        if (lowerExtension(path) == ".off") checkOffHeader(path);
         as = importer.ReadFile(path, flags);
+    }
     if (log.said("out-of-range indices"))
         throw SceneError(path, "faces have vertex indices out of range");
     if (!as || !as->mRootNode)

@@ -152,14 +152,20 @@ TEST(BadInput, SceneWithoutLightsWarnsAndGetsTheDefaultRig) {
     EXPECT_EQ(s.lights.size(), 2u);
 }
 
-TEST(BadInput, NegativeLightRadiance) {
-    auto dir = test::scratchDir();
-    std::string light =
-        R"(<light id="l"><technique_common><point><color>-1 1 1</color></point></technique_common></light>)";
-    std::string text = collada("", "0 0 0 1 0 0 0 1 0", "0 1 2", light);
+// The minimal scene with one point light of this colour, placed by its own node.
+std::string colladaWithPointLight(const std::string& color) {
+    std::string text = collada("", "0 0 0 1 0 0 0 1 0", "0 1 2",
+                               R"(<light id="l"><technique_common><point><color>)" + color +
+                                   "</color></point></technique_common></light>");
     text.replace(text.find("</visual_scene>"), 0,
                  R"(<node id="ln"><instance_light url="#l"/></node>)");
-    expectError(test::writeFile(dir / "neg.dae", text), "negative radiance");
+    return text;
+}
+
+TEST(BadInput, NegativeLightRadiance) {
+    auto dir = test::scratchDir();
+    expectError(test::writeFile(dir / "neg.dae", colladaWithPointLight("-1 1 1")),
+                "negative radiance");
 }
 
 TEST(BadInput, MissingEnvironmentMap) {
@@ -303,12 +309,7 @@ TEST(BadInput, OnlyZeroAreaTrianglesIsAnError) {
 
 TEST(BadInput, ZeroPowerFileLightsWarnAndInfoSaysSo) {
     auto dir = test::scratchDir();
-    std::string light =
-        R"(<light id="l"><technique_common><point><color>0 0 0</color></point></technique_common></light>)";
-    std::string text = collada("", "0 0 0 1 0 0 0 1 0", "0 1 2", light);
-    text.replace(text.find("</visual_scene>"), 0,
-                 R"(<node id="ln"><instance_light url="#l"/></node>)");
-    Scene s = loadScene(test::writeFile(dir / "zero.dae", text));
+    Scene s = loadScene(test::writeFile(dir / "zero.dae", colladaWithPointLight("0 0 0")));
     std::string info = sceneInfoText(s);
     EXPECT_NE(info.find("has zero power"), std::string::npos) << info;
     EXPECT_NE(info.find("every light has zero power"), std::string::npos) << info;
@@ -332,6 +333,21 @@ TEST(BadInput, SceneSpanningBeyondFloatIsRefused) {
     expectError(test::writeFile(dir / "huge.obj",
                                 "v -1e18 0 0\nv 1e18 0 0\nv 0 1e18 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\n"),
                 "kiln traces at most");
+}
+
+// Assimp's OFF reader loops over the counts its header declares (minutes for this one, from
+// assimp-testmodels' invalid/OutOfMemory.off).
+TEST(BadInput, OffHeaderBeyondTheFileIsRefused) {
+    auto dir = test::scratchDir();
+    expectError(
+        test::writeFile(dir / "huge.off",
+                        "OFF\n353535235358 6 0\n-0.5 -0.5 0.5\n0.5 -0.5 0.5\n-0.5 0.5 0.5\n"),
+        "353535235358 vertices, more than the file can hold");
+    expectError(test::writeFile(dir / "neg.off", "OFF\n-3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
+                "not a non-negative integer");
+    Scene ok =
+        loadScene(test::writeFile(dir / "ok.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"));
+    EXPECT_EQ(ok.uniqueTriangles(), 1u);
 }
 
 }  // namespace

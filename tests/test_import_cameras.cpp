@@ -8,10 +8,10 @@
 namespace kiln {
 namespace {
 
-// A one-triangle glTF 2.0 scene (base64 buffer) with `cameraNodes` and `cameras` spliced in.
-std::string gltf(const std::string& cameraNodes, const std::string& cameras) {
-    return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1]}], "nodes": [{"mesh": 0}, )" +
-           cameraNodes + R"(], "cameras": [)" + cameras +
+// A one-triangle glTF 2.0 scene (base64 buffer) with this camera on a node at (0.5, 0.5, 3).
+std::string gltfWithCamera(const std::string& camera) {
+    return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1]}], "nodes": [{"mesh": 0}, {"translation": [0.5, 0.5, 3.0], "camera": 0}], "cameras": [)" +
+           camera +
            R"(], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}], "buffers": [{"byteLength": 44, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAABAAIAAAA="}], "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6}], "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}, {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}]})";
 }
 
@@ -33,8 +33,7 @@ TEST(ImportCameras, GltfFieldOfViewAndPositionAsWritten) {
     auto dir = test::scratchDir();
     Scene s = loadAsFile(test::writeFile(
         dir / "cam.gltf",
-        gltf(
-            R"({"translation": [0.5, 0.5, 3.0], "camera": 0})",
+        gltfWithCamera(
             R"({"type": "perspective", "perspective": {"aspectRatio": 1.5, "yfov": 0.7, "zfar": 100, "znear": 0.01}})")));
     ASSERT_TRUE(s.hasFileCamera);
     EXPECT_NEAR(s.camera.vFovDeg, 0.7 * 180 / 3.14159265358979, 1e-3);
@@ -52,8 +51,7 @@ TEST(ImportCameras, OrthographicCameraWarnsAndFramesTheScene) {
     auto dir = test::scratchDir();
     Scene s = loadScene(test::writeFile(
         dir / "ortho.gltf",
-        gltf(
-            R"({"translation": [0.5, 0.5, 3.0], "camera": 0})",
+        gltfWithCamera(
             R"({"type": "orthographic", "orthographic": {"xmag": 1.0, "ymag": 1.0, "zfar": 100, "znear": 0.01}})")));
     EXPECT_FALSE(s.hasFileCamera);
     EXPECT_TRUE(hasWarning(s, "orthographic")) << (s.warnings.empty() ? "" : s.warnings[0]);
@@ -100,15 +98,23 @@ TEST(ImportCameras, MissingDiffuseKeepsTheDefaultAlbedo) {
     EXPECT_EQ(s.materials[0].albedo, Material{}.albedo);
 }
 
-// <unit meter="0.01">: Assimp scales the geometry; the CGL pass must scale the camera (position
-// and clip planes), lights and spheres alike.
-TEST(ImportCameras, ColladaUnitScalesCameraAndLights) {
-    auto dir = test::scratchDir();
-    std::string dae = R"(<?xml version="1.0"?>
+// A 200 cm triangle, a camera at (0, 50, 500) cm with znear 10, zfar 10000 and yfov 40, and
+// optionally a point light at (0, 300, 0) cm, in a file whose unit is the centimetre.
+std::string centimetreCollada(bool withLight) {
+    std::string light =
+        withLight
+            ? R"(<library_lights><light id="l"><technique_common><point><color>1 1 1</color></point></technique_common></light></library_lights>)"
+            : "";
+    std::string lightNode =
+        withLight
+            ? R"(<node id="ln"><translate>0 300 0</translate><instance_light url="#l"/></node>)"
+            : "";
+    return R"(<?xml version="1.0"?>
 <COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
 <asset><unit meter="0.01" name="centimeter"/><up_axis>Y_UP</up_axis></asset>
-<library_cameras><camera id="c"><optics><technique_common><perspective><yfov>40</yfov><aspect_ratio>1</aspect_ratio><znear>10</znear><zfar>10000</zfar></perspective></technique_common></optics></camera></library_cameras>
-<library_lights><light id="l"><technique_common><point><color>1 1 1</color></point></technique_common></light></library_lights>
+<library_cameras><camera id="c" name="c"><optics><technique_common><perspective><yfov>40</yfov><aspect_ratio>1</aspect_ratio><znear>10</znear><zfar>10000</zfar></perspective></technique_common></optics></camera></library_cameras>
+)" + light +
+           R"(
 <library_geometries><geometry id="g"><mesh>
 <source id="p"><float_array id="pa" count="9">-100 0 0 100 0 0 0 100 0</float_array>
 <technique_common><accessor source="#pa" count="3" stride="3"><param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/></accessor></technique_common></source>
@@ -118,11 +124,18 @@ TEST(ImportCameras, ColladaUnitScalesCameraAndLights) {
 <library_visual_scenes><visual_scene id="s">
 <node id="n"><instance_geometry url="#g"/></node>
 <node id="cn"><translate>0 50 500</translate><instance_camera url="#c"/></node>
-<node id="ln"><translate>0 300 0</translate><instance_light url="#l"/></node>
+)" + lightNode +
+           R"(
 </visual_scene></library_visual_scenes>
 <scene><instance_visual_scene url="#s"/></scene></COLLADA>
 )";
-    Scene s = loadAsFile(test::writeFile(dir / "cm.dae", dae));
+}
+
+// <unit meter="0.01">: Assimp scales the geometry; the CGL pass must scale the camera (position
+// and clip planes), lights and spheres alike.
+TEST(ImportCameras, ColladaUnitScalesCameraAndLights) {
+    auto dir = test::scratchDir();
+    Scene s = loadAsFile(test::writeFile(dir / "cm.dae", centimetreCollada(true)));
     Bounds3 b = s.storedBounds();
     EXPECT_NEAR(b.hi.x - b.lo.x, 2.0f, 1e-5f);  // geometry: 200 cm
     Vec3d cam = s.world(s.camera.position);
@@ -139,23 +152,7 @@ TEST(ImportCameras, ColladaUnitScalesCameraAndLights) {
 // (Assimp 5.2 ignores the optics of a COLLADA camera without a name attribute.)
 TEST(ImportCameras, AssimpCameraClipPlanesFollowTheNodeScale) {
     auto dir = test::scratchDir();
-    std::string dae = R"(<?xml version="1.0"?>
-<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
-<asset><unit meter="0.01" name="centimeter"/><up_axis>Y_UP</up_axis></asset>
-<library_cameras><camera id="c" name="c"><optics><technique_common><perspective><yfov>40</yfov><aspect_ratio>1</aspect_ratio><znear>10</znear><zfar>10000</zfar></perspective></technique_common></optics></camera></library_cameras>
-<library_geometries><geometry id="g"><mesh>
-<source id="p"><float_array id="pa" count="9">-100 0 0 100 0 0 0 100 0</float_array>
-<technique_common><accessor source="#pa" count="3" stride="3"><param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/></accessor></technique_common></source>
-<vertices id="v"><input semantic="POSITION" source="#p"/></vertices>
-<triangles count="1"><input semantic="VERTEX" source="#v" offset="0"/><p>0 1 2</p></triangles>
-</mesh></geometry></library_geometries>
-<library_visual_scenes><visual_scene id="s">
-<node id="n"><instance_geometry url="#g"/></node>
-<node id="cn"><translate>0 50 500</translate><instance_camera url="#c"/></node>
-</visual_scene></library_visual_scenes>
-<scene><instance_visual_scene url="#s"/></scene></COLLADA>
-)";
-    Scene s = loadAsFile(test::writeFile(dir / "cm.xml", dae));
+    Scene s = loadAsFile(test::writeFile(dir / "cm.xml", centimetreCollada(false)));
     ASSERT_TRUE(s.hasFileCamera);
     EXPECT_NEAR(s.camera.nearClip, 0.1f, 1e-6f);
     EXPECT_NEAR(s.world(s.camera.position).z, 5.0, 1e-5);

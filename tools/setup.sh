@@ -7,7 +7,8 @@ cd "$(dirname "$0")/.."
 packages=(build-essential cmake pkg-config
   libembree-dev libopenimageio-dev openimageio-tools libopenexr-dev openexr
   libopencolorio-dev opencolorio-tools libtbb-dev libassimp-dev libgtest-dev
-  libpugixml-dev zlib1g-dev libmurmurhash-dev nlohmann-json3-dev libfmt-dev help2man)
+  libpugixml-dev zlib1g-dev libmurmurhash-dev nlohmann-json3-dev libfmt-dev help2man
+  assimp-testmodels)
 
 missing=()
 for p in "${packages[@]}"; do

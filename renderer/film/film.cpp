@@ -68,8 +68,9 @@ bool Film::add(int x, int y, const SampleRecord& r) {
     for (int k = 0; k < 3; ++k) sum_[3 * i + size_t(k)] += fixed[k];
     lum_[i] += fixed[3];
     lumSq_[i] += fixed[4];
-    FixedSum* sums = &aovSum_[i * sumChannels_];
-    double* firsts = &aovFirst_[i * firstChannels_];
+    // .data() + offset: no element to index when there are no AOVs (UBSan).
+    FixedSum* sums = aovSum_.data() + i * sumChannels_;
+    double* firsts = aovFirst_.data() + i * firstChannels_;
     for (size_t c = 0; c < nc; ++c) {
         if (!layout_.channels()[c].firstSample) {
             if (keepsLight) sums[slot_[c]] += fixed[5 + c];

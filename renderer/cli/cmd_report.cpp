@@ -2,6 +2,7 @@
 // intersection, direct lighting, global illumination, Russian roulette, adaptive sampling) for the
 // given scenes, every image rendered through RenderJob and captioned with the kiln flags that
 // make it, sized to a time budget, as one HTML page.
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -188,6 +189,15 @@ Film layerFilm(const Film& film, const std::string& layer) {
     return out;
 }
 
+// The prefix of a scene's image files: its name in safe characters, numbered from the second scene
+// on, so two scenes of one name (or a name with '#' or '?') cannot clash or break a link.
+std::string imageStem(const std::string& scenePath, size_t index) {
+    std::string stem = fs::path(scenePath).stem().string();
+    for (char& c : stem)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '_';
+    return index == 0 ? stem : stem + "_" + std::to_string(index + 1);
+}
+
 struct SceneReport {
     std::string path, stem;
     Scene scene;
@@ -203,7 +213,10 @@ class Cs184Report {
     RenderStats render(SceneReport& s, const Accelerator& accel, const RenderJobOptions& job,
                        const std::string& file, Film* keep = nullptr);
     void timingTable(SceneReport& s, Size size, double share);
-    void figures(SceneReport& s, std::vector<Figure>& figs, Size size);
+    // The figures; once the scene's time is spent (the machine got slower than the probe said),
+    // the rest are rendered with -s divided by 16 more and say so.
+    void figures(SceneReport& s, std::vector<Figure>& figs, Size size,
+                 std::chrono::steady_clock::time_point deadline);
 
     const ReportOptions& o_;
     HtmlPage page_;
@@ -260,7 +273,8 @@ void Cs184Report::timingTable(SceneReport& s, Size size, double share) {
     page_.table({"traversal", "structure", "build s", "render s", "Mrays/s"}, rows);
 }
 
-void Cs184Report::figures(SceneReport& s, std::vector<Figure>& figs, Size size) {
+void Cs184Report::figures(SceneReport& s, std::vector<Figure>& figs, Size size,
+                          std::chrono::steady_clock::time_point deadline) {
     int part = 1;  // the timing table opened part 1
     const char* parts[] = {"",
                            "Part 1: ray generation and intersection",
@@ -276,11 +290,14 @@ void Cs184Report::figures(SceneReport& s, std::vector<Figure>& figs, Size size) 
         std::vector<HtmlPage::Image> row;
         Film kept(1, 1);
         std::string keptFlags;
-        for (const Shot& shot : f.shots) {
+        for (Shot shot : f.shots) {
+            bool late = std::chrono::steady_clock::now() > deadline;
+            if (late) shot.sppDivisor *= 16;
             std::string flags = sppFlags(shot), file = s.stem + "_" + shot.id + ".png";
             std::string dims =
                 "-r " + std::to_string(size.width) + " " + std::to_string(size.height);
-            std::string command = "kiln render " + s.stem + " " + dims + " " + flags;
+            std::string command =
+                "kiln render " + fs::path(s.path).filename().string() + " " + dims + " " + flags;
             size_t dot = shot.id.find('.');
             if (dot != std::string::npos && flags == keptFlags) {
                 // A layer of the render before it.
@@ -296,7 +313,9 @@ void Cs184Report::figures(SceneReport& s, std::vector<Figure>& figs, Size size) 
             keptFlags = flags;
             std::string timing =
                 fixed(st.seconds, 2) + " s, " + fixed(double(st.rays) / 1e6, 2) + " Mrays";
-            row.push_back({file, shot.caption + " (" + timing + ")", command});
+            row.push_back(
+                {file, shot.caption + " (" + timing + (late ? "; -s cut: over budget" : "") + ")",
+                 command});
             if (f.part == 4)
                 rrRows.push_back({shot.caption, std::to_string(st.rays),
                                   fixed(double(st.rays) / double(st.samples), 2),
@@ -327,7 +346,7 @@ void Cs184Report::run() {
     for (const std::string& path : o_.scenes) {
         SceneReport s;
         s.path = path;
-        s.stem = fs::path(path).stem().string();
+        s.stem = imageStem(path, scenes.size());
         s.scene = loadScene(path);
         scenes.push_back(std::move(s));
     }
@@ -351,14 +370,16 @@ void Cs184Report::run() {
         double perUnit = std::max(p.seconds, 1e-4) / workUnits(probe);
         std::vector<Figure> figs = cs184Figures();
         int divisor = 1;
-        Size size = fitBudget(figs, perUnit, 0.75 * share, o_.threads, divisor);
+        Size size = fitBudget(figs, perUnit, 0.7 * share, o_.threads, divisor);
         page_.heading(2, s.stem + " (" + s.path + ")");
         page_.paragraph(std::to_string(size.width) + "x" + std::to_string(size.height) +
                         (divisor > 1 ? ", every -s divided by " + std::to_string(divisor) : "") +
                         " to fit this scene's share of the budget, " + fixed(share, 0) + " s.");
         page_.heading(3, "Part 1: ray generation and intersection");
         timingTable(s, size, share);
-        figures(s, figs, size);
+        figures(s, figs, size,
+                sceneStart + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                 std::chrono::duration<double>(0.9 * share)));
         page_.paragraph("Scene time: " + fixed(secondsSince(sceneStart), 1) + " s.");
         std::fprintf(stderr, "kiln: report: %s done, %.1f s\n", s.path.c_str(),
                      secondsSince(sceneStart));

@@ -239,6 +239,12 @@ std::string fixed(double v, int digits) {
     return text;
 }
 
+std::string significant(double v) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.3g", v);
+    return text;
+}
+
 // Part 1's table: normal shading with Embree, the reference BVH and no BVH at all.
 void Cs184Report::timingTable(SceneReport& s, Size size, double share) {
     // The size of the figures, or a smaller one where brute force fits a twentieth of the share.
@@ -257,7 +263,7 @@ void Cs184Report::timingTable(SceneReport& s, Size size, double share) {
     auto row = [&](const std::string& name, const Accelerator& accel) {
         RenderStats st = render(s, accel, job, "");
         rows.push_back({name, accel.stats().description, fixed(accel.stats().buildSeconds, 4),
-                        fixed(st.seconds, 4), fixed(double(st.rays) / st.seconds * 1e-6, 2)});
+                        fixed(st.seconds, 4), significant(double(st.rays) / st.seconds * 1e-6)});
     };
     row("Embree", *s.embree);
     auto bvh = makeReferenceAccelerator(s.scene, {BvhSplit::MeanCentroid, 4});

@@ -266,6 +266,7 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
             if (maxComponent(mat.emission) > 0) {
                 int li = -1;
                 Color Le = emissionAt(ray, hit, si, li);
+                if (li < 0 && bounce > 0 && !opt_.unsampledEmittersLight) Le = Color(0.0f);
                 addLight<SplitLight>(
                     rec, bounce, st.beta * Le * emissionWeight(li, normalize(ray.dir), si.p, si.ng),
                     st.firstLobe);

@@ -43,6 +43,9 @@ struct PathOptions {
     float fixedContinuation = 0.65f;  // CS184's constant continuation probability (Roulette::Fixed)
     int rouletteMinBounces = 3;       // throughput roulette starts after this many bounces
     bool accumulateBounces = true;    // false: only light that bounced exactly maxDepth times
+    // false (--emitters camera, the CS184 program): an emitter no light samples is seen by camera
+    // rays and -H probes only, and lights nothing after a bounce.
+    bool unsampledEmittersLight = true;
     MicrofacetModel microfacet = MicrofacetModel::Beckmann;
 };
 

@@ -233,6 +233,9 @@ Scene loadScene(const std::string& path, const LoadOptions& options) {
     addEmissiveMeshLights(scene);
     mergeAreaLightsWithEmitters(scene);
     bool hasLight = !scene.lights.empty();
+    if (!options.emissiveMeshLights)
+        std::erase_if(scene.lights,
+                      [](const Light& l) { return l.kind == LightKind::MeshEmitter; });
     if (!options.environmentMap.empty()) {
         if (!std::filesystem::exists(options.environmentMap))
             throw SceneError(options.environmentMap, "no such environment map");

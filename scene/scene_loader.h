@@ -13,6 +13,9 @@ struct LoadOptions {
     // rule and uses the file camera elsewhere; File and Framed force one or the other.
     enum class CameraRule { Auto, File, Framed } cameraRule = CameraRule::Auto;
     std::string environmentMap;  // --env: adds a lat-long environment light
+    // false (--emitters camera, the CS184 program): emissive meshes that are not an area light's
+    // quad are no lights; the path tracer then shows them to camera rays only (PathOptions).
+    bool emissiveMeshLights = true;
     float environmentScale = 1.0f;
 };
 

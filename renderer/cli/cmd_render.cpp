@@ -560,6 +560,7 @@ int runRender(const std::vector<std::string>& args) {
     c.job.addOptions(parser);
     c.accel.addOptions(parser, true);
     addLoadOptions(parser, c.load);
+    addEmitterOption(parser, c.load, c.job.job.path);
     addCameraOptions(parser, c);
     addDebugOptions(parser, c);
     addLongRenderOptions(parser, c);

@@ -2,6 +2,7 @@
 // intersection, direct lighting, global illumination, Russian roulette, adaptive sampling) for the
 // given scenes, every image rendered through RenderJob and captioned with the kiln flags that
 // make it, sized to a time budget, as one HTML page.
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -141,12 +142,13 @@ double workUnits(const RenderJobOptions& o) {
 struct Size {
     int width, height;
 };
+// The report's image sizes, largest first (the course's 4:3).
+constexpr Size kSizes[] = {{640, 480}, {480, 360}, {320, 240}, {240, 180},
+                           {160, 120}, {120, 90},  {80, 60}};
 
 // The largest 4:3 size, then the smallest -s divisor, whose estimated time fits the share.
 Size fitBudget(std::vector<Figure>& figures, double secondsPerUnit, double share, int threads,
                int& divisor) {
-    const Size sizes[] = {{640, 480}, {480, 360}, {320, 240}, {240, 180},
-                          {160, 120}, {120, 90},  {80, 60}};
     auto estimate = [&](Size s, int div) {
         double total = 0;
         for (Figure& f : figures)
@@ -159,9 +161,9 @@ Size fitBudget(std::vector<Figure>& figures, double secondsPerUnit, double share
         return total;
     };
     divisor = 1;
-    for (Size s : sizes)
+    for (Size s : kSizes)
         if (estimate(s, 1) <= share) return s;
-    Size smallest = sizes[std::size(sizes) - 1];
+    Size smallest = kSizes[std::size(kSizes) - 1];
     while (divisor < 1024 && estimate(smallest, divisor) > share) divisor *= 2;
     estimate(smallest, divisor);
     return smallest;
@@ -187,6 +189,15 @@ Film layerFilm(const Film& film, const std::string& layer) {
     return out;
 }
 
+// The prefix of a scene's image files: its name in safe characters, numbered from the second scene
+// on, so two scenes of one name (or a name with '#' or '?') cannot clash or break a link.
+std::string imageStem(const std::string& scenePath, size_t index) {
+    std::string stem = fs::path(scenePath).stem().string();
+    for (char& c : stem)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '_';
+    return index == 0 ? stem : stem + "_" + std::to_string(index + 1);
+}
+
 struct SceneReport {
     std::string path, stem;
     Scene scene;
@@ -202,7 +213,10 @@ class Cs184Report {
     RenderStats render(SceneReport& s, const Accelerator& accel, const RenderJobOptions& job,
                        const std::string& file, Film* keep = nullptr);
     void timingTable(SceneReport& s, Size size, double share);
-    void figures(SceneReport& s, std::vector<Figure>& figs, Size size);
+    // The figures; once the scene's time is spent (the machine got slower than the probe said),
+    // the rest are rendered with -s divided by 16 more and say so.
+    void figures(SceneReport& s, std::vector<Figure>& figs, Size size,
+                 std::chrono::steady_clock::time_point deadline);
 
     const ReportOptions& o_;
     HtmlPage page_;
@@ -225,32 +239,48 @@ std::string fixed(double v, int digits) {
     return text;
 }
 
+std::string significant(double v) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.3g", v);
+    return text;
+}
+
 // Part 1's table: normal shading with Embree, the reference BVH and no BVH at all.
 void Cs184Report::timingTable(SceneReport& s, Size size, double share) {
-    RenderJobOptions job = jobFor("-i normals -s 1", size.width, size.height, o_.threads);
+    // The size of the figures, or a smaller one where brute force fits a twentieth of the share.
+    auto normalsAt = [&](Size z) {
+        return jobFor("-i normals -s 1", z.width, z.height, o_.threads);
+    };
+    Size at = size;
+    bool bruteFits = false;
+    for (Size z : kSizes)
+        if (z.width <= size.width && bruteForceSeconds(s.scene, normalsAt(z)) <= 0.05 * share) {
+            at = z, bruteFits = true;
+            break;
+        }
+    RenderJobOptions job = normalsAt(at);
     std::vector<std::vector<std::string>> rows;
     auto row = [&](const std::string& name, const Accelerator& accel) {
         RenderStats st = render(s, accel, job, "");
         rows.push_back({name, accel.stats().description, fixed(accel.stats().buildSeconds, 4),
-                        fixed(st.seconds, 4), fixed(double(st.rays) / st.seconds * 1e-6, 2)});
+                        fixed(st.seconds, 4), significant(double(st.rays) / st.seconds * 1e-6)});
     };
     row("Embree", *s.embree);
     auto bvh = makeReferenceAccelerator(s.scene, {BvhSplit::MeanCentroid, 4});
     row("reference BVH (CS184's split)", *bvh);
-    double bruteEstimate = bruteForceSeconds(s.scene, job);
-    if (bruteEstimate <= 0.1 * share) {
+    if (bruteFits)
         row("no BVH (--accel brute)", *makeBruteForceAccelerator(s.scene));
-    } else {
-        rows.push_back({"no BVH (--accel brute)", "not run: over a tenth of the budget", "-",
-                        "about " + fixed(bruteEstimate, 1), "-"});
-    }
+    else
+        rows.push_back({"no BVH (--accel brute)", "not run: over a twentieth of the budget", "-",
+                        "about " + fixed(bruteForceSeconds(s.scene, job), 1), "-"});
     page_.paragraph("Render time with and without a BVH, normal shading at " +
-                    std::to_string(size.width) + "x" + std::to_string(size.height) + ", 1 spp (" +
+                    std::to_string(at.width) + "x" + std::to_string(at.height) + ", 1 spp (" +
                     std::to_string(bruteForcePrimitiveCount(s.scene)) + " primitives):");
     page_.table({"traversal", "structure", "build s", "render s", "Mrays/s"}, rows);
 }
 
-void Cs184Report::figures(SceneReport& s, std::vector<Figure>& figs, Size size) {
+void Cs184Report::figures(SceneReport& s, std::vector<Figure>& figs, Size size,
+                          std::chrono::steady_clock::time_point deadline) {
     int part = 1;  // the timing table opened part 1
     const char* parts[] = {"",
                            "Part 1: ray generation and intersection",
@@ -266,11 +296,14 @@ void Cs184Report::figures(SceneReport& s, std::vector<Figure>& figs, Size size) 
         std::vector<HtmlPage::Image> row;
         Film kept(1, 1);
         std::string keptFlags;
-        for (const Shot& shot : f.shots) {
+        for (Shot shot : f.shots) {
+            bool late = std::chrono::steady_clock::now() > deadline;
+            if (late) shot.sppDivisor *= 16;
             std::string flags = sppFlags(shot), file = s.stem + "_" + shot.id + ".png";
             std::string dims =
                 "-r " + std::to_string(size.width) + " " + std::to_string(size.height);
-            std::string command = "kiln render " + s.stem + " " + dims + " " + flags;
+            std::string command =
+                "kiln render " + fs::path(s.path).filename().string() + " " + dims + " " + flags;
             size_t dot = shot.id.find('.');
             if (dot != std::string::npos && flags == keptFlags) {
                 // A layer of the render before it.
@@ -286,7 +319,9 @@ void Cs184Report::figures(SceneReport& s, std::vector<Figure>& figs, Size size) 
             keptFlags = flags;
             std::string timing =
                 fixed(st.seconds, 2) + " s, " + fixed(double(st.rays) / 1e6, 2) + " Mrays";
-            row.push_back({file, shot.caption + " (" + timing + ")", command});
+            row.push_back(
+                {file, shot.caption + " (" + timing + (late ? "; -s cut: over budget" : "") + ")",
+                 command});
             if (f.part == 4)
                 rrRows.push_back({shot.caption, std::to_string(st.rays),
                                   fixed(double(st.rays) / double(st.samples), 2),
@@ -317,7 +352,7 @@ void Cs184Report::run() {
     for (const std::string& path : o_.scenes) {
         SceneReport s;
         s.path = path;
-        s.stem = fs::path(path).stem().string();
+        s.stem = imageStem(path, scenes.size());
         s.scene = loadScene(path);
         scenes.push_back(std::move(s));
     }
@@ -341,14 +376,16 @@ void Cs184Report::run() {
         double perUnit = std::max(p.seconds, 1e-4) / workUnits(probe);
         std::vector<Figure> figs = cs184Figures();
         int divisor = 1;
-        Size size = fitBudget(figs, perUnit, 0.8 * share, o_.threads, divisor);
+        Size size = fitBudget(figs, perUnit, 0.7 * share, o_.threads, divisor);
         page_.heading(2, s.stem + " (" + s.path + ")");
         page_.paragraph(std::to_string(size.width) + "x" + std::to_string(size.height) +
                         (divisor > 1 ? ", every -s divided by " + std::to_string(divisor) : "") +
                         " to fit this scene's share of the budget, " + fixed(share, 0) + " s.");
         page_.heading(3, "Part 1: ray generation and intersection");
         timingTable(s, size, share);
-        figures(s, figs, size);
+        figures(s, figs, size,
+                sceneStart + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                 std::chrono::duration<double>(0.9 * share)));
         page_.paragraph("Scene time: " + fixed(secondsSince(sceneStart), 1) + " s.");
         std::fprintf(stderr, "kiln: report: %s done, %.1f s\n", s.path.c_str(),
                      secondsSince(sceneStart));

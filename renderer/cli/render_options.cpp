@@ -34,6 +34,19 @@ void addOutputNameOptions(ArgParser& parser, std::string& output, PathOptions& p
                   });
 }
 
+void addEmitterOption(ArgParser& parser, LoadOptions& load, PathOptions& path) {
+    parser.option(
+        "emitters", "", 1, "lights|camera",
+        "emissive meshes: lights (default, physically right) or camera: the CS184 "
+        "program's behaviour, seen by camera and -H rays only, lighting nothing "
+        "(area lights stay lights)",
+        [&load, &path](const std::vector<std::string>& v) {
+            if (v[0] != "lights" && v[0] != "camera")
+                throw UsageError(ArgParser::badChoice("emitters", "lights or camera", v[0]));
+            load.emissiveMeshLights = path.unsampledEmittersLight = v[0] == "lights";
+        });
+}
+
 void addExposureOption(ArgParser& parser, float& stops) {
     parser.option("exposure", "", 1, "STOPS",
                   "scale the preview's light by 2^STOPS before the display transform (the EXR "

@@ -16,6 +16,9 @@ void addLoadOptions(ArgParser& parser, LoadOptions& load);
 // --output OUT, and -o: CS184's accumulate-bounces switch for a lone 0 or 1, else the output name.
 void addOutputNameOptions(ArgParser& parser, std::string& output, PathOptions& path);
 
+// --emitters lights|camera: emissive meshes as lights, or as the CS184 program (camera rays only).
+void addEmitterOption(ArgParser& parser, LoadOptions& load, PathOptions& path);
+
 // --exposure STOPS: the preview's light scaled by 2^STOPS.
 void addExposureOption(ArgParser& parser, float& stops);
 

@@ -7,7 +7,8 @@ cd "$(dirname "$0")/.."
 packages=(build-essential cmake pkg-config
   libembree-dev libopenimageio-dev openimageio-tools libopenexr-dev openexr
   libopencolorio-dev opencolorio-tools libtbb-dev libassimp-dev libgtest-dev
-  libbenchmark-dev libpugixml-dev)
+  libbenchmark-dev libpugixml-dev nlohmann-json3-dev
+  slurmctld slurmd slurm-client munge)  # the farm tests' local cluster (tools/slurm_local.sh)
 
 missing=()
 for p in "${packages[@]}"; do

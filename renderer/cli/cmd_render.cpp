@@ -8,6 +8,7 @@
 #include "color/image_output.h"
 #include "renderer/accel/recording_accelerator.h"
 #include "renderer/cli/accel_options.h"
+#include "renderer/cli/camera_options.h"
 #include "renderer/cli/commands.h"
 #include "renderer/cli/render_options.h"
 #include "renderer/core/memory.h"
@@ -25,7 +26,8 @@ struct RenderCommand {
     RenderJobArgs job;
     AcceleratorChoice accel;
     LoadOptions load;
-    std::string output;  // base path, or the -f file
+    CameraOptions camera;  // override and turntable (camera_options.h)
+    std::string output;    // base path, or the -f file
     std::string display = "sRGB", view = "Standard";
     ExrOptions exr;
     bool heatMap = false, quiet = false, traversalFloor = false;
@@ -233,6 +235,7 @@ int runRender(const std::vector<std::string>& args) {
     c.accel.addOptions(parser, true);
     addLoadOptions(parser, c.load);
     addCameraOptions(parser, c);
+    c.camera.addOptions(parser);
     addDebugOptions(parser, c);
     std::vector<std::string> pos = parser.parse(args);
     if (parser.helpRequested()) {
@@ -254,6 +257,7 @@ int runRender(const std::vector<std::string>& args) {
     auto t0 = std::chrono::steady_clock::now();
     Scene scene = loadScene(scenePath, c.load);
     double loadTime = seconds(t0);
+    c.camera.apply(scene);
     applyThinLens(scene, c);
     for (const std::string& w : scene.warnings)
         std::fprintf(stderr, "kiln: warning: %s: %s\n", scenePath.c_str(), w.c_str());

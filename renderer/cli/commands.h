@@ -11,6 +11,8 @@ int runRender(const std::vector<std::string>& args);
 int runInfo(const std::vector<std::string>& args);
 int runCrosscheck(const std::vector<std::string>& args);
 int runBench(const std::vector<std::string>& args);
+int runBatch(const std::vector<std::string>& args);            // kiln batch FILE
+int runFarm(const std::vector<std::string>& args);             // kiln farm submit|status|...
 int runTools(const std::vector<std::string>& args);            // kiln tools subdivide
 int runAccuracyCommand(const std::vector<std::string>& args);  // kiln bench accuracy
 

@@ -1,6 +1,7 @@
 // kiln farm: renders split into shards over a Slurm cluster (docs/farm.md). submit writes the job
 // directory and submits the array and its merge job; status, merge and resubmit work on it;
 // run-shard is what each array task runs.
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -164,7 +165,11 @@ int runShardCommand(const std::vector<std::string>& args) {
     std::fprintf(stderr, "kiln farm: shard %d of %s, run %d\n", shard, job.dir.c_str(),
                  restarts ? std::atoi(restarts) + 1 : 1);
     farm::RunOptions run{job.checkpointSeconds, true, stderr};
-    return farm::exitCodeOf(farm::runTasks(job.shards[size_t(shard)].tasks, run));
+    int code = farm::exitCodeOf(farm::runTasks(job.shards[size_t(shard)].tasks, run));
+    if (code == 130 && farm::lastForwardedSignal() == SIGTERM)
+        std::fprintf(stderr, "kiln farm: shard %d: %s\n", shard,
+                     farm::requeueSelfBeforeTimeLimit().c_str());
+    return code;
 }
 
 int mergeCommand(const std::vector<std::string>& args) {
@@ -196,6 +201,8 @@ int resubmitCommand(const std::vector<std::string>& args) {
                      job.dir.c_str());
         return 0;
     }
+    if (!job.submissions.empty() && job.submissions.back().mergeJob)
+        farm::cancelIfPending(job.submissions.back().mergeJob);
     farm::Submission s = farm::submitShards(job, failed);
     std::printf("%ld\n", s.arrayJob);
     std::fprintf(stderr, "kiln farm: %s: %zu failed shards resubmitted as array job %ld\n",

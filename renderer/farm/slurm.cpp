@@ -1,5 +1,6 @@
 #include "renderer/farm/slurm.h"
 
+#include <cstdlib>
 #include <filesystem>
 #include <sstream>
 #include <stdexcept>
@@ -141,6 +142,20 @@ std::map<int, SlurmTaskState> queryArray(long arrayJob) {
 SlurmTaskState queryJob(long job) {
     CommandResult r = runCapturing("scontrol", {"-o", "show", "job", std::to_string(job)});
     return r.exitCode == 0 ? parseScontrolJob(r.output) : SlurmTaskState{};
+}
+
+void cancelIfPending(long job) {
+    if (queryJob(job).state == "PENDING") runCapturing("scancel", {std::to_string(job)});
+}
+
+std::string requeueSelfBeforeTimeLimit() {
+    const char* job = std::getenv("SLURM_JOB_ID");
+    if (!job) return "not in a Slurm job: not requeued";
+    SlurmTaskState self = queryJob(std::atol(job));
+    if (self.state != "RUNNING") return "job is " + self.state + ": not requeued";
+    CommandResult r = runCapturing("scontrol", {"requeue", job});
+    return r.exitCode == 0 ? "time limit near: requeued to resume from the checkpoint"
+                           : "scontrol requeue failed: " + r.output.substr(0, r.output.find('\n'));
 }
 
 }  // namespace kiln::farm

@@ -36,6 +36,15 @@ std::map<int, SlurmTaskState> parseScontrolArray(const std::string& text);
 // State of a plain job from the same output (first record).
 SlurmTaskState parseScontrolJob(const std::string& text);
 
+// In an array task that was signalled and saved its checkpoint: when Slurm still has the task
+// RUNNING, the TERM was --signal's warning before the time limit (scancel, requeue and preemption
+// move it out of RUNNING first), so the task requeues itself to resume. Returns what it did.
+std::string requeueSelfBeforeTimeLimit();
+
+// scancel of a job still pending (a merge whose shards are resubmitted: a cluster without
+// kill_invalid_depend keeps it waiting on a dependency that can never be met).
+void cancelIfPending(long job);
+
 // The live query (empty map / UNKNOWN when Slurm no longer knows the job).
 std::map<int, SlurmTaskState> queryArray(long arrayJob);
 SlurmTaskState queryJob(long job);

@@ -1,9 +1,17 @@
 // Batch job files, the turntable and camera override, and `kiln batch` end to end.
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <chrono>
+#include <csignal>
 #include <nlohmann/json.hpp>
+#include <thread>
 
 #include "farm_test_support.h"
 #include "renderer/farm/job_file.h"
 #include "renderer/geometry/turntable.h"
+
+extern char** environ;
 
 namespace kiln {
 namespace {
@@ -142,8 +150,7 @@ TEST(CameraOptions, TurntableAndOverrideThroughKilnRender) {
 }
 
 // Waits on the checkpoint/resume branch (#16): renders pass --resume --checkpoint-every.
-// Two frames render; a second run skips both; a changed frame renders again; a checkpoint left by
-// an interrupted render is resumed.
+// Two frames render; a second run skips both.
 TEST(Batch, SkipsCompleteOutputsAndReportsJson) {
     fs::path dir = test::scratchDir();
     std::string job = test::writeFile(dir / "job.json", R"({
@@ -162,6 +169,50 @@ TEST(Batch, SkipsCompleteOutputsAndReportsJson) {
     auto json = nlohmann::json::parse(second.output.substr(second.output.find('{')));
     EXPECT_EQ(json["counts"]["skipped"], 2);
     EXPECT_EQ(json["counts"]["rendered"], 0);
+}
+
+// Waits on #16. Ctrl-C reaches the running render through kiln batch, which exits 130 with the
+// render's checkpoint on disk; the next kiln batch resumes it, and the image is the uninterrupted
+// render's bit for bit.
+TEST(Batch, InterruptedRenderResumesBitForBit) {
+    fs::path dir = test::scratchDir();
+    const std::vector<std::string> options{"-r", "32", "24", "-s", "1500", "-t", "1"};
+    nlohmann::json args = options;
+    std::string job = test::writeFile(
+        dir / "job.json", nlohmann::json{{"output", "resumed"},
+                                         {"scenes", {test::cs184("sky/CBspheres_lambertian.dae")}},
+                                         {"args", args}}
+                              .dump());
+    std::string program = KILN_BINARY;
+    std::vector<char*> argv{program.data(),
+                            const_cast<char*>("batch"),
+                            job.data(),
+                            const_cast<char*>("-q"),
+                            const_cast<char*>("--checkpoint-every"),
+                            const_cast<char*>("1"),
+                            nullptr};
+    pid_t pid = 0;
+    ASSERT_EQ(::posix_spawn(&pid, program.c_str(), nullptr, nullptr, argv.data(), environ), 0);
+    int status = 0;
+    bool exited = false;
+    auto until = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+    while (!fs::exists(dir / "resumed.ckpt") && std::chrono::steady_clock::now() < until &&
+           !(exited = ::waitpid(pid, &status, WNOHANG) == pid))
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    if (!exited) {
+        ::kill(pid, SIGINT);
+        ::waitpid(pid, &status, 0);
+    }
+    ASSERT_TRUE(WIFEXITED(status));
+    ASSERT_EQ(WEXITSTATUS(status), 130) << "the render finished before it could be interrupted";
+    farm::CommandResult again = test::kiln({"batch", job, "-q", "--json"});
+    ASSERT_EQ(again.exitCode, 0) << again.output;
+    EXPECT_NE(again.output.find("\"resumed\": 1"), std::string::npos) << again.output;
+    std::vector<std::string> one{"render", test::cs184("sky/CBspheres_lambertian.dae"), "-q", "-o",
+                                 (dir / "one").string()};
+    one.insert(one.end(), options.begin(), options.end());
+    ASSERT_EQ(test::kiln(one).exitCode, 0);
+    EXPECT_EQ(test::exrDifference((dir / "one.exr").string(), (dir / "resumed.exr").string()), "");
 }
 
 }  // namespace

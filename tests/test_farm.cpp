@@ -109,6 +109,8 @@ TEST(SlurmText, ParsesArrayIdsAndScontrolRecords) {
     EXPECT_EQ(farm::stateFromSlurm("UNKNOWN"), ShardState::Failed);
     EXPECT_EQ(farm::lastErrorLine("a\nkiln: error: x.obj: bad\nslurmstepd: done\n\n"),
               "kiln: error: x.obj: bad");
+    EXPECT_EQ(farm::lastErrorLine("kiln render: unknown option '--x'\nkiln: [1/1] out: failed\n"),
+              "kiln render: unknown option '--x'");
 }
 
 // A real slurmctld + slurmd + munged for the suite, in their own directory and on ports no other

@@ -22,14 +22,16 @@ median() { sort -g | awk '{v[NR]=$1} END {print (NR%2 ? v[(NR+1)/2] : (v[NR/2]+v
 
 # Seconds until `kiln farm status` shows every shard done and the merge done (or no merge asked).
 wait_farm() {
-  local dir=$1 line
+  local dir=$1 line failed='[1-9][0-9]* failed|merge: (FAILED|CANCELLED)'
   while :; do
     line=$("$K" farm status "$dir" 2>/dev/null | head -n1 || true)
-    if [[ $line =~ " 0 running, 0 pending, 0 failed" ]]; then
-      [[ ${KILN_FARM_BENCH_NO_MERGE:-0} == 1 || $line =~ "merge: done" ]] && return 0
+    if [[ $line == *" 0 running, 0 pending, 0 failed"* ]]; then
+      [[ ${KILN_FARM_BENCH_NO_MERGE:-0} == 1 || $line == *"merge: done"* ]] && return 0
     fi
-    [[ $line =~ " [1-9][0-9]* failed" || $line =~ "merge: (FAILED|CANCELLED)" ]] && {
-      "$K" farm status "$dir" >&2; return 1; }
+    if [[ $line =~ $failed ]]; then
+      "$K" farm status "$dir" >&2
+      return 1
+    fi
     sleep 0.2
   done
 }

@@ -48,7 +48,9 @@ std::string lastErrorLine(const std::string& logText) {
     std::istringstream lines(logText);
     std::string last, lastError;
     for (std::string line; std::getline(lines, line);) {
-        if (line.empty()) continue;
+        // Our own progress lines say that a render failed, not why.
+        if (line.empty() || line.rfind("kiln: [", 0) == 0 || line.rfind("kiln farm:", 0) == 0)
+            continue;
         last = line;
         if (line.find("error") != std::string::npos) lastError = line;
     }

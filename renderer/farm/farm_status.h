@@ -36,7 +36,8 @@ bool mergeComplete(const Merge& merge);
 ShardState stateFromSlurm(const std::string& jobState);
 FarmStatus farmStatus(const FarmJob& job);
 std::string statusText(const FarmJob& job, const FarmStatus& status);
-// The line of a log to show for a failure: the last one with "error", else the last one.
+// The line of a log to show for a failure: the last one with "error", else the last one that is
+// not a progress line of the shard runner.
 std::string lastErrorLine(const std::string& logText);
 
 }  // namespace kiln::farm

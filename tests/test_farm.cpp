@@ -113,6 +113,27 @@ TEST(SlurmText, ParsesArrayIdsAndScontrolRecords) {
               "kiln render: unknown option '--x'");
 }
 
+// Bad input is refused before anything is written or submitted: one line, exit 2.
+TEST(FarmSubmit, RefusesBadInputBeforeSubmitting) {
+    fs::path dir = test::scratchDir();
+    std::string scene = test::cs184("sky/CBspheres_lambertian.dae");
+    const std::vector<std::pair<std::vector<std::string>, std::string>> bad{
+        {{scene, "-r", "16", "12", "--bogus", "--shards", "2"}, "--bogus"},
+        {{scene, "--shards", "2", "--by", "tiles"}, "--by takes"},
+        {{scene, "-s", "2", "--shards", "4", "--by", "samples"}, "cannot make 4 sample shards"},
+        {{(dir / "missing.obj").string(), "--shards", "2"}, "does not exist"}};
+    for (const auto& [args, message] : bad) {
+        std::vector<std::string> all{"farm", "submit"};
+        all.insert(all.end(), args.begin(), args.end());
+        all.insert(all.end(), {"-d", (dir / "job").string()});
+        farm::CommandResult r = test::kiln(all);
+        EXPECT_EQ(r.exitCode, 2) << r.output;
+        EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+        EXPECT_NE(r.output.find(message), std::string::npos) << r.output;
+        EXPECT_FALSE(fs::exists(dir / "job")) << message;
+    }
+}
+
 // A real slurmctld + slurmd + munged for the suite, in their own directory and on ports no other
 // suite or a default cluster uses. Tests fail with the reason when it cannot start.
 class FarmCluster : public ::testing::Test {

@@ -107,6 +107,18 @@ bool sameWork(const farm::FarmJob& a, const farm::FarmJob& b) {
     return true;
 }
 
+// kiln render parses every option before it acts on --help, so a typo in the render options is
+// refused here, before anything is submitted (the first and last render stand for the rest).
+void checkRenderOptions(const farm::FarmJob& job) {
+    for (const farm::RenderTask* t :
+         {&job.shards.front().tasks.front(), &job.shards.back().tasks.back()}) {
+        std::vector<std::string> cmd = farm::renderCommand(*t, job.checkpointSeconds, true);
+        cmd.push_back("--help");
+        farm::CommandResult r = farm::runCapturing(job.kiln, cmd);
+        if (r.exitCode != 0) throw UsageError(r.output.substr(0, r.output.find('\n')));
+    }
+}
+
 std::vector<int> allShards(const farm::FarmJob& job) {
     std::vector<int> shards;
     for (size_t i = 0; i < job.shards.size(); ++i) shards.push_back(int(i));
@@ -130,6 +142,7 @@ int submitCommand(const std::vector<std::string>& args) {
                      farm::statusText(existing, farm::farmStatus(existing)).c_str());
         return 0;
     }
+    checkRenderOptions(job);
     fs::create_directories(fs::path(job.dir) / "shards");
     for (const farm::Shard& s : job.shards)
         for (const farm::RenderTask& t : s.tasks)

@@ -239,10 +239,12 @@ TEST_F(FarmCluster, FourShardsBySamplesAndByRegionEqualTheOneProcessRender) {
 // its checkpoint, and the merged image is still the one-process render bit for bit.
 TEST_F(FarmCluster, RequeuedShardResumesFromItsCheckpoint) {
     fs::path dir = test::scratchDir();
-    const std::vector<std::string> options{"-r", "32", "24", "-s", "1200", "-t", "1"};
+    // About 5 s per one-thread shard here: long enough to be caught mid-render. The thread count
+    // does not change the image, so the reference renders with all cores.
+    const std::vector<std::string> options{"-r", "32", "24", "-s", "12000"};
     std::vector<std::string> args{scene()};
     args.insert(args.end(), options.begin(), options.end());
-    args.insert(args.end(), {"--shards", "2", "--by", "samples", "-d", dir.string(),
+    args.insert(args.end(), {"-t", "1", "--shards", "2", "--by", "samples", "-d", dir.string(),
                              "--checkpoint-every", "1"});
     farm::CommandResult r = submit(args);
     ASSERT_EQ(r.exitCode, 0) << r.output;

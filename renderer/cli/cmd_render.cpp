@@ -26,8 +26,8 @@ struct RenderCommand {
     RenderJobArgs job;
     AcceleratorChoice accel;
     LoadOptions load;
-    CameraOptions camera;  // override and turntable (camera_options.h)
-    std::string output;    // base path, or the -f file
+    CameraOptions camera;
+    std::string output;  // base path, or the -f file
     std::string display = "sRGB", view = "Standard";
     ExrOptions exr;
     bool heatMap = false, quiet = false, traversalFloor = false;

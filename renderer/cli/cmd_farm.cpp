@@ -81,6 +81,8 @@ SubmitArgs parseSubmit(const std::vector<std::string>& args) {
 
 std::vector<farm::RenderTask> submitTasks(const SubmitArgs& a, const std::string& dir) {
     if (fs::path(a.input).extension() == ".json") {
+        if (!a.output.empty())
+            throw UsageError("-o is for a SCENE; a job file names its outputs in \"output\"");
         if (!a.renderArgs.empty())
             throw UsageError("render options go into the job file's \"args\", not after " +
                              a.input);
@@ -133,7 +135,8 @@ int submitCommand(const std::vector<std::string>& args) {
     job.kiln = farm::kilnExecutable();
     job.checkpointSeconds = a.checkpointSeconds;
     job.sbatchOptions = a.sbatch;
-    if (fs::exists(farm::manifestPath(job.dir))) {
+    if (fs::exists(farm::manifestPath(job.dir)) &&
+        !farm::readManifest(job.dir).submissions.empty()) {
         farm::FarmJob existing = farm::readManifest(job.dir);
         if (!sameWork(existing, job))
             throw UsageError(job.dir + " already holds a different farm job; choose another -d");
@@ -149,7 +152,14 @@ int submitCommand(const std::vector<std::string>& args) {
             fs::create_directories(fs::path(t.output).parent_path());
     for (const farm::Merge& m : job.merges)
         fs::create_directories(fs::path(m.output).parent_path());
-    farm::Submission s = farm::submitShards(job, allShards(job));
+    farm::Submission s;
+    try {
+        s = farm::submitShards(job, allShards(job));
+    } catch (const std::runtime_error&) {
+        // Nothing was submitted: leave no manifest that would make a retry a no-op.
+        if (job.submissions.empty()) fs::remove(farm::manifestPath(job.dir));
+        throw;
+    }
     std::printf("%ld\n", s.arrayJob);
     std::fprintf(
         stderr, "kiln farm: %s: array job %ld with %zu shards by %s%s; kiln farm status %s\n",

@@ -206,11 +206,12 @@ std::vector<RenderTask> expandJobText(const std::string& text, const std::string
         for (size_t i = 0; i < doc["cameras"].size(); ++i)
             for (CameraFrame& f : cameraFrames(doc["cameras"][i], i, file)) frames.push_back(f);
     }
+    std::vector<Setting> settings = settingsOf(doc, file);
     std::vector<RenderTask> tasks;
     std::set<std::string> outputs;
     for (const std::string& scene : scenes)
         for (const CameraFrame& f : frames)
-            for (const Setting& s : settingsOf(doc, file)) {
+            for (const Setting& s : settings) {
                 OutputVariables vars{fs::path(scene).stem().string(), f.camera, s.name, f.frame,
                                      int(tasks.size())};
                 std::string name;

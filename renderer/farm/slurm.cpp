@@ -90,16 +90,19 @@ Submission submitShards(FarmJob& job, const std::vector<int>& shards) {
     fs::create_directories(fs::path(job.dir) / "logs");
     std::string shardFile = job.dir + "/shard.sbatch", mergeFile = job.dir + "/merge.sbatch";
     writeFileAtomically(shardFile, shardScript(job));
+    writeManifest(job);  // before sbatch: a task may start at once and reads its renders from it
     Submission s;
     s.shards = shards;
     s.arrayJob = submit({"--parsable", "--array=" + arrayList(shards), shardFile});
+    job.submissions.push_back(s);
+    writeManifest(job);
     if (!job.merges.empty()) {
         writeFileAtomically(mergeFile, mergeScript(job));
         s.mergeJob =
             submit({"--parsable", "--dependency=afterok:" + std::to_string(s.arrayJob), mergeFile});
+        job.submissions.back() = s;
+        writeManifest(job);
     }
-    job.submissions.push_back(s);
-    writeManifest(job);
     return s;
 }
 

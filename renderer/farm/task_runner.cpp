@@ -35,9 +35,11 @@ TaskResult runOne(const RenderTask& task, const RunOptions& options, size_t i, s
     r.exitCode = runForwardingSignals(kilnExecutable(), command);
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (r.exitCode == 0) markComplete(task.output, command);
-    r.outcome = r.exitCode == 0     ? (resuming ? Outcome::Resumed : Outcome::Rendered)
-                : r.exitCode == 130 ? Outcome::Interrupted
-                                    : Outcome::Failed;
+    // 130: interrupted, 3: its --time-limit reached; both saved their checkpoint.
+    bool saved = r.exitCode == 130 || r.exitCode == 3;
+    r.outcome = r.exitCode == 0 ? (resuming ? Outcome::Resumed : Outcome::Rendered)
+                : saved         ? Outcome::Interrupted
+                                : Outcome::Failed;
     if (options.progress)
         std::fprintf(options.progress, "kiln: [%zu/%zu] %s: %s (exit %d) in %.2fs\n", i + 1, n,
                      task.output.c_str(), outcomeName(r.outcome), r.exitCode, r.seconds);

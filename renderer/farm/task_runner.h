@@ -27,7 +27,8 @@ struct RunOptions {
     FILE* progress = stderr;     // per-task lines, nullptr for none
 };
 
-// Stops at the first interrupted task (exit 130 or a forwarded signal): the rest stay NotRun.
+// Stops at the first interrupted task (exit 130, exit 3 from a render's own --time-limit, or a
+// forwarded signal): the rest stay NotRun.
 std::vector<TaskResult> runTasks(const std::vector<RenderTask>& tasks, const RunOptions& options);
 
 // 0 when every task is complete, 130 when one was interrupted, 1 when one failed.

@@ -14,6 +14,9 @@ int runBatch(const std::vector<std::string>& args) {
     ArgParser parser("batch", "FILE.json [options]   (docs/farm.md: the job file)");
     parser.flag("json", "", "print the summary as JSON on stdout", json);
     parser.flag("quiet", "q", "no progress bars from the renders", quiet);
+    parser.flag("keep-checkpoints", "",
+                "keep a finished render's OUT.ckpt (to refine it later with a higher -s)",
+                run.keepCheckpoints);
     parser.intOption("checkpoint-every", "", "seconds between checkpoints of a render (default 60)",
                      run.checkpointSeconds, 1, 1 << 24);
     std::vector<std::string> pos = parser.parse(args);

@@ -26,6 +26,7 @@ constexpr const char* kFarmUsage =
 struct SubmitArgs {
     std::string input, dir, output, by = "frames";
     int shards = 1, checkpointSeconds = 60;
+    bool keepCheckpoints = false;
     std::vector<std::string> renderArgs, sbatch;
 };
 
@@ -41,6 +42,8 @@ ArgParser submitParser(SubmitArgs& a) {
              [&a](const auto& v) { a.output = v[0]; });
     p.intOption("checkpoint-every", "", "seconds between checkpoints (default 60)",
                 a.checkpointSeconds, 1, 1 << 24);
+    p.flag("keep-checkpoints", "", "keep OUT.ckpt of finished frames and merged shards",
+           a.keepCheckpoints);
     for (const char* name : {"partition", "time", "mem"})
         p.option(name, "", 1, "VALUE", std::string("sbatch --") + name, [&a, name](const auto& v) {
             a.sbatch.push_back(std::string("--") + name + "=" + v[0]);
@@ -60,10 +63,18 @@ SubmitArgs parseSubmit(const std::vector<std::string>& args) {
     }
     a.input = args[0];
     // Pick the farm's options out by name; the rest are render options for every shard.
-    const std::vector<std::pair<std::string, int>> own{
-        {"--shards", 1},    {"-n", 1},       {"--by", 1}, {"--dir", 1},
-        {"-d", 1},          {"--output", 1}, {"-o", 1},   {"--checkpoint-every", 1},
-        {"--partition", 1}, {"--time", 1},   {"--mem", 1}};
+    const std::vector<std::pair<std::string, int>> own{{"--shards", 1},
+                                                       {"-n", 1},
+                                                       {"--by", 1},
+                                                       {"--dir", 1},
+                                                       {"-d", 1},
+                                                       {"--output", 1},
+                                                       {"-o", 1},
+                                                       {"--checkpoint-every", 1},
+                                                       {"--keep-checkpoints", 0},
+                                                       {"--partition", 1},
+                                                       {"--time", 1},
+                                                       {"--mem", 1}};
     std::vector<std::string> farmArgs;
     for (size_t i = 1; i < args.size(); ++i) {
         int n = -1;
@@ -134,6 +145,7 @@ int submitCommand(const std::vector<std::string>& args) {
         farm::planFarmJob(submitTasks(a, dir), farm::parseShardBy(a.by), a.shards, dir);
     job.kiln = farm::kilnExecutable();
     job.checkpointSeconds = a.checkpointSeconds;
+    job.keepCheckpoints = a.keepCheckpoints;
     job.sbatchOptions = a.sbatch;
     if (fs::exists(farm::manifestPath(job.dir)) &&
         !farm::readManifest(job.dir).submissions.empty()) {
@@ -187,7 +199,9 @@ int runShardCommand(const std::vector<std::string>& args) {
     const char* restarts = std::getenv("SLURM_RESTART_COUNT");
     std::fprintf(stderr, "kiln farm: shard %d of %s, run %d\n", shard, job.dir.c_str(),
                  restarts ? std::atoi(restarts) + 1 : 1);
-    farm::RunOptions run{job.checkpointSeconds, true, stderr};
+    // Sample and region shards keep theirs: they are what kiln merge reads.
+    farm::RunOptions run{job.checkpointSeconds, true, stderr,
+                         job.keepCheckpoints || job.by != farm::ShardBy::Frames};
     int code = farm::exitCodeOf(farm::runTasks(job.shards[size_t(shard)].tasks, run));
     if (code == 130 && farm::lastForwardedSignal() == SIGTERM)
         std::fprintf(stderr, "kiln farm: shard %d: %s\n", shard,
@@ -207,6 +221,8 @@ int mergeCommand(const std::vector<std::string>& args) {
         std::vector<std::string> cmd = farm::mergeCommand(m);
         int code = farm::runForwardingSignals(farm::kilnExecutable(), cmd);
         if (code == 0) farm::markComplete(m.output, cmd);
+        if (code == 0 && !job.keepCheckpoints)
+            for (const std::string& in : m.inputs) fs::remove(in + ".ckpt");
         std::fprintf(stderr, "kiln farm: merge %s: %s\n", m.output.c_str(),
                      code == 0 ? "done" : ("failed, exit " + std::to_string(code)).c_str());
         failed += code != 0;

@@ -112,6 +112,7 @@ void writeManifest(const FarmJob& job) {
                 {"kiln", job.kiln},
                 {"by", shardByName(job.by)},
                 {"checkpoint_every", job.checkpointSeconds},
+                {"keep_checkpoints", job.keepCheckpoints},
                 {"sbatch_options", job.sbatchOptions},
                 {"shards", json::array()},
                 {"merges", json::array()},
@@ -139,6 +140,7 @@ FarmJob readManifest(const std::string& dir) {
         job.kiln = doc.at("kiln").get<std::string>();
         job.by = parseShardBy(doc.at("by").get<std::string>());
         job.checkpointSeconds = doc.at("checkpoint_every").get<int>();
+        job.keepCheckpoints = doc.at("keep_checkpoints").get<bool>();
         job.sbatchOptions = doc.at("sbatch_options").get<std::vector<std::string>>();
         for (const json& s : doc.at("shards")) {
             Shard shard;

@@ -32,6 +32,7 @@ struct FarmJob {
     std::string dir, kiln;
     ShardBy by = ShardBy::Frames;
     int checkpointSeconds = 60;
+    bool keepCheckpoints = false;  // else removed once a frame is done or its shards are merged
     std::vector<std::string> sbatchOptions;  // --partition, --time, --mem as given
     std::vector<Shard> shards;
     std::vector<Merge> merges;

@@ -19,7 +19,8 @@ std::string mergeScript(const FarmJob& job);
 std::string shardLogPath(const FarmJob& job, int shard);
 
 // Writes the manifest, submits the array for `shards` (and the merge job with afterok on it, when
-// the job merges) and records the submission in the manifest. Throws std::runtime_error with sbatch's message when it fails.
+// the job merges) and records the submission in the manifest. Throws std::runtime_error with
+// sbatch's message when it fails.
 Submission submitShards(FarmJob& job, const std::vector<int>& shards);
 
 // "0-3", "1,3,5-7", "2-3%4" -> the task ids.

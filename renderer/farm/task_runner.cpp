@@ -34,7 +34,10 @@ TaskResult runOne(const RenderTask& task, const RunOptions& options, size_t i, s
     auto t0 = std::chrono::steady_clock::now();
     r.exitCode = runForwardingSignals(kilnExecutable(), command);
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (r.exitCode == 0) markComplete(task.output, command);
+    if (r.exitCode == 0) {
+        markComplete(task.output, command);
+        if (!options.keepCheckpoints) fs::remove(task.output + ".ckpt");
+    }
     // 130: interrupted, 3: its --time-limit reached; both saved their checkpoint.
     bool saved = r.exitCode == 130 || r.exitCode == 3;
     r.outcome = r.exitCode == 0 ? (resuming ? Outcome::Resumed : Outcome::Rendered)

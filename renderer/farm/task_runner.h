@@ -25,6 +25,9 @@ struct RunOptions {
     int checkpointSeconds = 60;
     bool quietChildren = false;  // no per-pixel progress bar from the renders
     FILE* progress = stderr;     // per-task lines, nullptr for none
+    // A finished render's OUT.ckpt (the film's exact sums, 0.7 GB at 1080p) is removed unless kept
+    // (for refinement with a higher -s, or as a shard for kiln merge).
+    bool keepCheckpoints = false;
 };
 
 // Stops at the first interrupted task (exit 130, exit 3 from a render's own --time-limit, or a

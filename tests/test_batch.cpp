@@ -176,8 +176,12 @@ TEST(Batch, SkipsCompleteOutputsAndReportsJson) {
 // render's bit for bit.
 TEST(Batch, InterruptedRenderResumesBitForBit) {
     fs::path dir = test::scratchDir();
-    const std::vector<std::string> options{"-r", "32", "24", "-s", "1500", "-t", "1"};
+    // Several seconds on one thread, so the interrupt lands mid-render, well after the first
+    // checkpoint; the thread count does not change the image, so the reference uses every core.
+    const std::vector<std::string> options{"-r", "32", "24", "-s", "6000"};
     nlohmann::json args = options;
+    args.push_back("-t");
+    args.push_back("1");
     std::string job = test::writeFile(
         dir / "job.json", nlohmann::json{{"output", "resumed"},
                                          {"scenes", {test::cs184("sky/CBspheres_lambertian.dae")}},

@@ -248,8 +248,8 @@ TEST_F(FarmCluster, RequeuedShardResumesFromItsCheckpoint) {
                              "--checkpoint-every", "1"});
     farm::CommandResult r = submit(args);
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    long array = std::atol(r.output.c_str());
     farm::FarmJob job = farm::readManifest(dir.string());
+    long array = job.submissions.at(0).arrayJob;
     std::string shard0 = job.shards[0].tasks[0].output;
     auto until = std::chrono::steady_clock::now() + std::chrono::seconds(30);
     while (!fs::exists(shard0 + ".ckpt") && std::chrono::steady_clock::now() < until)

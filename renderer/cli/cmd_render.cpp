@@ -14,6 +14,7 @@
 #include "renderer/accel/recording_accelerator.h"
 #include "renderer/build_info.h"
 #include "renderer/cli/accel_options.h"
+#include "renderer/cli/camera_options.h"
 #include "renderer/cli/commands.h"
 #include "renderer/cli/render_options.h"
 #include "renderer/core/json.h"
@@ -38,6 +39,7 @@ struct RenderCommand {
     RenderJobArgs job;
     AcceleratorChoice accel;
     LoadOptions load;
+    CameraOptions camera;
     std::string output;         // base path, or the -f file
     std::string display, view;  // empty: the OCIO config's defaults
     float exposure = 0;         // stops
@@ -562,6 +564,7 @@ int runRender(const std::vector<std::string>& args) {
     addLoadOptions(parser, c.load);
     addEmitterOption(parser, c.load, c.job.job.path);
     addCameraOptions(parser, c);
+    c.camera.addOptions(parser);
     addDebugOptions(parser, c);
     addLongRenderOptions(parser, c);
     addCompressionOption(parser, c);
@@ -588,6 +591,7 @@ int runRender(const std::vector<std::string>& args) {
     auto t0 = std::chrono::steady_clock::now();
     Scene scene = loadScene(scenePath, c.load);
     double loadTime = seconds(t0);
+    c.camera.apply(scene);
     applyThinLens(scene, c);
     for (const std::string& w : scene.warnings)
         std::fprintf(stderr, "kiln: warning: %s: %s\n", scenePath.c_str(), w.c_str());

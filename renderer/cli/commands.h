@@ -12,6 +12,8 @@ int runMerge(const std::vector<std::string>& args);  // kiln merge SHARD.ckpt...
 int runInfo(const std::vector<std::string>& args);
 int runCrosscheck(const std::vector<std::string>& args);
 int runBench(const std::vector<std::string>& args);
+int runBatch(const std::vector<std::string>& args);            // kiln batch FILE
+int runFarm(const std::vector<std::string>& args);             // kiln farm submit|status|...
 int runTools(const std::vector<std::string>& args);            // kiln tools subdivide
 int runAccuracyCommand(const std::vector<std::string>& args);  // kiln bench accuracy
 int runReport(const std::vector<std::string>& args);           // kiln report cs184

@@ -23,6 +23,8 @@ constexpr const char* kUsage =
     "  bench accel       build time and rays/s of both accelerators\n"
     "  bench plan        render time of the plan's specialised path against the general one\n"
     "  bench accuracy    error against time over spp, strategies, depth, adaptive sampling\n"
+    "  batch FILE        every render of a job file on this machine (skips done, resumes)\n"
+    "  farm submit|status|merge|resubmit   renders split over a Slurm cluster\n"
     "  tools subdivide   1-to-4 midpoint subdivision of a mesh, written as binary PLY\n"
     "  report cs184      the CS184 PathTracer write-up (five parts) as one HTML page\n"
     "\n"
@@ -48,6 +50,8 @@ int main(int argc, char** argv) {
         if (command == "info") return kiln::runInfo(args);
         if (command == "crosscheck") return kiln::runCrosscheck(args);
         if (command == "bench") return kiln::runBench(args);
+        if (command == "batch") return kiln::runBatch(args);
+        if (command == "farm") return kiln::runFarm(args);
         if (command == "tools") return kiln::runTools(args);
         if (command == "report") return kiln::runReport(args);
         std::fprintf(stderr, "kiln: unknown command '%s'\n%s", command.c_str(), kUsage);

@@ -1,0 +1,66 @@
+#include "renderer/cli/camera_options.h"
+
+#include <stdexcept>
+
+#include "renderer/geometry/turntable.h"
+
+namespace kiln {
+namespace {
+
+ArgParser::Handler vec3Into(std::optional<Vec3>& target, std::string name) {
+    return [&target, name](const std::vector<std::string>& v) {
+        double x = ArgParser::toDouble(name, v[0]), y = ArgParser::toDouble(name, v[1]),
+               z = ArgParser::toDouble(name, v[2]);
+        target = Vec3(float(x), float(y), float(z));
+    };
+}
+
+// World coordinates to the scene's stored (recentred) ones.
+Vec3 stored(const Scene& scene, Vec3 world) { return Vec3(Vec3d(world) - scene.origin); }
+
+}  // namespace
+
+void CameraOptions::addOptions(ArgParser& parser) {
+    parser.option("position", "", 3, "X Y Z", "camera position (world coordinates)",
+                  vec3Into(position, "--position"));
+    parser.option("look-at", "", 3, "X Y Z", "point the camera looks at (default: bbox centre)",
+                  vec3Into(lookAt, "--look-at"));
+    parser.option("up", "", 3, "X Y Z", "camera up vector (default: the scene camera's)",
+                  vec3Into(up, "--up"));
+    parser.option("fov", "", 1, "DEG", "field of view of the image's shorter side in degrees",
+                  [this](const std::vector<std::string>& v) {
+                      fovDeg = float(ArgParser::toDouble("--fov", v[0]));
+                      if (!(fovDeg > 0 && fovDeg < 180))
+                          throw UsageError("--fov must be between 0 and 180 degrees");
+                  });
+    parser.intOption("turntable", "", "N cameras orbiting the scene (pick one with --frame)",
+                     turntable, 1, 1 << 20);
+    parser.intOption("frame", "", "the turntable frame to render, 0..N-1", frame, 0, 1 << 20);
+    parser.option("orbit-axis", "", 3, "X Y Z", "turntable axis (default: the camera's up)",
+                  vec3Into(orbitAxis, "--orbit-axis"));
+    parser.option("orbit-centre", "", 3, "X Y Z",
+                  "a point on the turntable axis (default: bbox centre)",
+                  vec3Into(orbitCentre, "--orbit-centre"));
+}
+
+void CameraOptions::apply(Scene& scene) const {
+    if ((turntable > 0) != (frame >= 0)) throw UsageError("--turntable and --frame go together");
+    if (turntable > 0 && frame >= turntable)
+        throw UsageError("--frame " + std::to_string(frame) + " is not below --turntable " +
+                         std::to_string(turntable));
+    Camera& cam = scene.camera;
+    Vec3 centre = scene.storedBounds().centroid();
+    try {
+        if (position || lookAt || up)
+            pointCamera(cam, position ? stored(scene, *position) : cam.position,
+                        lookAt ? stored(scene, *lookAt) : centre, up ? *up : cam.up);
+        if (fovDeg > 0) cam.hFovDeg = cam.vFovDeg = fovDeg;
+        if (turntable > 0)
+            cam = orbitCamera(cam, orbitCentre ? stored(scene, *orbitCentre) : centre,
+                              orbitAxis ? *orbitAxis : cam.up, turntable, frame);
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+    }
+}
+
+}  // namespace kiln

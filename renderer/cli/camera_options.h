@@ -1,0 +1,23 @@
+// Camera options of kiln render for batches: an override (position, look-at, up, fov) and the
+// turntable (--turntable N --frame K about an axis and centre), applied after the scene is framed.
+#pragma once
+
+#include <optional>
+
+#include "renderer/cli/cli_args.h"
+#include "scene/scene.h"
+
+namespace kiln {
+
+struct CameraOptions {
+    std::optional<Vec3> position, lookAt, up, orbitAxis, orbitCentre;  // world coordinates
+    float fovDeg = -1;
+    int turntable = 0, frame = -1;
+
+    // --position --look-at --up --fov --turntable --frame --orbit-axis --orbit-centre
+    void addOptions(ArgParser& parser);
+    // The override, then the orbit; throws UsageError on an impossible camera.
+    void apply(Scene& scene) const;
+};
+
+}  // namespace kiln

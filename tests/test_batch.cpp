@@ -1,0 +1,223 @@
+// Batch job files, the turntable and camera override, and `kiln batch` end to end.
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <chrono>
+#include <csignal>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "farm_test_support.h"
+#include "renderer/farm/job_file.h"
+#include "renderer/geometry/turntable.h"
+
+extern char** environ;
+
+namespace kiln {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool contains(const std::vector<std::string>& args, const std::vector<std::string>& run) {
+    return std::search(args.begin(), args.end(), run.begin(), run.end()) != args.end();
+}
+
+TEST(JobFile, ExpandsScenesCamerasFramesAndSettings) {
+    fs::path dir = test::scratchDir();
+    test::writeFile(dir / "a.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    test::writeFile(dir / "b.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    std::string file = test::writeFile(dir / "job.json", R"({
+      "output": "out/{scene}_{camera}_{frame:03}_{settings}",
+      "scenes": ["a.obj", "b.obj"],
+      "args": ["-r", 32, 24],
+      "cameras": [
+        {"name": "orbit", "turntable": 8, "frames": [2, 5], "axis": [0, 0, 1]},
+        {"name": "front", "position": [0, 0, 5], "look_at": [0, 0, 0], "fov": 30},
+        {"name": "fly", "path": [{"position": [1, 0, 5]}, {"position": [2, 0, 5]}]}
+      ],
+      "settings": [{"name": "lo", "args": ["-s", 2]}, {"name": "hi", "args": ["-s", 16]}]
+    })");
+    std::vector<farm::RenderTask> tasks = farm::readJobFile(file);
+    ASSERT_EQ(tasks.size(), 2u * (3 + 1 + 2) * 2);
+    const farm::RenderTask& first = tasks[0];
+    EXPECT_EQ(first.scene, fs::absolute(dir / "a.obj").lexically_normal().string());
+    EXPECT_EQ(first.output, (dir / "out/a_orbit_002_lo").string());
+    EXPECT_TRUE(contains(first.args, {"-r", "32", "24"}));
+    EXPECT_TRUE(contains(first.args, {"--orbit-axis", "0", "0", "1"}));
+    EXPECT_TRUE(contains(first.args, {"--turntable", "8", "--frame", "2"}));
+    EXPECT_TRUE(contains(first.args, {"-s", "2"}));
+    EXPECT_EQ(tasks[5].output, (dir / "out/a_orbit_004_hi").string());
+    EXPECT_TRUE(contains(tasks[6].args,
+                         {"--position", "0", "0", "5", "--look-at", "0", "0", "0", "--fov", "30"}));
+    EXPECT_EQ(tasks[10].output, (dir / "out/a_fly_001_lo").string());
+    EXPECT_TRUE(contains(tasks[10].args, {"--position", "2", "0", "5"}));
+    EXPECT_EQ(tasks.back().output, (dir / "out/b_fly_001_hi").string());
+}
+
+TEST(JobFile, OutputVariables) {
+    farm::OutputVariables v{"bunny", "orbit", "final", 7, 12};
+    EXPECT_EQ(farm::expandOutputName("{scene}/{camera}.{frame:04}.{settings}.{index}", v),
+              "bunny/orbit.0007.final.12");
+    EXPECT_THROW(farm::expandOutputName("{scene}_{shot}", v), farm::FarmInputError);
+    EXPECT_THROW(farm::expandOutputName("{scene", v), farm::FarmInputError);
+}
+
+// Each malformed job file is refused with a message naming the file, before anything renders.
+TEST(JobFile, RefusesMalformedFiles) {
+    fs::path dir = test::scratchDir();
+    test::writeFile(dir / "a.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    const std::vector<std::pair<std::string, std::string>> bad{
+        {"{\"output\": \"x\", \"scenes\": [\"a.obj\"]", "not valid JSON"},
+        {R"({"output": "x", "scenes": ["a.obj"], "camras": []})", "unknown key 'camras'"},
+        {R"({"output": "x", "scenes": ["missing.obj"]})", "does not exist"},
+        {R"({"scenes": ["a.obj"]})", "needs 'output'"},
+        {R"({"output": "x", "scenes": []})", "non-empty array"},
+        {R"({"output": "x", "scenes": ["a.obj"], "cameras": [{"turntable": 4}]})",
+         "two renders write"},
+        {R"({"output": "x{frame}", "scenes": ["a.obj"], "cameras": [{"turntable": 0}]})",
+         "integer in 1.."},
+        {R"({"output": "x{frame}", "scenes": ["a.obj"], "cameras": [{"position": [1, 2]}]})",
+         "three numbers"},
+        {R"({"output": "x{take}", "scenes": ["a.obj"]})", "unknown variable"}};
+    for (const auto& [text, message] : bad) {
+        std::string file = test::writeFile(dir / "bad.json", text);
+        try {
+            farm::readJobFile(file);
+            ADD_FAILURE() << "accepted: " << text;
+        } catch (const farm::FarmInputError& e) {
+            EXPECT_NE(std::string(e.what()).find(file), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+        }
+    }
+    // Through the command: exit 2 and one line (one case is enough, the message is the same).
+    farm::CommandResult r = test::kiln({"batch", (dir / "bad.json").string()});
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+}
+
+TEST(Turntable, OrbitKeepsDistanceAndAim) {
+    Camera cam;
+    cam.position = Vec3(1, 2, 7);
+    Vec3 centre(1, 2, 2);
+    pointCamera(cam, cam.position, centre, Vec3(0, 1, 0));
+    Camera same = orbitCamera(cam, centre, Vec3(0, 1, 0), 8, 0);
+    EXPECT_EQ(same.position, cam.position);
+    EXPECT_EQ(same.forward, cam.forward);
+    // A quarter turn about +y (right-handed) takes +z to +x.
+    Camera quarter = orbitCamera(cam, centre, Vec3(0, 2, 0), 8, 2);
+    EXPECT_NEAR(quarter.position.x, 6.0f, 1e-5f);
+    EXPECT_NEAR(quarter.position.y, 2.0f, 1e-5f);
+    EXPECT_NEAR(quarter.position.z, 2.0f, 1e-5f);
+    for (int k = 0; k < 8; ++k) {
+        Camera c = orbitCamera(cam, centre, Vec3(0, 1, 0), 8, k);
+        EXPECT_NEAR(length(c.position - centre), 5.0f, 1e-5f);
+        Vec3 aim = normalize(centre - c.position);
+        EXPECT_NEAR(dot(aim, c.forward), 1.0f, 1e-6f) << k;
+        EXPECT_NEAR(dot(c.up, c.forward), 0.0f, 1e-6f) << k;
+    }
+    EXPECT_THROW(orbitCamera(cam, centre, Vec3(0, 1, 0), 8, 8), std::invalid_argument);
+    EXPECT_THROW(orbitCamera(cam, centre, Vec3(0, 0, 0), 8, 1), std::invalid_argument);
+    EXPECT_THROW(pointCamera(cam, centre, centre, Vec3(0, 1, 0)), std::invalid_argument);
+}
+
+// kiln render's camera options: frame 0 of a turntable is the framed camera bit for bit, other
+// frames and an override change the image, impossible cameras are refused with exit 2.
+TEST(CameraOptions, TurntableAndOverrideThroughKilnRender) {
+    fs::path dir = test::scratchDir();
+    std::string scene = test::cs184("sky/CBspheres_lambertian.dae");
+    auto render = [&](const std::string& name, std::vector<std::string> extra) {
+        std::vector<std::string> args{"render", scene, "-r", "16", "12",
+                                      "-s",     "2",   "-q", "-o", (dir / name).string()};
+        args.insert(args.end(), extra.begin(), extra.end());
+        return test::kiln(args);
+    };
+    ASSERT_EQ(render("plain", {}).exitCode, 0);
+    ASSERT_EQ(render("frame0", {"--turntable", "4", "--frame", "0"}).exitCode, 0);
+    ASSERT_EQ(render("frame1", {"--turntable", "4", "--frame", "1"}).exitCode, 0);
+    ASSERT_EQ(render("moved", {"--position", "0", "1", "4", "--fov", "60"}).exitCode, 0);
+    auto exr = [&](const std::string& name) { return (dir / (name + ".exr")).string(); };
+    EXPECT_EQ(test::exrDifference(exr("plain"), exr("frame0")), "");
+    EXPECT_NE(test::exrDifference(exr("plain"), exr("frame1")), "");
+    EXPECT_NE(test::exrDifference(exr("plain"), exr("moved")), "");
+    for (const auto& bad : std::vector<std::vector<std::string>>{
+             {"--frame", "1"},
+             {"--fov", "180"},
+             {"--orbit-axis", "0", "0", "0", "--turntable", "2", "--frame", "1"}}) {
+        farm::CommandResult r = render("bad", bad);
+        EXPECT_EQ(r.exitCode, 2) << bad[0] << ": " << r.output;
+        EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    }
+}
+
+// Waits on the checkpoint/resume branch (#16): renders pass --resume --checkpoint-every.
+// Two frames render; a second run skips both.
+TEST(Batch, SkipsCompleteOutputsAndReportsJson) {
+    fs::path dir = test::scratchDir();
+    std::string job = test::writeFile(dir / "job.json", R"({
+      "output": "out/{camera}_{frame}",
+      "scenes": [")" + test::cs184("sky/CBspheres_lambertian.dae") +
+                                                            R"("],
+      "args": ["-r", 16, 12, "-s", 2],
+      "cameras": [{"name": "orbit", "turntable": 2}]
+    })");
+    farm::CommandResult first = test::kiln({"batch", job, "--json", "-q"});
+    ASSERT_EQ(first.exitCode, 0) << first.output;
+    EXPECT_TRUE(fs::exists(dir / "out/orbit_0.exr"));
+    EXPECT_TRUE(fs::exists(dir / "out/orbit_1.png"));
+    farm::CommandResult second = test::kiln({"batch", job, "--json", "-q"});
+    ASSERT_EQ(second.exitCode, 0) << second.output;
+    auto json = nlohmann::json::parse(second.output.substr(second.output.find('{')));
+    EXPECT_EQ(json["counts"]["skipped"], 2);
+    EXPECT_EQ(json["counts"]["rendered"], 0);
+}
+
+// Waits on #16. Ctrl-C reaches the running render through kiln batch, which exits 130 with the
+// render's checkpoint on disk; the next kiln batch resumes it, and the image is the uninterrupted
+// render's bit for bit.
+TEST(Batch, InterruptedRenderResumesBitForBit) {
+    fs::path dir = test::scratchDir();
+    // Several seconds on one thread, so the interrupt lands mid-render, well after the first
+    // checkpoint; the thread count does not change the image, so the reference uses every core.
+    const std::vector<std::string> options{"-r", "32", "24", "-s", "6000"};
+    nlohmann::json args = options;
+    args.push_back("-t");
+    args.push_back("1");
+    std::string job = test::writeFile(
+        dir / "job.json", nlohmann::json{{"output", "resumed"},
+                                         {"scenes", {test::cs184("sky/CBspheres_lambertian.dae")}},
+                                         {"args", args}}
+                              .dump());
+    std::string program = KILN_BINARY;
+    std::vector<char*> argv{program.data(),
+                            const_cast<char*>("batch"),
+                            job.data(),
+                            const_cast<char*>("-q"),
+                            const_cast<char*>("--checkpoint-every"),
+                            const_cast<char*>("1"),
+                            nullptr};
+    pid_t pid = 0;
+    ASSERT_EQ(::posix_spawn(&pid, program.c_str(), nullptr, nullptr, argv.data(), environ), 0);
+    int status = 0;
+    bool exited = false;
+    auto until = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+    while (!fs::exists(dir / "resumed.ckpt") && std::chrono::steady_clock::now() < until &&
+           !(exited = ::waitpid(pid, &status, WNOHANG) == pid))
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    if (!exited) {
+        ::kill(pid, SIGINT);
+        ::waitpid(pid, &status, 0);
+    }
+    ASSERT_TRUE(WIFEXITED(status));
+    ASSERT_EQ(WEXITSTATUS(status), 130) << "the render finished before it could be interrupted";
+    farm::CommandResult again = test::kiln({"batch", job, "-q", "--json"});
+    ASSERT_EQ(again.exitCode, 0) << again.output;
+    EXPECT_NE(again.output.find("\"resumed\": 1"), std::string::npos) << again.output;
+    std::vector<std::string> one{"render", test::cs184("sky/CBspheres_lambertian.dae"), "-q", "-o",
+                                 (dir / "one").string()};
+    one.insert(one.end(), options.begin(), options.end());
+    ASSERT_EQ(test::kiln(one).exitCode, 0);
+    EXPECT_EQ(test::exrDifference((dir / "one.exr").string(), (dir / "resumed.exr").string()), "");
+}
+
+}  // namespace
+}  // namespace kiln

@@ -5,9 +5,18 @@
 #include "integrators/fresnel.h"
 #include "integrators/normals.h"
 #include "integrators/path.h"
+#include "integrators/surface_albedo.h"
 #include "renderer/geometry/interaction.h"
 
 namespace kiln {
+
+Integrator::Integrator(const Scene& scene, const Accelerator& accel, const AovRequest& aovs,
+                       float pixelSpread)
+    : scene_(scene),
+      accel_(accel),
+      aovs_(aovs),
+      pixelSpread_(pixelSpread),
+      colourVaries_(hasSurfaceColourVariation(scene)) {}
 
 void Integrator::recordSurface(const Ray& ray, const Hit& hit, const SurfaceInteraction& si,
                                SampleRecord& r) const {
@@ -15,7 +24,9 @@ void Integrator::recordSurface(const Ray& ray, const Hit& hit, const SurfaceInte
     if (aovs_.has(AovKind::Albedo)) {
         switch (m.kind) {
             case MaterialKind::Lambertian:
-                r.albedo = m.albedo;
+                r.albedo = colourVaries_
+                               ? albedoAt(scene_, m, hit, hit.t * length(ray.dir), pixelSpread_)
+                               : m.albedo;
                 break;
             case MaterialKind::Mirror:
             case MaterialKind::Glossy:

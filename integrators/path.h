@@ -44,6 +44,7 @@ struct PathOptions {
     int rouletteMinBounces = 3;       // throughput roulette starts after this many bounces
     bool accumulateBounces = true;    // false: only light that bounced exactly maxDepth times
     MicrofacetModel microfacet = MicrofacetModel::Beckmann;
+    float pixelSpread = 0;  // radians a camera pixel spans: the texture footprint (0: finest level)
 };
 
 struct SurfaceInteraction;

@@ -236,6 +236,8 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
     uint32_t materialBase = uint32_t(scene.materials.size());
     for (unsigned i = 0; i < as->mNumMaterials; ++i) {
         Material m = materialFromAssimp(as->mMaterials[i]);
+        aiColor3D diffuse;
+        bool statesColour = as->mMaterials[i]->Get(AI_MATKEY_COLOR_DIFFUSE, diffuse) == AI_SUCCESS;
         if (extras) {
             auto byId = extras->materialsById.find(m.name);
             if (byId == extras->materialsById.end()) {
@@ -243,8 +245,9 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
                 if (idOf != extras->materialIdByName.end())
                     byId = extras->materialsById.find(idOf->second);
             }
-            if (byId != extras->materialsById.end()) m = byId->second;
+            if (byId != extras->materialsById.end()) m = byId->second, statesColour = true;
         }
+        readAssimpTextures(as, as->mMaterials[i], path, statesColour, m, scene);
         scene.materials.push_back(m);
     }
     if (scene.materials.size() == materialBase) scene.materials.push_back(Material{"default"});

@@ -230,6 +230,7 @@ Scene loadScene(const std::string& path, const LoadOptions& options) {
                                  " triangles repeat another exactly; where they overlap the "
                                  "lowest-numbered one is shown");
 
+    openTextures(scene, options.textureCacheMb);
     addEmissiveMeshLights(scene);
     mergeAreaLightsWithEmitters(scene);
     bool hasLight = !scene.lights.empty();

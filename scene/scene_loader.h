@@ -14,6 +14,7 @@ struct LoadOptions {
     enum class CameraRule { Auto, File, Framed } cameraRule = CameraRule::Auto;
     std::string environmentMap;  // --env: adds a lat-long environment light
     float environmentScale = 1.0f;
+    float textureCacheMb = TextureSet::kDefaultCacheMb;  // --texture-cache-mb
 };
 
 // Throws SceneError (one line: file and problem) on anything it cannot load.
@@ -38,6 +39,10 @@ void addDefaultLightRig(Scene& scene);
 // Reads and checks an environment map (a clear SceneError before any rendering).
 std::shared_ptr<const RgbImage> loadEnvironmentMap(const std::string& path,
                                                    std::vector<std::string>& warnings);
+
+// Opens Scene::textureSources into Scene::textures (a cache of cacheMb); a texture that cannot be
+// read is a warning and its materials keep their plain colour.
+void openTextures(Scene& scene, float cacheMb);
 
 // Adds a light for every mesh whose material emits (sampled by area at render time).
 void addEmissiveMeshLights(Scene& scene);

@@ -20,13 +20,7 @@ Film render(const std::string& scenePath, const AovRequest& aovs, int maxDepth =
     return test::renderJob(s, *accel, test::jobOptions(48, 36, spp, opt, aovs));
 }
 
-size_t channel(const Film& f, const std::string& name) {
-    const auto& ch = f.layout().channels();
-    for (size_t i = 0; i < ch.size(); ++i)
-        if (ch[i].name == name) return i;
-    ADD_FAILURE() << "no channel " << name;
-    return 0;
-}
+size_t channel(const Film& f, const std::string& name) { return test::aovChannel(f, name); }
 
 Color layer(const Film& f, int x, int y, const std::string& name) {
     return Color(f.aov(x, y, channel(f, name + ".R")), f.aov(x, y, channel(f, name + ".G")),

@@ -4,6 +4,22 @@
 
 namespace kiln {
 
+namespace {
+
+void addTextureCacheOption(ArgParser& parser, LoadOptions& load) {
+    parser.option("texture-cache-mb", "", 1, "MB",
+                  "memory the texture cache may hold, in MiB (default 256): a scene with more "
+                  "texture data than this renders in fixed memory, re-reading tiles",
+                  [&load](const std::vector<std::string>& v) {
+                      double mb = ArgParser::toDouble("--texture-cache-mb", v[0]);
+                      if (!(mb >= 1 && mb <= 1048576))
+                          throw UsageError("--texture-cache-mb must be in [1, 1048576]");
+                      load.textureCacheMb = float(mb);
+                  });
+}
+
+}  // namespace
+
 void addLoadOptions(ArgParser& parser, LoadOptions& load) {
     parser.option("camera", "", 1, "file|framed",
                   "the file's camera as written, or the CS184 course framing (default: course "
@@ -16,6 +32,7 @@ void addLoadOptions(ArgParser& parser, LoadOptions& load) {
                   });
     parser.option("env", "e", 1, "MAP.exr", "add a lat-long environment light (CS184's -e)",
                   [&load](const std::vector<std::string>& v) { load.environmentMap = v[0]; });
+    addTextureCacheOption(parser, load);
 }
 
 void addOutputNameOptions(ArgParser& parser, std::string& output, PathOptions& path) {

@@ -296,6 +296,12 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
                 mesh.uvs.insert(mesh.uvs.end(),
                                 {am->mTextureCoords[0][v].x, am->mTextureCoords[0][v].y});
         }
+        if (am->HasVertexColors(0)) {  // glTF COLOR_0 and OBJ "v x y z r g b": linear
+            mesh.colors.reserve(3 * am->mNumVertices);
+            for (unsigned v = 0; v < am->mNumVertices; ++v)
+                mesh.colors.insert(mesh.colors.end(),
+                                   {am->mColors[0][v].r, am->mColors[0][v].g, am->mColors[0][v].b});
+        }
         mesh.indices.reserve(3 * am->mNumFaces);
         for (unsigned f = 0; f < am->mNumFaces; ++f) {
             const aiFace& face = am->mFaces[f];

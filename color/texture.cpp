@@ -5,6 +5,8 @@
 #include <OpenImageIO/imageio.h>
 #include <OpenImageIO/texture.h>
 
+#include <cstring>
+
 #include "color/image_input.h"
 
 namespace kiln {
@@ -35,6 +37,12 @@ class WorkingSpaceInput final : public OIIO::ImageInput {
         const OIIO::ParamValue* p = config.find_attribute(kSourceAttribute, OIIO::TypeDesc::PTR);
         if (!p) return false;
         source_ = *static_cast<TextureSource* const*>(p->data());
+        if (source_->pixels) {
+            m_spec = OIIO::ImageSpec(source_->pixels->width, source_->pixels->height, 3,
+                                     OIIO::TypeDesc::FLOAT);
+            spec = m_spec;
+            return true;
+        }
         inner_ = openTextureSource(*source_, proxy_);
         if (!inner_) return false;
         m_spec = inner_->spec();
@@ -49,6 +57,11 @@ class WorkingSpaceInput final : public OIIO::ImageInput {
         return true;
     }
     bool read_native_scanline(int, int, int y, int z, void* data) override {
+        if (source_->pixels) {
+            const RgbImage& image = *source_->pixels;
+            std::memcpy(data, &image.pixels[size_t(y) * image.width], size_t(image.width) * 12);
+            return true;
+        }
         // PNG and JPEG decode forwards only; an earlier row (the cache evicted it) starts over.
         if (y < nextRow_) {
             inner_.reset();  // before its proxy is replaced
@@ -105,15 +118,18 @@ TextureSet::TextureSet(float cacheMb) : impl_(std::make_unique<Impl>()), cacheMb
 TextureSet::~TextureSet() = default;
 
 int TextureSet::add(const TextureSource& source, std::string* note) {
-    std::unique_ptr<OIIO::Filesystem::IOMemReader> proxy;
-    auto in = openTextureSource(source, proxy);
-    if (!in) throw ImageReadError(source.name, "cannot read texture: " + OIIO::geterror());
-    bool asStored = !source.bytes && isMipMapped(*in);
-    if (asStored && note && source.encoding == TextureEncoding::Color && isSrgbEncoded(in->spec()))
-        *note =
-            "8-bit MIP-mapped texture used as stored (taken as linear; convert it with "
-            "maketx --colorconvert sRGB linear)";
-    in.reset();
+    bool asStored = false;
+    if (!source.pixels) {
+        std::unique_ptr<OIIO::Filesystem::IOMemReader> proxy;
+        auto in = openTextureSource(source, proxy);
+        if (!in) throw ImageReadError(source.name, "cannot read texture: " + OIIO::geterror());
+        asStored = !source.bytes && isMipMapped(*in);
+        if (asStored && note && source.encoding == TextureEncoding::Color &&
+            isSrgbEncoded(in->spec()))
+            *note =
+                "8-bit MIP-mapped texture used as stored (taken as linear; convert it with "
+                "maketx --colorconvert sRGB linear)";
+    }
     sources_.push_back(std::make_unique<TextureSource>(source));
     const TextureSource* stored = sources_.back().get();
     std::string key = source.name;
@@ -141,6 +157,16 @@ Color TextureSet::lookup(int id, float s, float t, float width) const {
     opt.fill = 0;
     impl_->system->texture(impl_->handles[size_t(id)], nullptr, opt, s, t, width, 0, 0, width, 3,
                            rgb);
+    return Color(rgb[0], rgb[1], rgb[2]);
+}
+
+Color TextureSet::lookupLatLong(int id, float s, float t) const {
+    OIIO::TextureOpt opt;
+    opt.swrap = OIIO::TextureOpt::WrapPeriodic;
+    opt.twrap = OIIO::TextureOpt::WrapClamp;
+    opt.interpmode = OIIO::TextureOpt::InterpBilinear;
+    float rgb[3] = {0, 0, 0};
+    impl_->system->texture(impl_->handles[size_t(id)], nullptr, opt, s, t, 0, 0, 0, 0, 3, rgb);
     return Color(rgb[0], rgb[1], rgb[2]);
 }
 

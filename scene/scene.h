@@ -50,6 +50,8 @@ struct Light {
     std::string environmentPath;  // lat-long EXR/HDR, as named
     std::shared_ptr<const RgbImage> environmentImage;  // its pixels in the working space
     float environmentScale = 1.0f;
+    float environmentRotationDeg = 0.0f;  // about the up (+Y) axis, counterclockwise from above
+    int environmentTexture = -1;          // Scene::textureSources index of its pixels
 };
 
 struct Camera {

@@ -12,8 +12,9 @@ struct LoadOptions {
     // Camera rule: Auto frames CS184-library COLLADA (Z-up, as every course file is) by the course
     // rule and uses the file camera elsewhere; File and Framed force one or the other.
     enum class CameraRule { Auto, File, Framed } cameraRule = CameraRule::Auto;
-    std::string environmentMap;  // --env: adds a lat-long environment light
-    float environmentScale = 1.0f;
+    std::string environmentMap;                          // --env: adds a lat-long environment light
+    float environmentScale = 1.0f;                       // --env-strength
+    float environmentRotationDeg = 0.0f;                 // --env-rotate, about the up axis
     float textureCacheMb = TextureSet::kDefaultCacheMb;  // --texture-cache-mb
 };
 

@@ -21,6 +21,8 @@ void openTextures(Scene& scene, float cacheMb) {
     }
     for (Material& m : scene.materials)
         if (m.albedoTexture >= 0) m.albedoTexture = idOf[size_t(m.albedoTexture)];
+    for (Light& l : scene.lights)
+        if (l.environmentTexture >= 0) l.environmentTexture = idOf[size_t(l.environmentTexture)];
     scene.textures = std::move(set);
 }
 

@@ -223,7 +223,7 @@ TEST(ColourManagement, EnvironmentMapsAreConvertedOnLoad) {
             float sat = std::max({p[0], p[1], p[2]}) - std::min({p[0], p[1], p[2]});
             if (sat > best) best = sat, x = px, y = py;
         }
-    Vec3 dir = EnvironmentMap::direction((x + 0.5f) / w, (y + 0.5f) / h);
+    Vec3 dir = EnvironmentMap{}.direction((x + 0.5f) / w, (y + 0.5f) / h);
     Color loaded = lights.escaped(0, dir, true);
     Color file(raw[(size_t(y) * w + x) * 3], raw[(size_t(y) * w + x) * 3 + 1],
                raw[(size_t(y) * w + x) * 3 + 2]);

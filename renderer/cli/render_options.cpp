@@ -18,6 +18,24 @@ void addTextureCacheOption(ArgParser& parser, LoadOptions& load) {
                   });
 }
 
+void addEnvironmentOptions(ArgParser& parser, LoadOptions& load) {
+    parser.option("env-rotate", "", 1, "DEG",
+                  "turn the environment map about the up axis, counterclockwise seen from above",
+                  [&load](const std::vector<std::string>& v) {
+                      double deg = ArgParser::toDouble("--env-rotate", v[0]);
+                      if (!(std::abs(deg) <= 36000))
+                          throw UsageError("--env-rotate must be in [-36000, 36000] degrees");
+                      load.environmentRotationDeg = float(std::fmod(deg, 360.0));
+                  });
+    parser.option("env-strength", "", 1, "X", "multiply the environment map's radiance by X",
+                  [&load](const std::vector<std::string>& v) {
+                      double x = ArgParser::toDouble("--env-strength", v[0]);
+                      if (!(x >= 0 && x <= 1e6))
+                          throw UsageError("--env-strength must be in [0, 1e6]");
+                      load.environmentScale = float(x);
+                  });
+}
+
 }  // namespace
 
 void addLoadOptions(ArgParser& parser, LoadOptions& load) {
@@ -33,6 +51,7 @@ void addLoadOptions(ArgParser& parser, LoadOptions& load) {
     parser.option("env", "e", 1, "MAP.exr", "add a lat-long environment light (CS184's -e)",
                   [&load](const std::vector<std::string>& v) { load.environmentMap = v[0]; });
     addTextureCacheOption(parser, load);
+    addEnvironmentOptions(parser, load);
 }
 
 void addOutputNameOptions(ArgParser& parser, std::string& output, PathOptions& path) {

@@ -248,6 +248,8 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
             if (byId != extras->materialsById.end()) m = byId->second, statesColour = true;
         }
         readAssimpTextures(as, as->mMaterials[i], path, statesColour, m, scene);
+        // COLLADA materials follow the CGL rules (docs/import.md), which say what they keep.
+        if (!extras) warnDroppedMaterialFeatures(as->mMaterials[i], m, scene);
         scene.materials.push_back(m);
     }
     if (scene.materials.size() == materialBase) scene.materials.push_back(Material{"default"});

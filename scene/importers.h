@@ -22,6 +22,10 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
 void readAssimpTextures(const aiScene* as, const aiMaterial* am, const std::string& assetPath,
                         bool statesColour, Material& m, Scene& scene);
 
+// A warning for each feature of an Assimp material that kiln's rendering of it drops (metal, gloss,
+// opacity, transmission, clearcoat, specular colour, an emissive colour turning it into a light).
+void warnDroppedMaterialFeatures(const aiMaterial* am, const Material& m, Scene& scene);
+
 // The file name's extension, lower case, with its dot ("" when it has none).
 std::string lowerExtension(const std::string& path);
 

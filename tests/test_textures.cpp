@@ -192,3 +192,32 @@ TEST(Textures, SlotsKilnIgnoresAreWarnings) {
 
 }  // namespace
 }  // namespace kiln
+
+namespace kiln {
+namespace {
+
+int warningsNaming(const Scene& s, const std::string& what) {
+    int n = 0;
+    for (const std::string& w : s.warnings) n += w.find(what) != std::string::npos;
+    return n;
+}
+
+// Assimp's phong_cube.fbx: an emissive, half-transparent Phong material with a specular colour;
+// kiln renders it as an emitter, opaque, without highlight, and says so for each.
+TEST(MaterialWarnings, FeaturesKilnDropsAreNamed) {
+    Scene s = loadScene("/usr/share/assimp/models/FBX/phong_cube.fbx");
+    EXPECT_EQ(warningsNaming(s, "opacity 0.5 ignored"), 1);
+    EXPECT_EQ(warningsNaming(s, "specular colour dropped"), 1);
+    EXPECT_EQ(warningsNaming(s, "emissive colour makes the whole material a light"), 1);
+    Scene box = loadScene("/usr/share/assimp/models/glTF2/BoxTextured-glTF-Binary/BoxTextured.glb");
+    EXPECT_EQ(warningsNaming(box, "metallic 1 rendered as a diffuse"), 1);
+}
+
+// The CS184 files follow the CGL rules: no material warnings there.
+TEST(MaterialWarnings, Cs184ScenesGetNone) {
+    Scene s = loadScene(test::cs184("sky/CBspheres_lambertian.dae"));
+    EXPECT_EQ(warningsNaming(s, "material"), 0);
+}
+
+}  // namespace
+}  // namespace kiln

@@ -1,10 +1,12 @@
-// Texture slots of Assimp materials: the base colour becomes a texture source of the scene (a file
-// relative to the asset, or an image embedded in it: glTF "*N" references, data URIs, .glb
-// buffers); every other slot kiln cannot honour yet is named in a warning.
+// What kiln takes from an Assimp material beyond its colours: the base-colour texture becomes a
+// texture source of the scene (a file relative to the asset, or an image embedded in it: glTF "*N"
+// references, data URIs, .glb buffers); every other texture slot and every shading feature kiln
+// cannot honour yet (metal, gloss, opacity, transmission, clearcoat, ...) is named in a warning.
 #include <assimp/material.h>
 #include <assimp/scene.h>
 
 #include <filesystem>
+#include <sstream>
 
 #include "scene/importers.h"
 
@@ -34,7 +36,15 @@ constexpr std::pair<aiTextureType, const char*> kIgnoredSlots[] = {
     {aiTextureType_UNKNOWN, "texture of unknown use (glTF metallic-roughness)"},
 };
 
-std::string materialLabel(const Material& m) { return "material '" + m.name + "'"; }
+std::string materialLabel(const Material& m) {
+    return m.name.empty() ? "an unnamed material" : "material '" + m.name + "'";
+}
+
+std::string number(float v) {
+    std::ostringstream os;
+    os << v;
+    return os.str();
+}
 
 // The source an Assimp texture path names, or a reason it cannot be used.
 bool sourceFor(const aiScene* as, const std::string& assetPath, const std::string& ref,
@@ -106,6 +116,32 @@ void readBaseColour(const aiScene* as, const aiMaterial* am, const std::string& 
 }
 
 }  // namespace
+
+void warnDroppedMaterialFeatures(const aiMaterial* am, const Material& m, Scene& scene) {
+    auto factor = [&](const char* key, unsigned type, unsigned index, float& out) {
+        return am->Get(key, type, index, out) == AI_SUCCESS;
+    };
+    auto warn = [&](const std::string& what) {
+        scene.warnings.push_back(materialLabel(m) + ": " + what);
+    };
+    float metallic = 0, roughness = 1, opacity = 1, transmission = 0, clearcoat = 0;
+    if (factor(AI_MATKEY_METALLIC_FACTOR, metallic) && metallic > 0)
+        warn("metallic " + number(metallic) + " rendered as a diffuse (Lambert) surface");
+    if (factor(AI_MATKEY_ROUGHNESS_FACTOR, roughness) && roughness < 1)
+        warn("roughness " + number(roughness) + ": its glossy reflection is dropped");
+    if (factor(AI_MATKEY_OPACITY, opacity) && opacity < 1)
+        warn("opacity " + number(opacity) + " ignored: rendered opaque");
+    if (factor(AI_MATKEY_TRANSMISSION_FACTOR, transmission) && transmission > 0)
+        warn("transmission ignored: rendered opaque");
+    if (factor(AI_MATKEY_CLEARCOAT_FACTOR, clearcoat) && clearcoat > 0) warn("clearcoat ignored");
+    aiColor3D specular;
+    if (am->Get(AI_MATKEY_COLOR_SPECULAR, specular) == AI_SUCCESS &&
+        (specular.r > 0 || specular.g > 0 || specular.b > 0) &&
+        !factor(AI_MATKEY_METALLIC_FACTOR, metallic))
+        warn("specular colour dropped (Lambert)");
+    if (m.kind == MaterialKind::Emission)
+        warn("emissive colour makes the whole material a light; its surface colour is dropped");
+}
 
 void readAssimpTextures(const aiScene* as, const aiMaterial* am, const std::string& assetPath,
                         bool statesColour, Material& m, Scene& scene) {

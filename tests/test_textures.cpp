@@ -1,6 +1,7 @@
 // Base-colour textures through OIIO's TextureSystem, on files the tests write: texels land where
 // their UVs say, decoded from sRGB; a minified checker filters to its linear mean; embedded glTF
 // textures render; what the importer cannot use is a warning.
+#include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 
 #include <functional>
@@ -13,6 +14,12 @@
 
 namespace kiln {
 namespace {
+
+int warningsNaming(const Scene& s, const std::string& what) {
+    int n = 0;
+    for (const std::string& w : s.warnings) n += w.find(what) != std::string::npos;
+    return n;
+}
 
 using TexelFn = std::function<uint8_t(int x, int y, int c)>;
 
@@ -128,6 +135,38 @@ TEST(Textures, MinifiedCheckerFiltersToItsLinearMean) {
     EXPECT_GE(checked, 16);
 }
 
+// The same checker converted ahead (maketx's job, here OIIO's make_texture to a tiled MIP-mapped
+// float file): used as stored, it filters to the same mean, and no note says it was 8-bit.
+TEST(Textures, MipMappedFilesAreUsedAsStored) {
+    auto dir = test::scratchDir();
+    std::vector<float> texels(256 * 256 * 3);
+    for (int y = 0; y < 256; ++y)
+        for (int x = 0; x < 256; ++x)
+            for (int c = 0; c < 3; ++c) texels[(size_t(y) * 256 + x) * 3 + c] = float((x + y) % 2);
+    OIIO::ImageBuf src(OIIO::ImageSpec(256, 256, 3, OIIO::TypeDesc::FLOAT), texels.data());
+    OIIO::ImageSpec config;
+    config.tile_width = config.tile_height = 64;
+    ASSERT_TRUE(OIIO::ImageBufAlgo::make_texture(OIIO::ImageBufAlgo::MakeTxTexture, src,
+                                                 (dir / "checker.tx").string(), config));
+    Scene s = loadScene(writeTexturedQuad(dir, "checker.tx"));
+    ASSERT_EQ(s.textureSources.size(), 1u);
+    EXPECT_EQ(warningsNaming(s, "texture"), 0);
+    Film f = renderAlbedo(s, 16, 16, 4);
+    int checked = 0;
+    forEachQuadPixel(f, [&](int x, int y, float, float) {
+        EXPECT_NEAR(layer(f, x, y, "albedo", "RGB").x, 0.5f, 0.03f) << "pixel " << x << "," << y;
+        ++checked;
+    });
+    EXPECT_GE(checked, 16);
+    // An 8-bit one is used as stored too, and the note says its codes are taken as linear.
+    OIIO::ImageBuf codes(OIIO::ImageSpec(4, 4, 3, OIIO::TypeDesc::UINT8));
+    OIIO::ImageBufAlgo::fill(codes, {0.5f, 0.5f, 0.5f});
+    ASSERT_TRUE(OIIO::ImageBufAlgo::make_texture(OIIO::ImageBufAlgo::MakeTxTexture, codes,
+                                                 (dir / "codes.tx").string(), config));
+    Scene eight = loadScene(writeTexturedQuad(dir, "codes.tx"));
+    EXPECT_EQ(warningsNaming(eight, "8-bit MIP-mapped texture used as stored"), 1);
+}
+
 // Fraction of pixels whose albedo is dominated by channel c (the Cesium logo: blue sky, green
 // hills).
 float dominatedBy(const Film& f, int c) {
@@ -195,12 +234,6 @@ TEST(Textures, SlotsKilnIgnoresAreWarnings) {
 
 namespace kiln {
 namespace {
-
-int warningsNaming(const Scene& s, const std::string& what) {
-    int n = 0;
-    for (const std::string& w : s.warnings) n += w.find(what) != std::string::npos;
-    return n;
-}
 
 // Assimp's phong_cube.fbx: an emissive, half-transparent Phong material with a specular colour;
 // kiln renders it as an emitter, opaque, without highlight, and says so for each.

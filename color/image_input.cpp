@@ -18,10 +18,6 @@ std::unique_ptr<OIIO::ImageInput> openImage(const std::string& path) {
     return in;
 }
 
-float srgbDecode(float v) {
-    return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
-}
-
 Mat3 toWorkingMatrix(const OIIO::ImageSpec& spec) {
     Mat3 identity = {{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
     const OIIO::ParamValue* chroma =
@@ -40,6 +36,15 @@ Color transform(const Mat3& m, const Color& c) {
 
 }  // namespace
 
+float srgbToLinear(float v) {
+    return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
+}
+
+bool isSrgbEncoded(const OIIO::ImageSpec& spec) {
+    return spec.format.basetype == OIIO::TypeDesc::UINT8 ||
+           OIIO::Strutil::iequals(spec.get_string_attribute("oiio:ColorSpace"), "sRGB");
+}
+
 ImageHeader readImageHeader(const std::string& path) {
     auto in = openImage(path);
     const OIIO::ImageSpec& spec = in->spec();
@@ -55,15 +60,14 @@ RgbImage readWorkingSpaceImage(const std::string& path) {
     if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, data.data()))
         throw ImageReadError(path, "cannot read image: " + in->geterror());
     Mat3 toWorking = toWorkingMatrix(spec);
-    bool srgbEncoded = spec.format.basetype == OIIO::TypeDesc::UINT8 ||
-                       OIIO::Strutil::iequals(spec.get_string_attribute("oiio:ColorSpace"), "sRGB");
+    bool srgbEncoded = isSrgbEncoded(spec);
     RgbImage image;
     image.width = spec.width, image.height = spec.height;
     image.pixels.resize(size_t(spec.width) * spec.height);
     for (size_t i = 0; i < image.pixels.size(); ++i) {
         const float* p = &data[i * size_t(spec.nchannels)];
         Color c(p[0], p[1], p[2]);
-        if (srgbEncoded) c = Color(srgbDecode(c.x), srgbDecode(c.y), srgbDecode(c.z));
+        if (srgbEncoded) c = Color(srgbToLinear(c.x), srgbToLinear(c.y), srgbToLinear(c.z));
         image.pixels[i] = transform(toWorking, c);
     }
     return image;

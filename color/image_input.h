@@ -2,11 +2,17 @@
 // The only place outside image_output that opens image files.
 #pragma once
 
+#include <OpenImageIO/oiioversion.h>
+
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "renderer/core/math.h"
+
+OIIO_NAMESPACE_BEGIN
+class ImageSpec;
+OIIO_NAMESPACE_END
 
 namespace kiln {
 
@@ -26,6 +32,12 @@ struct ImageReadError : std::runtime_error {
         : std::runtime_error(file + ": " + reason), reason(reason) {}
     std::string reason;
 };
+
+// The sRGB transfer function, decoded: the one place for that formula.
+float srgbToLinear(float encoded);
+
+// Whether an image's texels are sRGB-encoded: 8-bit, or stated sRGB (PNG, JPEG); else linear.
+bool isSrgbEncoded(const OIIO::ImageSpec& spec);
 
 // Throws ImageReadError when the file cannot be opened.
 ImageHeader readImageHeader(const std::string& path);

@@ -17,7 +17,8 @@ float phongPdf(const Vec3& r, const Vec3& wi, float n) {
 
 }  // namespace
 
-Bsdf::Bsdf(const Material& material, MicrofacetModel model) : m_(material) {
+Bsdf::Bsdf(const Material& material, MicrofacetModel model, const Color& albedo)
+    : m_(material), albedo_(albedo) {
     micro_.model = model;
     micro_.alpha = std::max(1e-4f, material.alpha);
     delta_ = material.kind == MaterialKind::Mirror || material.kind == MaterialKind::Glass ||
@@ -31,7 +32,7 @@ bool Bsdf::hasTransmission() const {
 Color Bsdf::eval(const Vec3& wo, const Vec3& wi) const {
     switch (m_.kind) {
         case MaterialKind::Lambertian:
-            return sameHemisphere(wo, wi) ? m_.albedo * kInvPi : Color(0.0f);
+            return sameHemisphere(wo, wi) ? albedo_ * kInvPi : Color(0.0f);
         case MaterialKind::Microfacet: {
             if (!sameHemisphere(wo, wi)) return Color(0.0f);
             Vec3 o = wo.z < 0 ? -wo : wo,

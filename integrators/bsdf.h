@@ -19,7 +19,10 @@ struct BsdfSample {
 
 class Bsdf {
   public:
-    explicit Bsdf(const Material& material, MicrofacetModel model = MicrofacetModel::Beckmann);
+    explicit Bsdf(const Material& material, MicrofacetModel model = MicrofacetModel::Beckmann)
+        : Bsdf(material, model, material.albedo) {}
+    // albedo: the Lambertian colour at this point (textures, vertex colours: surface_albedo.h).
+    Bsdf(const Material& material, MicrofacetModel model, const Color& albedo);
     bool isDelta() const { return delta_; }
     bool isBlack() const { return m_.kind == MaterialKind::Emission; }
     bool hasTransmission() const;
@@ -31,6 +34,7 @@ class Bsdf {
 
   private:
     const Material& m_;
+    Color albedo_;
     Microfacet micro_;
     bool delta_;
 };

@@ -5,12 +5,19 @@
 #include "integrators/fresnel.h"
 #include "integrators/normals.h"
 #include "integrators/path.h"
+#include "integrators/surface_albedo.h"
 #include "renderer/geometry/interaction.h"
 
 namespace kiln {
 
-Integrator::Integrator(const Scene& scene, const Accelerator& accel, const AovRequest& aovs)
-    : scene_(scene), accel_(accel), aovs_(aovs), cameraForward_(normalize(scene.camera.forward)) {
+Integrator::Integrator(const Scene& scene, const Accelerator& accel, const AovRequest& aovs,
+                       float pixelSpread)
+    : scene_(scene),
+      accel_(accel),
+      aovs_(aovs),
+      pixelSpread_(pixelSpread),
+      colourVaries_(hasSurfaceColourVariation(scene)),
+      cameraForward_(normalize(scene.camera.forward)) {
     if (aovs.has(AovKind::CryptoObject) || aovs.has(AovKind::CryptoMaterial))
         cryptoIds_ = CryptoIds(scene);
 }
@@ -21,7 +28,9 @@ void Integrator::recordSurface(const Ray& ray, const Hit& hit, const SurfaceInte
     if (aovs_.has(AovKind::Albedo)) {
         switch (m.kind) {
             case MaterialKind::Lambertian:
-                r.albedo = m.albedo;
+                r.albedo = colourVaries_
+                               ? albedoAt(scene_, m, hit, hit.t * length(ray.dir), pixelSpread_)
+                               : m.albedo;
                 break;
             case MaterialKind::Mirror:
             case MaterialKind::Glossy:

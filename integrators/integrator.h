@@ -28,7 +28,9 @@ struct CameraSample {
 class Integrator {
   public:
     // aovs: what every camera sample records beside the beauty (fixed for the integrator's life).
-    Integrator(const Scene& scene, const Accelerator& accel, const AovRequest& aovs = {});
+    // pixelSpread: radians a camera pixel spans (texture footprints; 0: the finest texels).
+    Integrator(const Scene& scene, const Accelerator& accel, const AovRequest& aovs = {},
+               float pixelSpread = 0);
     virtual ~Integrator() = default;
     // Radiance along a camera ray into record.L, and the AOVs requested at construction.
     virtual void Li(const Ray& ray, Sampler& sampler, RayCounter& counter,
@@ -55,6 +57,8 @@ class Integrator {
     const Scene& scene_;
     const Accelerator& accel_;
     const AovRequest aovs_;
+    const float pixelSpread_;
+    const bool colourVaries_;  // textures or vertex colours: albedo is looked up per hit
 
   private:
     Vec3 cameraForward_;

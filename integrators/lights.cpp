@@ -18,9 +18,32 @@ float spotFalloff(const Light& l, const Vec3& wFromLight) {
     return t * t * (3 - 2 * t);  // smoothstep
 }
 
-EnvironmentMap loadEnvironment(const Light& l) {
+// Importance of each texel for sampling. A bilinear lookup blends a texel with its neighbours (up
+// to one texel away), so each weight is the largest of its 3 x 3 neighbourhood (longitude wraps):
+// every direction the lookup lights has a nonzero pdf, as light-only sampling needs.
+std::vector<float> samplingWeights(const EnvironmentMap& env) {
+    const int w = env.width, h = env.height;
+    std::vector<float> own(env.pixels.size()), weight(env.pixels.size());
+    for (size_t i = 0; i < own.size(); ++i) own[i] = maxComponent(env.pixels[i]);
+    for (int y = 0; y < h; ++y) {
+        float sinTheta = std::sin(kPi * (float(y) + 0.5f) / float(h));
+        for (int x = 0; x < w; ++x) {
+            float m = 0;
+            for (int dy = std::max(0, y - 1); dy <= std::min(h - 1, y + 1); ++dy)
+                for (int dx = -1; dx <= 1; ++dx)
+                    m = std::max(m, own[size_t(dy) * w + size_t((x + dx + w) % w)]);
+            weight[size_t(y) * w + x] = (env.texture >= 0 ? m : own[size_t(y) * w + x]) * sinTheta;
+        }
+    }
+    return weight;
+}
+
+EnvironmentMap loadEnvironment(const Light& l, const Scene& scene) {
     EnvironmentMap env;
     env.scale = l.environmentScale;
+    env.rotation = l.environmentRotationDeg * kPi / 180.0f;
+    if (l.environmentTexture >= 0 && scene.textures)
+        env.textures = scene.textures.get(), env.texture = l.environmentTexture;
     if (!l.environmentImage) {
         env.constant = l.radiance;
         return env;
@@ -28,19 +51,12 @@ EnvironmentMap loadEnvironment(const Light& l) {
     const RgbImage& image = *l.environmentImage;
     env.width = image.width, env.height = image.height;
     env.pixels.resize(size_t(env.width) * env.height);
-    std::vector<float> weight(env.pixels.size());
-    for (int y = 0; y < env.height; ++y) {
-        float sinTheta = std::sin(kPi * (float(y) + 0.5f) / float(env.height));
-        for (int x = 0; x < env.width; ++x) {
-            size_t i = size_t(y) * env.width + x;
-            Color c = image.pixels[i] * env.scale;
-            if (!isFinite(c)) c = Color(0.0f);
-            c = max(c, Color(0.0f));
-            env.pixels[i] = c;
-            weight[i] = maxComponent(c) * sinTheta;
-        }
+    for (size_t i = 0; i < env.pixels.size(); ++i) {
+        Color c = image.pixels[i] * env.scale;
+        if (!isFinite(c)) c = Color(0.0f);
+        env.pixels[i] = max(c, Color(0.0f));
     }
-    env.distribution = Distribution2D(weight, size_t(env.width), size_t(env.height));
+    env.distribution = Distribution2D(samplingWeights(env), size_t(env.width), size_t(env.height));
     return env;
 }
 
@@ -78,14 +94,18 @@ void LightSet::findParallelogram(Entry& e) {
     e.originError = deviation;  // how far a sampled point may lie from the real triangles
 }
 
-Vec3 EnvironmentMap::direction(float u, float v) {
-    float phi = (u - 0.5f) * 2 * kPi, theta = v * kPi;
+Vec3 EnvironmentMap::direction(float u, float v) const {
+    float phi = (u - 0.5f) * 2 * kPi - rotation, theta = v * kPi;  // phi runs clockwise
     float s = std::sin(theta);
     return {s * std::sin(phi), std::cos(theta), -s * std::cos(phi)};
 }
 
-void EnvironmentMap::coordinates(const Vec3& d, float& u, float& v) {
+void EnvironmentMap::coordinates(const Vec3& d, float& u, float& v) const {
     u = 0.5f + std::atan2(d.x, -d.z) / (2 * kPi);
+    if (rotation != 0) {
+        u += rotation / (2 * kPi);
+        u -= std::floor(u);
+    }
     v = std::acos(std::clamp(d.y, -1.0f, 1.0f)) / kPi;
     u = std::clamp(u, 0.0f, 1.0f - 1e-7f);
     v = std::clamp(v, 0.0f, 1.0f - 1e-7f);
@@ -95,6 +115,7 @@ Color EnvironmentMap::lookup(const Vec3& dir) const {
     if (pixels.empty()) return constant;
     float u, v;
     coordinates(dir, u, v);
+    if (texture >= 0) return max(textures->lookupLatLong(texture, u, v) * scale, Color(0.0f));
     int x = std::min(width - 1, int(u * float(width))),
         y = std::min(height - 1, int(v * float(height)));
     return pixels[size_t(y) * width + x];
@@ -137,7 +158,7 @@ LightSet::LightSet(const Scene& scene) {
             e.oneSided = l.kind == LightKind::Area;
             e.side = normalize(l.direction);
         } else if (l.kind == LightKind::Environment) {
-            e.env = loadEnvironment(l);
+            e.env = loadEnvironment(l, scene);
             infinite_.push_back(lights_.size());
         } else if (l.kind == LightKind::Ambient) {
             infinite_.push_back(lights_.size());
@@ -285,7 +306,7 @@ bool LightSet::sample(size_t i, const Vec3& ref, float u1, float u2, LightSample
             e.env.distribution.sample(u1, u2, u, v, pdfUV);
             float sinTheta = std::sin(v * kPi);
             if (pdfUV == 0 || sinTheta == 0) return false;
-            out.wi = EnvironmentMap::direction(u, v);
+            out.wi = e.env.direction(u, v);
             out.pdf = pdfUV / (2 * kPi * kPi * sinTheta);
             out.Li = e.env.lookup(out.wi);
             return maxComponent(out.Li) > 0;
@@ -308,7 +329,7 @@ float LightSet::pdf(size_t i, const Vec3& ref, const Vec3& wi, const Vec3& x, co
         case LightKind::Environment: {
             if (e.env.pixels.empty()) return uniformSpherePdf();
             float u, v;
-            EnvironmentMap::coordinates(wi, u, v);
+            e.env.coordinates(wi, u, v);
             float sinTheta = std::sin(v * kPi);
             return sinTheta > 0 ? e.env.distribution.pdf(u, v) / (2 * kPi * kPi * sinTheta) : 0.0f;
         }

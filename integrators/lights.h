@@ -19,16 +19,20 @@ struct LightSample {
     bool infinite = false;  // shadow ray has no end point
 };
 
-// A lat-long environment map in memory, with its importance-sampling distribution.
+// A lat-long environment map, looked up bilinearly through the scene's TextureSet (nearest texel
+// in memory for scenes built without the loader), with its importance-sampling distribution.
 struct EnvironmentMap {
     int width = 0, height = 0;
     std::vector<Color> pixels;
     Color constant{0.0f};  // used when there is no image (uniform environment)
     Distribution2D distribution;
     float scale = 1;
+    float rotation = 0;  // radians about +Y (right-handed: counterclockwise seen from above)
+    const TextureSet* textures = nullptr;
+    int texture = -1;
     Color lookup(const Vec3& dir) const;
-    static Vec3 direction(float u, float v);  // (u, v) in [0,1)^2 -> unit direction
-    static void coordinates(const Vec3& dir, float& u, float& v);
+    Vec3 direction(float u, float v) const;  // (u, v) in [0,1)^2 -> unit direction
+    void coordinates(const Vec3& dir, float& u, float& v) const;
 };
 
 class LightSet {

@@ -2,13 +2,17 @@
 
 #include <type_traits>
 
+#include "integrators/surface_albedo.h"
 #include "renderer/geometry/interaction.h"
 
 namespace kiln {
 
 PathIntegrator::PathIntegrator(const Scene& scene, const Accelerator& accel,
                                const PathOptions& options, const RenderPlan& plan)
-    : Integrator(scene, accel, plan.aovs), trace_(pathFor(plan)), opt_(options), lights_(scene) {
+    : Integrator(scene, accel, plan.aovs, options.pixelSpread),
+      trace_(pathFor(plan)),
+      opt_(options),
+      lights_(scene) {
     opt_.lightSamples = std::max(1, opt_.lightSamples);
     // Up to 64 delta lights, as the course does; beyond that (a many-light scene) a shadow ray per
     // light per vertex would swamp the render, and -l picks by power instead.
@@ -67,8 +71,8 @@ Lobe lobeOf(MaterialKind kind, bool transmission) {
 // all.
 class LambertBsdf {
   public:
-    LambertBsdf(const Material& m, MicrofacetModel)
-        : albedo_(m.albedo), black_(m.kind == MaterialKind::Emission) {}
+    LambertBsdf(const Material& m, MicrofacetModel, const Color& albedo)
+        : albedo_(albedo), black_(m.kind == MaterialKind::Emission) {}
     bool isDelta() const { return false; }
     bool isBlack() const { return black_; }
     bool hasTransmission() const { return false; }
@@ -146,6 +150,7 @@ struct PathState {
     float prevPdf = 0;
     Vec3 prevP;
     Lobe firstLobe = Lobe::Diffuse;  // how the path left its first vertex (for the lobe AOVs)
+    float travelled = 0;             // path length so far: the texture footprint grows with it
 };
 
 // A next-event estimate waiting for its shadow ray: added to its path's record if unoccluded.
@@ -272,7 +277,12 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
                     st.firstLobe);
             }
             if (bounce >= opt_.maxDepth) continue;
-            std::conditional_t<DiffuseOnly, LambertBsdf, Bsdf> bsdf(mat, opt_.microfacet);
+            Color albedo = mat.albedo;
+            if (colourVaries_) {
+                st.travelled += hit.t * length(ray.dir);
+                albedo = albedoAt(scene_, mat, hit, st.travelled, opt_.pixelSpread);
+            }
+            std::conditional_t<DiffuseOnly, LambertBsdf, Bsdf> bsdf(mat, opt_.microfacet, albedo);
             if (bsdf.isBlack()) continue;
             // A shading normal bent so far that the viewer is below its tangent plane would make
             // the surface black: shade such a vertex with the geometric normal instead (on the

@@ -47,6 +47,7 @@ struct PathOptions {
     // rays and -H probes only, and lights nothing after a bounce.
     bool unsampledEmittersLight = true;
     MicrofacetModel microfacet = MicrofacetModel::Beckmann;
+    float pixelSpread = 0;  // radians a camera pixel spans: the texture footprint (0: finest level)
 };
 
 struct SurfaceInteraction;

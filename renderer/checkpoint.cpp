@@ -209,6 +209,7 @@ Fingerprint checkpointFingerprint(const RenderJob& job, const std::string& scene
         {"environment_map",
          load.environmentMap.empty() ? "none" : fileIdentity(load.environmentMap)},
         {"environment_scale", number(load.environmentScale)},
+        {"environment_rotation", number(load.environmentRotationDeg)},
         {"camera", vec(c.position) + " / " + vec(c.forward) + " / " + vec(c.up) + " / fov " +
                        number(c.hFovDeg) + " " + number(c.vFovDeg) + " / lens " +
                        number(c.apertureRadius) + " " + number(c.focalDistance)},

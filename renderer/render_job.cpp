@@ -7,20 +7,34 @@
 #include "renderer/geometry/camera.h"
 
 namespace kiln {
+namespace {
+
+// The path options with the camera's pixel spread for this image (texture footprints).
+PathOptions withPixelSpread(const Scene& scene, const RenderJobOptions& options) {
+    PathOptions path = options.path;
+    const RenderSettings& s = options.settings;
+    CameraModel camera(scene.camera, s.width, s.height);
+    path.pixelSpread = camera.vFovDeg() * kPi / 180.0f / float(std::max(1, s.height));
+    return path;
+}
+
+}  // namespace
 
 RenderJob::RenderJob(const Scene& scene, const Accelerator& accel, const RenderJobOptions& options)
     : scene_(scene),
       accel_(accel),
       options_(options),
       plan_(planFor(scene, accel, options.aovs, options.plan)),
-      integrator_(makeIntegrator(options.integrator, scene, accel, options.path, plan_)) {}
+      integrator_(makeIntegrator(options.integrator, scene, accel, withPixelSpread(scene, options),
+                                 plan_)) {}
 
 RenderJob::RenderJob(const RenderJob& job, const Accelerator& accel)
     : scene_(job.scene_),
       accel_(accel),
       options_(job.options_),
       plan_(job.plan_),
-      integrator_(makeIntegrator(options_.integrator, scene_, accel, options_.path, plan_)) {}
+      integrator_(makeIntegrator(options_.integrator, scene_, accel,
+                                 withPixelSpread(scene_, options_), plan_)) {}
 
 Film RenderJob::makeFilm() const {
     const RenderSettings& s = options_.settings;

@@ -267,6 +267,8 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
     uint32_t materialBase = uint32_t(scene.materials.size());
     for (unsigned i = 0; i < as->mNumMaterials; ++i) {
         Material m = materialFromAssimp(as->mMaterials[i]);
+        aiColor3D diffuse;
+        bool statesColour = as->mMaterials[i]->Get(AI_MATKEY_COLOR_DIFFUSE, diffuse) == AI_SUCCESS;
         if (extras) {
             auto byId = extras->materialsById.find(m.name);
             if (byId == extras->materialsById.end()) {
@@ -274,8 +276,11 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
                 if (idOf != extras->materialIdByName.end())
                     byId = extras->materialsById.find(idOf->second);
             }
-            if (byId != extras->materialsById.end()) m = byId->second;
+            if (byId != extras->materialsById.end()) m = byId->second, statesColour = true;
         }
+        readAssimpTextures(as, as->mMaterials[i], path, statesColour, m, scene);
+        // COLLADA materials follow the CGL rules (docs/import.md), which say what they keep.
+        if (!extras) warnDroppedMaterialFeatures(as->mMaterials[i], m, scene);
         scene.materials.push_back(m);
     }
     if (scene.materials.size() == materialBase) scene.materials.push_back(Material{"default"});
@@ -323,6 +328,12 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
             for (unsigned v = 0; v < am->mNumVertices; ++v)
                 mesh.uvs.insert(mesh.uvs.end(),
                                 {am->mTextureCoords[0][v].x, am->mTextureCoords[0][v].y});
+        }
+        if (am->HasVertexColors(0)) {  // glTF COLOR_0 and OBJ "v x y z r g b": linear
+            mesh.colors.reserve(3 * am->mNumVertices);
+            for (unsigned v = 0; v < am->mNumVertices; ++v)
+                mesh.colors.insert(mesh.colors.end(),
+                                   {am->mColors[0][v].r, am->mColors[0][v].g, am->mColors[0][v].b});
         }
         mesh.indices.reserve(3 * am->mNumFaces);
         for (unsigned f = 0; f < am->mNumFaces; ++f) {

@@ -21,7 +21,10 @@ std::shared_ptr<const RgbImage> loadEnvironmentMap(const std::string& path,
                            std::to_string(header.height) +
                            ", not the 2:1 of a lat-long map; it is used as lat-long anyway");
     try {
-        return std::make_shared<const RgbImage>(readWorkingSpaceImage(path));
+        RgbImage image = readWorkingSpaceImage(path);
+        // Filtered lookups blend neighbours: a NaN, infinite or negative texel would spread.
+        for (Color& c : image.pixels) c = isFinite(c) ? max(c, Color(0.0f)) : Color(0.0f);
+        return std::make_shared<const RgbImage>(std::move(image));
     } catch (const ImageReadError& e) {
         throw SceneError(path, "cannot read environment map: " + e.reason);
     }

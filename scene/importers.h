@@ -7,11 +7,24 @@
 #include "scene/cgl_extras.h"
 #include "scene/scene.h"
 
+struct aiScene;
+struct aiMaterial;
+
 namespace kiln {
 
 // Any format Assimp reads. With extras (COLLADA), materials, lights, spheres and the camera come
 // from the CGL pass and the course's up-axis convention replaces Assimp's.
 void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scene& scene);
+
+// An Assimp material's base-colour texture as a source of the scene (Material::albedoTexture; the
+// albedo becomes 1 unless the file states a colour, which then multiplies it), and a warning for
+// every texture slot kiln ignores.
+void readAssimpTextures(const aiScene* as, const aiMaterial* am, const std::string& assetPath,
+                        bool statesColour, Material& m, Scene& scene);
+
+// A warning for each feature of an Assimp material that kiln's rendering of it drops (metal, gloss,
+// opacity, transmission, clearcoat, specular colour, an emissive colour turning it into a light).
+void warnDroppedMaterialFeatures(const aiMaterial* am, const Material& m, Scene& scene);
 
 // The file name's extension, lower case, with its dot ("" when it has none).
 std::string lowerExtension(const std::string& path);

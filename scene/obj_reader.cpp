@@ -135,14 +135,16 @@ void countChunk(Chunk& c) {
 class ChunkParser {
   public:
     ChunkParser(const std::string& path, Chunk& c, TriangleMesh& mesh, uint64_t totalPositions,
-                bool useNormals, bool useUvs, const Vec3d& origin = Vec3d(0.0))
+                bool useNormals, bool useUvs, const Vec3d& origin = Vec3d(0.0),
+                bool useColours = false)
         : path_(path),
           c_(c),
           mesh_(mesh),
           origin_(origin),
           totalPositions_(totalPositions),
           useNormals_(useNormals),
-          useUvs_(useUvs) {}
+          useUvs_(useUvs),
+          useColours_(useColours) {}
 
     // False when a corner's normal or uv index differs from its position index.
     bool parse() {
@@ -154,7 +156,8 @@ class ChunkParser {
             switch (st) {
                 case Statement::Position: {
                     double xyz[3];
-                    readNumbers(p, end, xyz, 3, 3);
+                    const char* rest = readNumbers(p, end, xyz, 3, 3);
+                    if (useColours_) readColour(rest, end, &mesh_.colors[3 * positions]);
                     // Parsed in double, stored in float relative to the origin (far coordinates).
                     float* out = &mesh_.positions[3 * positions++];
                     for (int k = 0; k < 3; ++k) out[k] = float(xyz[k] - origin_[k]);
@@ -205,9 +208,14 @@ class ChunkParser {
         throw SceneError(path_, "line " + std::to_string(c_.lineBase + c_.lines + 1) + ": " + what);
     }
 
+    // Out of line: inlined into readNumbers, GCC 12 reports a false -Wrestrict on the message.
+    [[noreturn, gnu::noinline]] void failNotANumber(const char* p, const char* e) const {
+        fail("'" + std::string(p, size_t(e - p)) + "' is not a number");
+    }
+
     // `want` numbers, of which the first `need` must be present (vt may omit v).
     template <typename T>
-    void readNumbers(const char* p, const char* end, T* out, int need, int want) {
+    const char* readNumbers(const char* p, const char* end, T* out, int need, int want) {
         for (int i = 0; i < want; ++i) {
             p = skipBlanks(p, end);
             if (p >= end) {
@@ -217,10 +225,19 @@ class ChunkParser {
             }
             const char* e = tokenEnd(p, end);
             auto [next, ec] = std::from_chars(p, e, out[i]);
-            if (ec != std::errc() || next != e)
-                fail("'" + std::string(p, size_t(e - p)) + "' is not a number");
+            if (ec != std::errc() || next != e) failNotANumber(p, e);
             p = e;
         }
+        return p;
+    }
+
+    // "v x y z r g b": the colour after the position, linear as written; a vertex without one is
+    // white (MeshLab and ZBrush write it on every vertex or none).
+    void readColour(const char* p, const char* end, float* rgb) {
+        if (skipBlanks(p, end) >= end)
+            rgb[0] = rgb[1] = rgb[2] = 1.0f;
+        else
+            readNumbers(p, end, rgb, 3, 3);
     }
 
     // A 1-based (or negative, relative to `defined`) OBJ index into a 0-based one.
@@ -242,12 +259,13 @@ class ChunkParser {
     TriangleMesh& mesh_;
     Vec3d origin_;
     uint64_t totalPositions_;
-    bool useNormals_, useUvs_;
+    bool useNormals_, useUvs_, useColours_;
 };
 
 // The first 'v' statement of the file in double: far meshes are stored relative to it
-// (streamOrigin). Garbled numbers read as 0 here; the parse pass reports them.
-Vec3d firstPosition(const std::vector<Chunk>& chunks) {
+// (streamOrigin). Garbled numbers read as 0 here; the parse pass reports them. hasColour: the
+// statement has six numbers (x y z r g b), so the file has vertex colours.
+Vec3d firstPosition(const std::vector<Chunk>& chunks, bool& hasColour) {
     for (const Chunk& c : chunks) {
         if (c.positions == 0) continue;
         Chunk copy = c;
@@ -262,6 +280,9 @@ Vec3d firstPosition(const std::vector<Chunk>& chunks) {
                 std::from_chars(p, e, first[k]);
                 p = e;
             }
+            int more = 0;
+            for (p = skipBlanks(p, end); p < end; p = skipBlanks(tokenEnd(p, end), end)) ++more;
+            hasColour = more == 3;
         });
         return first;
     }
@@ -301,6 +322,7 @@ bool splitIntoGroups(const TriangleMesh& all,
         m.positions.reserve(m.positions.size() + 1);
         if (!all.normals.empty()) m.normals = slice(all.normals, 3);
         if (!all.uvs.empty()) m.uvs = slice(all.uvs, 2);
+        if (!all.colors.empty()) m.colors = slice(all.colors, 3);
         m.indices.assign(all.indices.begin() + long(3 * t0), all.indices.begin() + long(3 * t1));
         for (uint32_t& i : m.indices) i -= lo[g];
     });
@@ -360,9 +382,12 @@ bool readObj(const std::string& path, Scene& scene) {
     if (useNormals) mesh.normals.resize(3 * total.positions);
     if (useUvs) mesh.uvs.resize(2 * total.positions);
     std::atomic<bool> sameIndices{true};
-    Vec3d origin = streamOrigin(firstPosition(chunks));
+    bool useColours = false;
+    Vec3d origin = streamOrigin(firstPosition(chunks, useColours));
+    if (useColours) mesh.colors.resize(3 * total.positions);
     tbb::parallel_for(size_t(0), chunks.size(), [&](size_t i) {
-        ChunkParser parser(path, chunks[i], mesh, total.positions, useNormals, useUvs, origin);
+        ChunkParser parser(path, chunks[i], mesh, total.positions, useNormals, useUvs, origin,
+                           useColours);
         if (!parser.parse()) sameIndices = false;
     });
     if (!sameIndices) return false;

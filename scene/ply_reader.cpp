@@ -52,6 +52,22 @@ size_t typeSize(PlyType t) {
     }
 }
 
+// A colour component in the working space: integers are display codes (sRGB-encoded, as 8-bit
+// images are), floats linear as written.
+float vertexColour(double value, PlyType type) {
+    switch (type) {
+        case PlyType::UInt8:
+            return srgbToLinear(float(value / 255.0));
+        case PlyType::UInt16:
+            return srgbToLinear(float(value / 65535.0));
+        case PlyType::Float32:
+        case PlyType::Float64:
+            return float(value);
+        default:
+            return srgbToLinear(std::clamp(float(value / 255.0), 0.0f, 1.0f));
+    }
+}
+
 struct Property {
     std::string name;
     PlyType type = PlyType::Invalid;
@@ -282,6 +298,7 @@ void readPly(const std::string& path, Scene& scene) {
         if (e.name == "vertex") {
             vertexCount = e.count;
             int ix = -1, iy = -1, iz = -1, inx = -1, iny = -1, inz = -1, iu = -1, iv = -1;
+            int ir = -1, ig = -1, ib = -1;
             for (size_t i = 0; i < e.props.size(); ++i) {
                 const std::string& n = e.props[i].name;
                 if (n == "x")
@@ -300,16 +317,24 @@ void readPly(const std::string& path, Scene& scene) {
                     iu = int(i);
                 else if (n == "v" || n == "t" || n == "texture_v")
                     iv = int(i);
+                else if (n == "red" || n == "diffuse_red")
+                    ir = int(i);
+                else if (n == "green" || n == "diffuse_green")
+                    ig = int(i);
+                else if (n == "blue" || n == "diffuse_blue")
+                    ib = int(i);
             }
             if (ix < 0 || iy < 0 || iz < 0)
                 throw SceneError(path, "PLY vertex element lacks x, y or z");
             bool normals = inx >= 0 && iny >= 0 && inz >= 0, uvs = iu >= 0 && iv >= 0;
+            bool colours = ir >= 0 && ig >= 0 && ib >= 0;
             if (e.count > (file.size() / (format == Format::Ascii ? 6 : 12)) + 1)
                 throw SceneError(path, "PLY header declares " + std::to_string(e.count) +
                                            " vertices, more than the file can hold");
             mesh.positions.resize(3 * e.count + 1);
             if (normals) mesh.normals.resize(3 * e.count);
             if (uvs) mesh.uvs.resize(2 * e.count);
+            if (colours) mesh.colors.resize(3 * e.count);
             // Fast path, the common binary layout: little-endian float x y z and nothing else.
             bool packedXyz = format == Format::BinaryLE &&
                              std::endian::native == std::endian::little && e.props.size() == 3 &&
@@ -343,6 +368,11 @@ void readPly(const std::string& path, Scene& scene) {
                 if (uvs) {
                     mesh.uvs[2 * v] = float(row[iu]);
                     mesh.uvs[2 * v + 1] = float(row[iv]);
+                }
+                if (colours) {
+                    mesh.colors[3 * v] = vertexColour(row[ir], e.props[size_t(ir)].type);
+                    mesh.colors[3 * v + 1] = vertexColour(row[ig], e.props[size_t(ig)].type);
+                    mesh.colors[3 * v + 2] = vertexColour(row[ib], e.props[size_t(ib)].type);
                 }
             }
         } else if (e.name == "face" || e.name == "tristrips") {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "color/image_input.h"
+#include "color/texture.h"
 #include "renderer/core/math.h"
 
 namespace kiln {
@@ -28,6 +29,7 @@ struct Material {
     Color k{0.0f};              // microfacet conductor absorption per channel
     float shininess = 50.0f;    // glossy (Phong exponent)
     Color emission{0.0f};       // radiance emitted (Emission materials)
+    int albedoTexture = -1;     // Scene::textureSources index: multiplies albedo (Lambertian)
 };
 
 enum class LightKind { Area, MeshEmitter, Point, Spot, Directional, Ambient, Environment };
@@ -48,6 +50,8 @@ struct Light {
     std::string environmentPath;  // lat-long EXR/HDR, as named
     std::shared_ptr<const RgbImage> environmentImage;  // its pixels in the working space
     float environmentScale = 1.0f;
+    float environmentRotationDeg = 0.0f;  // about the up (+Y) axis, counterclockwise from above
+    int environmentTexture = -1;          // Scene::textureSources index of its pixels
 };
 
 struct Camera {
@@ -74,6 +78,7 @@ struct TriangleMesh {
     std::vector<uint32_t> indices;      // 3 per triangle
     std::vector<float> normals;         // optional, xyz per vertex
     std::vector<float> uvs;             // optional, uv per vertex
+    std::vector<float> colors;          // optional, linear rgb per vertex: multiplies the albedo
     std::vector<uint32_t> materialIds;  // one per triangle, or one for the whole mesh
 
     size_t vertexCount() const { return positions.size() / 3; }
@@ -112,6 +117,9 @@ struct Scene {
     std::vector<Instance> instances;
     std::vector<Material> materials;
     std::vector<Light> lights;
+    std::vector<TextureSource> textureSources;  // what importers found; Material::albedoTexture
+    // The sources opened for rendering (scene_loader), ids as in textureSources.
+    std::shared_ptr<const TextureSet> textures;
     Camera camera;
     bool hasFileCamera = false;
     bool isCs184 =

@@ -245,9 +245,14 @@ Scene loadScene(const std::string& path, const LoadOptions& options) {
         env.kind = LightKind::Environment;
         env.environmentPath = options.environmentMap;
         env.environmentScale = options.environmentScale;
+        env.environmentRotationDeg = options.environmentRotationDeg;
         env.radiance = Color(options.environmentScale);
+        env.environmentTexture = int(scene.textureSources.size());
+        scene.textureSources.push_back(TextureSource{
+            options.environmentMap, nullptr, env.environmentImage, "", TextureEncoding::Color});
         scene.lights.push_back(env);
     }
+    openTextures(scene, options.textureCacheMb);
     if (!hasLight && options.environmentMap.empty()) {
         // Bare meshes expect the default rig; a scene file that forgot its lights gets a warning.
         if (ext == ".dae" || ext == ".gltf" || ext == ".glb" || ext == ".fbx")

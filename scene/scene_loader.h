@@ -16,7 +16,9 @@ struct LoadOptions {
     // false (--emitters camera, the CS184 program): emissive meshes that are not an area light's
     // quad are no lights; the path tracer then shows them to camera rays only (PathOptions).
     bool emissiveMeshLights = true;
-    float environmentScale = 1.0f;
+    float environmentScale = 1.0f;                       // --env-strength
+    float environmentRotationDeg = 0.0f;                 // --env-rotate, about the up axis
+    float textureCacheMb = TextureSet::kDefaultCacheMb;  // --texture-cache-mb
 };
 
 // Throws SceneError (one line: file and problem) on anything it cannot load.
@@ -41,6 +43,10 @@ void addDefaultLightRig(Scene& scene);
 // Reads and checks an environment map (a clear SceneError before any rendering).
 std::shared_ptr<const RgbImage> loadEnvironmentMap(const std::string& path,
                                                    std::vector<std::string>& warnings);
+
+// Opens Scene::textureSources into Scene::textures (a cache of cacheMb); a texture that cannot be
+// read is a warning and its materials keep their plain colour.
+void openTextures(Scene& scene, float cacheMb);
 
 // Adds a light for every mesh whose material emits (sampled by area at render time).
 void addEmissiveMeshLights(Scene& scene);

@@ -20,13 +20,7 @@ Film render(const std::string& scenePath, const AovRequest& aovs, int maxDepth =
     return test::renderJob(s, *accel, test::jobOptions(48, 36, spp, opt, aovs));
 }
 
-size_t channel(const Film& f, const std::string& name) {
-    const auto& ch = f.layout().channels();
-    for (size_t i = 0; i < ch.size(); ++i)
-        if (ch[i].name == name) return i;
-    ADD_FAILURE() << "no channel " << name;
-    return 0;
-}
+size_t channel(const Film& f, const std::string& name) { return test::aovChannel(f, name); }
 
 Color layer(const Film& f, int x, int y, const std::string& name) {
     return Color(f.aov(x, y, channel(f, name + ".R")), f.aov(x, y, channel(f, name + ".G")),
@@ -232,7 +226,7 @@ TEST(ColourManagement, EnvironmentMapsAreConvertedOnLoad) {
             float sat = std::max({p[0], p[1], p[2]}) - std::min({p[0], p[1], p[2]});
             if (sat > best) best = sat, x = px, y = py;
         }
-    Vec3 dir = EnvironmentMap::direction((x + 0.5f) / w, (y + 0.5f) / h);
+    Vec3 dir = EnvironmentMap{}.direction((x + 0.5f) / w, (y + 0.5f) / h);
     Color loaded = lights.escaped(0, dir, true);
     Color file(raw[(size_t(y) * w + x) * 3], raw[(size_t(y) * w + x) * 3 + 1],
                raw[(size_t(y) * w + x) * 3 + 2]);

@@ -63,6 +63,15 @@ inline Film renderJob(const Scene& s, const Accelerator& accel, const RenderJobO
     return film;
 }
 
+// The index of an AOV channel ("albedo.R", "P.X") in the film's layout.
+inline size_t aovChannel(const Film& f, const std::string& name) {
+    const auto& ch = f.layout().channels();
+    for (size_t i = 0; i < ch.size(); ++i)
+        if (ch[i].name == name) return i;
+    ADD_FAILURE() << "no channel " << name;
+    return 0;
+}
+
 inline std::string writeFile(const std::filesystem::path& path, const std::string& text) {
     std::ofstream(path, std::ios::binary) << text;
     return path.string();

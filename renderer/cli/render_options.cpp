@@ -4,6 +4,40 @@
 
 namespace kiln {
 
+namespace {
+
+void addTextureCacheOption(ArgParser& parser, LoadOptions& load) {
+    parser.option("texture-cache-mb", "", 1, "MB",
+                  "memory the texture cache may hold, in MiB (default 256): a scene with more "
+                  "texture data than this renders in fixed memory, re-reading tiles",
+                  [&load](const std::vector<std::string>& v) {
+                      double mb = ArgParser::toDouble("--texture-cache-mb", v[0]);
+                      if (!(mb >= 1 && mb <= 1048576))
+                          throw UsageError("--texture-cache-mb must be in [1, 1048576]");
+                      load.textureCacheMb = float(mb);
+                  });
+}
+
+void addEnvironmentOptions(ArgParser& parser, LoadOptions& load) {
+    parser.option("env-rotate", "", 1, "DEG",
+                  "turn the environment map about the up axis, counterclockwise seen from above",
+                  [&load](const std::vector<std::string>& v) {
+                      double deg = ArgParser::toDouble("--env-rotate", v[0]);
+                      if (!(std::abs(deg) <= 36000))
+                          throw UsageError("--env-rotate must be in [-36000, 36000] degrees");
+                      load.environmentRotationDeg = float(std::fmod(deg, 360.0));
+                  });
+    parser.option("env-strength", "", 1, "X", "multiply the environment map's radiance by X",
+                  [&load](const std::vector<std::string>& v) {
+                      double x = ArgParser::toDouble("--env-strength", v[0]);
+                      if (!(x >= 0 && x <= 1e6))
+                          throw UsageError("--env-strength must be in [0, 1e6]");
+                      load.environmentScale = float(x);
+                  });
+}
+
+}  // namespace
+
 void addLoadOptions(ArgParser& parser, LoadOptions& load) {
     parser.option("camera", "", 1, "file|framed",
                   "the file's camera as written, or the CS184 course framing (default: course "
@@ -16,6 +50,8 @@ void addLoadOptions(ArgParser& parser, LoadOptions& load) {
                   });
     parser.option("env", "e", 1, "MAP.exr", "add a lat-long environment light (CS184's -e)",
                   [&load](const std::vector<std::string>& v) { load.environmentMap = v[0]; });
+    addTextureCacheOption(parser, load);
+    addEnvironmentOptions(parser, load);
 }
 
 void addOutputNameOptions(ArgParser& parser, std::string& output, PathOptions& path) {

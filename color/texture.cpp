@@ -1,0 +1,173 @@
+#include "color/texture.h"
+
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imagecache.h>
+#include <OpenImageIO/imageio.h>
+#include <OpenImageIO/texture.h>
+
+#include <cstring>
+
+#include "color/image_input.h"
+
+namespace kiln {
+namespace {
+
+// The config attribute through which the cache hands a source to the input that decodes it.
+constexpr const char* kSourceAttribute = "kiln:source";
+
+// Opens the file, or the bytes in memory through a proxy that must outlive the input.
+std::unique_ptr<OIIO::ImageInput> openTextureSource(
+    const TextureSource& source, std::unique_ptr<OIIO::Filesystem::IOMemReader>& proxy) {
+    if (!source.bytes) return OIIO::ImageInput::open(source.name);
+    proxy =
+        std::make_unique<OIIO::Filesystem::IOMemReader>(source.bytes->data(), source.bytes->size());
+    return OIIO::ImageInput::open("embedded." + source.formatHint, nullptr, proxy.get());
+}
+
+// Presents an image (a file or bytes in memory) to the ImageCache as float scanlines in the
+// working space, so automip filters linear values: filtering sRGB-encoded texels and decoding
+// afterwards would darken every minified texture (a black/white checker's mean is 0.5, not 0.21).
+class WorkingSpaceInput final : public OIIO::ImageInput {
+  public:
+    const char* format_name() const override { return "kiln-working-space"; }
+    bool open(const std::string& name, OIIO::ImageSpec& spec) override {
+        return open(name, spec, OIIO::ImageSpec());
+    }
+    bool open(const std::string&, OIIO::ImageSpec& spec, const OIIO::ImageSpec& config) override {
+        const OIIO::ParamValue* p = config.find_attribute(kSourceAttribute, OIIO::TypeDesc::PTR);
+        if (!p) return false;
+        source_ = *static_cast<TextureSource* const*>(p->data());
+        if (source_->pixels) {
+            m_spec = OIIO::ImageSpec(source_->pixels->width, source_->pixels->height, 3,
+                                     OIIO::TypeDesc::FLOAT);
+            spec = m_spec;
+            return true;
+        }
+        inner_ = openTextureSource(*source_, proxy_);
+        if (!inner_) return false;
+        m_spec = inner_->spec();
+        decode_ = source_->encoding == TextureEncoding::Color && isSrgbEncoded(m_spec);
+        m_spec.set_format(OIIO::TypeDesc::FLOAT);
+        m_spec.tile_width = m_spec.tile_height = m_spec.tile_depth = 0;
+        spec = m_spec;
+        return true;
+    }
+    bool close() override {
+        inner_.reset();
+        return true;
+    }
+    bool read_native_scanline(int, int, int y, int z, void* data) override {
+        if (source_->pixels) {
+            const RgbImage& image = *source_->pixels;
+            std::memcpy(data, &image.pixels[size_t(y) * image.width], size_t(image.width) * 12);
+            return true;
+        }
+        // PNG and JPEG decode forwards only; an earlier row (the cache evicted it) starts over.
+        if (y < nextRow_) {
+            inner_.reset();  // before its proxy is replaced
+            inner_ = openTextureSource(*source_, proxy_);
+            if (!inner_) return false;
+        }
+        nextRow_ = y + 1;
+        int nch = m_spec.nchannels;
+        if (!inner_->read_scanlines(0, 0, y, y + 1, z, 0, nch, OIIO::TypeDesc::FLOAT, data))
+            return false;
+        if (!decode_) return true;
+        auto* v = static_cast<float*>(data);
+        int colourChannels = std::min(nch, 3);  // alpha stays linear
+        for (int x = 0; x < m_spec.width; ++x)
+            for (int c = 0; c < colourChannels; ++c) v[x * nch + c] = srgbToLinear(v[x * nch + c]);
+        return true;
+    }
+
+  private:
+    std::unique_ptr<OIIO::ImageInput> inner_;
+    std::unique_ptr<OIIO::Filesystem::IOMemReader> proxy_;
+    const TextureSource* source_ = nullptr;
+    int nextRow_ = 0;
+    bool decode_ = false;
+};
+
+OIIO::ImageInput* createWorkingSpaceInput() { return new WorkingSpaceInput; }
+
+bool isMipMapped(OIIO::ImageInput& in) {
+    if (in.spec().tile_width == 0) return false;
+    OIIO::ImageSpec level1;
+    return in.seek_subimage(0, 1, level1);
+}
+
+}  // namespace
+
+struct TextureSet::Impl {
+    OIIO::TextureSystem* system = nullptr;
+    std::vector<OIIO::TextureSystem::TextureHandle*> handles;
+    ~Impl() {
+        if (system) OIIO::TextureSystem::destroy(system, true);
+    }
+};
+
+TextureSet::TextureSet(float cacheMb) : impl_(std::make_unique<Impl>()), cacheMb_(cacheMb) {
+    // A private system: its cache limit and files belong to this scene alone.
+    impl_->system = OIIO::TextureSystem::create(false);
+    impl_->system->attribute("max_memory_MB", cacheMb);
+    impl_->system->attribute("automip", 1);
+    impl_->system->attribute("autotile", 64);
+    impl_->system->attribute("accept_untiled", 1);
+}
+
+TextureSet::~TextureSet() = default;
+
+int TextureSet::add(const TextureSource& source, std::string* note) {
+    bool asStored = false;
+    if (!source.pixels) {
+        std::unique_ptr<OIIO::Filesystem::IOMemReader> proxy;
+        auto in = openTextureSource(source, proxy);
+        if (!in) throw ImageReadError(source.name, "cannot read texture: " + OIIO::geterror());
+        asStored = !source.bytes && isMipMapped(*in);
+        if (asStored && note && source.encoding == TextureEncoding::Color &&
+            isSrgbEncoded(in->spec()))
+            *note =
+                "8-bit MIP-mapped texture used as stored (taken as linear; convert it with "
+                "maketx --colorconvert sRGB linear)";
+    }
+    sources_.push_back(std::make_unique<TextureSource>(source));
+    const TextureSource* stored = sources_.back().get();
+    std::string key = source.name;
+    if (!asStored) {
+        // A name of its own per source and encoding: the cache keys files by name.
+        key = "kiln-texture:" + std::to_string(sources_.size()) + ":" + source.name;
+        OIIO::ImageSpec config;
+        config.attribute(kSourceAttribute, OIIO::TypeDesc::PTR, &stored);
+        impl_->system->imagecache()->add_file(OIIO::ustring(key), createWorkingSpaceInput, &config);
+    }
+    auto* handle = impl_->system->get_texture_handle(OIIO::ustring(key));
+    OIIO::ImageSpec spec;
+    if (!handle || !impl_->system->get_imagespec(handle, nullptr, 0, spec)) {
+        sources_.pop_back();
+        throw ImageReadError(source.name, "cannot read texture: " + impl_->system->geterror());
+    }
+    impl_->handles.push_back(handle);
+    return int(impl_->handles.size()) - 1;
+}
+
+Color TextureSet::lookup(int id, float s, float t, float width) const {
+    OIIO::TextureOpt opt;
+    opt.swrap = opt.twrap = OIIO::TextureOpt::WrapPeriodic;
+    float rgb[3] = {0, 0, 0};
+    opt.fill = 0;
+    impl_->system->texture(impl_->handles[size_t(id)], nullptr, opt, s, t, width, 0, 0, width, 3,
+                           rgb);
+    return Color(rgb[0], rgb[1], rgb[2]);
+}
+
+Color TextureSet::lookupLatLong(int id, float s, float t) const {
+    OIIO::TextureOpt opt;
+    opt.swrap = OIIO::TextureOpt::WrapPeriodic;
+    opt.twrap = OIIO::TextureOpt::WrapClamp;
+    opt.interpmode = OIIO::TextureOpt::InterpBilinear;
+    float rgb[3] = {0, 0, 0};
+    impl_->system->texture(impl_->handles[size_t(id)], nullptr, opt, s, t, 0, 0, 0, 0, 3, rgb);
+    return Color(rgb[0], rgb[1], rgb[2]);
+}
+
+}  // namespace kiln

@@ -1,0 +1,58 @@
+// Textures through OpenImageIO's TextureSystem: one per scene, its tile cache bounded in memory,
+// MIP-mapped filtered lookups. Plain images (JPEG, PNG, EXR, embedded glTF bytes) are MIP-mapped
+// on the fly (automip) after their texels are decoded to the working space; tiled MIP-mapped files
+// (maketx output) are read as they are stored.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "color/image_input.h"
+#include "renderer/core/math.h"
+
+namespace kiln {
+
+// Colour maps are decoded to the working space (sRGB-encoded texels to linear); data maps are raw.
+enum class TextureEncoding { Color, Data };
+
+// Where a texture's bytes come from: a file, bytes held in memory (an embedded glTF image) with
+// the image format's usual extension as a hint ("png", "jpg"), or pixels already decoded to the
+// working space (an environment map, whose importance sampling needs them in memory anyway).
+struct TextureSource {
+    std::string name;  // the path, or a label for embedded bytes (messages name it)
+    std::shared_ptr<const std::vector<unsigned char>> bytes;  // null: read the file `name`
+    std::shared_ptr<const RgbImage> pixels;                   // set: use these, linear
+    std::string formatHint;
+    TextureEncoding encoding = TextureEncoding::Color;
+};
+
+class TextureSet {
+  public:
+    static constexpr float kDefaultCacheMb = 256.0f;
+    explicit TextureSet(float cacheMb = kDefaultCacheMb);
+    ~TextureSet();
+    TextureSet(const TextureSet&) = delete;
+    TextureSet& operator=(const TextureSet&) = delete;
+
+    // Opens the image (header only) and returns its id; throws ImageReadError when it cannot be
+    // read. A tiled MIP-mapped 8-bit colour file is used as stored: `note` then says so.
+    int add(const TextureSource& source, std::string* note = nullptr);
+    size_t size() const { return sources_.size(); }
+    float cacheMb() const { return cacheMb_; }
+
+    // The filtered RGB at (s, t) (s right, t down, 1 = the image width/height, wrapping), over a
+    // square footprint `width` wide in the same units (0: the finest level, bilinear).
+    Color lookup(int id, float s, float t, float width) const;
+    // Bilinear between texel centres of the finest level, s wrapping and t clamped: a lat-long
+    // environment map (s = longitude, t = polar angle, both in [0, 1]).
+    Color lookupLatLong(int id, float s, float t) const;
+
+  private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+    std::vector<std::unique_ptr<TextureSource>> sources_;  // stable: the cache reads through them
+    float cacheMb_;
+};
+
+}  // namespace kiln

@@ -1,0 +1,20 @@
+// The diffuse colour a surface has where a ray hit it: the material's albedo times its base-colour
+// texture (a filtered lookup at the hit's UV) and the mesh's vertex colours. Without either it is
+// the material's albedo, unchanged.
+#pragma once
+
+#include "renderer/core/ray.h"
+#include "scene/scene.h"
+
+namespace kiln {
+
+// Whether any material has a texture or any mesh vertex colours (else albedoAt is plain albedo).
+bool hasSurfaceColourVariation(const Scene& scene);
+
+// Footprint rule (docs/import.md): without ray differentials, a lookup covers the width a pixel
+// spans at the distance the path has travelled (travelled * pixelSpread, in scene units), mapped to
+// texture space by the triangle's UV-to-surface scale, sqrt(UV area / area).
+Color albedoAt(const Scene& scene, const Material& material, const Hit& hit, float travelled,
+               float pixelSpread);
+
+}  // namespace kiln

@@ -11,18 +11,7 @@
 namespace kiln {
 namespace {
 
-// Expects loadScene to throw a one-line SceneError that names the file and contains `what`.
-void expectError(const std::string& path, const std::string& what) {
-    try {
-        loadScene(path);
-        FAIL() << "no error for " << path;
-    } catch (const SceneError& e) {
-        std::string msg = e.what();
-        EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
-        EXPECT_EQ(msg.rfind(path, 0), 0u) << "message does not start with the file: " << msg;
-        EXPECT_NE(msg.find(what), std::string::npos) << "expected '" << what << "' in: " << msg;
-    }
-}
+using test::expectError;
 
 // A minimal valid COLLADA scene; tests break one piece of it at a time.
 std::string collada(const std::string& effectExtra,

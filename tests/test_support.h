@@ -11,6 +11,8 @@
 
 #include "renderer/render_job.h"
 #include "scene/scene.h"
+#include "scene/scene_error.h"
+#include "scene/scene_loader.h"
 
 namespace kiln::test {
 
@@ -70,6 +72,19 @@ inline size_t aovChannel(const Film& f, const std::string& name) {
         if (ch[i].name == name) return i;
     ADD_FAILURE() << "no channel " << name;
     return 0;
+}
+
+// Expects loadScene to throw a one-line SceneError that names the file first and contains `what`.
+inline void expectError(const std::string& path, const std::string& what) {
+    try {
+        loadScene(path);
+        ADD_FAILURE() << "no error for " << path;
+    } catch (const SceneError& e) {
+        std::string msg = e.what();
+        EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+        EXPECT_EQ(msg.rfind(path, 0), 0u) << "message does not start with the file: " << msg;
+        EXPECT_NE(msg.find(what), std::string::npos) << "expected '" << what << "' in: " << msg;
+    }
 }
 
 inline std::string writeFile(const std::filesystem::path& path, const std::string& text) {

@@ -150,4 +150,10 @@ void checkOutputSpace(const std::string& dir, uint64_t bytesNeeded) {
                                  std::to_string((bytesNeeded >> 20) + 1) + " MiB");
 }
 
+void writeFileAtomically(const std::string& path, std::string_view bytes) {
+    AtomicFile file(path);
+    file.write(bytes.data(), bytes.size());
+    file.commit();
+}
+
 }  // namespace kiln

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <string_view>
 
 namespace kiln {
 
@@ -38,6 +39,9 @@ class AtomicFile {
     bool failed_ = false;  // a write came up short
     bool committed_ = false;
 };
+
+// A whole file written through AtomicFile (text reports, pages, manifests).
+void writeFileAtomically(const std::string& path, std::string_view bytes);
 
 // Removes the temporary files a killed process of this host left for path (SIGKILL during a
 // write); returns how many. Another live process's are kept.

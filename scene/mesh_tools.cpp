@@ -1,10 +1,13 @@
 #include "scene/mesh_tools.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cstdio>
 #include <cstring>
 #include <stdexcept>
 #include <unordered_map>
+
+#include "color/atomic_file.h"
 
 namespace kiln {
 
@@ -39,43 +42,36 @@ TriangleMesh subdivideMidpoint(const TriangleMesh& mesh) {
 }
 
 void writeBinaryPly(const std::string& path, const TriangleMesh& mesh) {
-    std::string tmp = path + ".tmp";
-    FILE* f = std::fopen(tmp.c_str(), "wb");
-    if (!f) throw std::runtime_error(path + ": cannot write");
-    std::fprintf(f,
-                 "ply\nformat binary_little_endian 1.0\ncomment written by kiln\nelement vertex "
-                 "%zu\nproperty float x\n"
-                 "property float y\nproperty float z\nelement face %zu\nproperty list uchar int "
-                 "vertex_indices\n"
-                 "end_header\n",
-                 mesh.vertexCount(), mesh.triangleCount());
-    bool ok = std::fwrite(mesh.positions.data(), sizeof(float), 3 * mesh.vertexCount(), f) ==
-              3 * mesh.vertexCount();
-    std::vector<unsigned char> face(13);
-    face[0] = 3;
-    for (size_t t = 0; t < mesh.triangleCount() && ok; ++t) {
-        std::memcpy(&face[1], &mesh.indices[3 * t], 12);
-        ok = std::fwrite(face.data(), 1, 13, f) == 13;
+    AtomicFile file(path);  // temporary, checked writes, fsync, rename
+    char header[320];
+    int n = std::snprintf(header, sizeof header,
+                          "ply\nformat binary_little_endian 1.0\ncomment written by kiln\nelement "
+                          "vertex %zu\nproperty float x\nproperty float y\nproperty float z\n"
+                          "element face %zu\nproperty list uchar int vertex_indices\nend_header\n",
+                          mesh.vertexCount(), mesh.triangleCount());
+    file.write(header, size_t(n));
+    file.write(mesh.positions.data(), sizeof(float) * 3 * mesh.vertexCount());
+    std::vector<unsigned char> faces(13 * std::min<size_t>(mesh.triangleCount(), 1 << 16));
+    for (size_t t = 0; t < mesh.triangleCount();) {
+        size_t k = 0;
+        for (; k < faces.size() / 13 && t < mesh.triangleCount(); ++k, ++t) {
+            faces[13 * k] = 3;
+            std::memcpy(&faces[13 * k + 1], &mesh.indices[3 * t], 12);
+        }
+        file.write(faces.data(), 13 * k);
     }
-    ok = std::fclose(f) == 0 && ok;
-    if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0) {
-        std::remove(tmp.c_str());
-        throw std::runtime_error(path + ": write failed (disk full?)");
-    }
+    file.commit();
 }
 
 void writeObj(const std::string& path, const TriangleMesh& mesh) {
-    std::string tmp = path + ".tmp";
-    FILE* f = std::fopen(tmp.c_str(), "wb");
-    if (!f) throw std::runtime_error(path + ": cannot write");
+    AtomicFile file(path);  // temporary, checked writes, fsync, rename
     std::vector<char> buf;
-    bool ok = true;
     auto flush = [&] {
-        ok = ok && std::fwrite(buf.data(), 1, buf.size(), f) == buf.size();
+        file.write(buf.data(), buf.size());
         buf.clear();
     };
     char line[96];
-    for (size_t v = 0; v < mesh.vertexCount() && ok; ++v) {
+    for (size_t v = 0; v < mesh.vertexCount(); ++v) {
         char* p = line;
         *p++ = 'v';
         for (int k = 0; k < 3; ++k) {
@@ -86,7 +82,7 @@ void writeObj(const std::string& path, const TriangleMesh& mesh) {
         buf.insert(buf.end(), line, p);
         if (buf.size() > (1 << 20)) flush();
     }
-    for (size_t t = 0; t < mesh.triangleCount() && ok; ++t) {
+    for (size_t t = 0; t < mesh.triangleCount(); ++t) {
         char* p = line;
         *p++ = 'f';
         for (int k = 0; k < 3; ++k) {
@@ -98,11 +94,7 @@ void writeObj(const std::string& path, const TriangleMesh& mesh) {
         if (buf.size() > (1 << 20)) flush();
     }
     flush();
-    ok = std::fclose(f) == 0 && ok;
-    if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0) {
-        std::remove(tmp.c_str());
-        throw std::runtime_error(path + ": write failed (disk full?)");
-    }
+    file.commit();
 }
 
 }  // namespace kiln

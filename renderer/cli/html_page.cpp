@@ -4,6 +4,8 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "color/atomic_file.h"
+
 namespace kiln {
 
 std::string HtmlPage::escape(const std::string& text) {
@@ -78,19 +80,6 @@ std::string HtmlPage::html() const {
            escape(title_) + "</h1>\n" + body_.str() + "</body>\n</html>\n";
 }
 
-void HtmlPage::write(const std::string& path) const {
-    std::string tmp = path + ".tmp";
-    {
-        std::ofstream out(tmp, std::ios::binary);
-        out << html();
-        if (!out.flush()) {
-            std::filesystem::remove(tmp);
-            throw std::runtime_error(path + ": cannot write the page");
-        }
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) throw std::runtime_error(path + ": cannot move the page into place: " + ec.message());
-}
+void HtmlPage::write(const std::string& path) const { writeFileAtomically(path, html()); }
 
 }  // namespace kiln

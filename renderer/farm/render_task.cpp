@@ -44,16 +44,6 @@ bool hasCheckpoint(const std::string& output) {
     return fs::exists(output + ".ckpt", ec);
 }
 
-void writeFileAtomically(const std::string& path, const std::string& text) {
-    std::string temp = path + ".tmp." + std::to_string(::getpid());
-    {
-        std::ofstream out(temp, std::ios::binary);
-        out << text;
-        if (!out.flush()) throw std::runtime_error("cannot write " + temp);
-    }
-    fs::rename(temp, path);
-}
-
 std::string readFileText(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw FarmInputError(path + ": cannot be read");

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "color/atomic_file.h"
+
 namespace kiln::farm {
 
 // A malformed job file or farm directory: exit 2, one line naming the file.
@@ -30,8 +32,6 @@ bool isComplete(const std::string& output, const std::vector<std::string>& comma
 void markComplete(const std::string& output, const std::vector<std::string>& command);
 bool hasCheckpoint(const std::string& output);
 
-// Writes text to a unique temporary name beside path, then renames it over path.
-void writeFileAtomically(const std::string& path, const std::string& text);
 std::string readFileText(const std::string& path);
 
 }  // namespace kiln::farm

@@ -7,7 +7,9 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <sstream>
 
+#include "color/atomic_file.h"
 #include "renderer/validation/accuracy.h"
 
 namespace kiln {
@@ -42,7 +44,7 @@ double timeAtError(const std::vector<AccuracyRun>& uniform, double relMse, bool&
 }  // namespace
 
 void writeAccuracyReport(const AccuracyOptions& o, const AccuracyResult& r) {
-    std::ofstream csv(fs::path(o.outDir) / "accuracy.csv");
+    std::ostringstream csv;
     csv << "group,label,spp,mean_spp,light_samples,sampling,max_depth,roulette,adaptive_tolerance,"
            "accel,seconds,rays,"
            "rmse,rel_mse,bias,efficiency";
@@ -85,14 +87,15 @@ void writeAccuracyReport(const AccuracyOptions& o, const AccuracyResult& r) {
         return v;
     };
     std::string title = fs::path(o.scene).filename().string();
-    std::ofstream(fs::path(o.outDir) / "error_vs_time.svg") << svgLogLogPlot(
-        title + ": error against time", "render time (s)", "relative MSE", values(byTime), true);
-    std::ofstream(fs::path(o.outDir) / "spp.svg")
-        << svgLogLogPlot(title + ": error against samples per pixel", "samples per pixel",
-                         "relative MSE", values(bySpp), true);
+    writeFileAtomically((fs::path(o.outDir) / "error_vs_time.svg").string(),
+                        svgLogLogPlot(title + ": error against time", "render time (s)",
+                                      "relative MSE", values(byTime), true));
+    writeFileAtomically((fs::path(o.outDir) / "spp.svg").string(),
+                        svgLogLogPlot(title + ": error against samples per pixel",
+                                      "samples per pixel", "relative MSE", values(bySpp), true));
 
     // Plain-words summary.
-    std::ofstream md(fs::path(o.outDir) / "summary.md");
+    std::ostringstream md;
     md << "### " << title << "\n\n";
     md << o.width << "x" << o.height << ", references at " << o.referenceSpp << " spp ("
        << (r.referenceCached ? "cached" : fmt(r.referenceSeconds) + " s")
@@ -203,6 +206,8 @@ void writeAccuracyReport(const AccuracyOptions& o, const AccuracyResult& r) {
     }
     for (const std::string& s : r.skipped) md << "\n- skipped (over the time budget): " << s;
     md << "\n\nPlots: `error_vs_time.svg`, `spp.svg`; every run: `accuracy.csv`.\n";
+    writeFileAtomically((fs::path(o.outDir) / "accuracy.csv").string(), csv.str());
+    writeFileAtomically((fs::path(o.outDir) / "summary.md").string(), md.str());
 }
 
 }  // namespace kiln

@@ -8,8 +8,8 @@
 #include <cstdio>
 #include <thread>
 
-#include "long_render_support.h"
 #include "kiln_run.h"
+#include "long_render_support.h"
 #include "test_support.h"
 
 namespace kiln {
@@ -229,6 +229,26 @@ TEST(Cli, SigintWritesThePartialImageAndExitsNonZero) {
     EXPECT_EQ(WEXITSTATUS(status), 130);
     EXPECT_TRUE(std::filesystem::exists(out + ".exr"));
     EXPECT_TRUE(std::filesystem::exists(out + ".png"));
+}
+
+}  // namespace
+}  // namespace kiln
+
+namespace kiln {
+namespace {
+
+TEST(Cli, AnImageTooBigForMemoryIsRefusedBeforeLoading) {
+    // 8000x6000 with the default AOVs under a 4 GiB limit: one line naming the size and what is
+    // available, exit 2, no output file and no bad_alloc.
+    auto dir = test::scratchDir();
+    test::ScopedMemoryLimit limit("4294967296");
+    CliRun r = runKiln("render " + test::repo("scenes/cornell.dae") + " -r 8000 6000 -q -o " +
+                       (dir / "big").string());
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_NE(r.err.find("MiB available"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("bad_alloc"), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "big.exr"));
 }
 
 }  // namespace

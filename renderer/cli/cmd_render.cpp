@@ -19,8 +19,8 @@
 #include "renderer/cli/render_options.h"
 #include "renderer/core/json.h"
 #include "renderer/core/memory.h"
-#include "renderer/long_render.h"
 #include "renderer/exr_scene.h"
+#include "renderer/long_render.h"
 #include "renderer/progress.h"
 #include "renderer/render_job.h"
 #include "scene/scene_loader.h"
@@ -165,13 +165,9 @@ void addCompositingOptions(ArgParser& parser, RenderCommand& c) {
                 "transparent background (Cycles' Film > Transparent): background seen directly "
                 "leaves the image, alpha counts non-emitting surfaces only",
                 c.transparent);
-    parser.option("depth", "", 1, "ray|camera",
-                  "what Z holds: distance along the camera ray (default) or camera-space z",
-                  [&c](const std::vector<std::string>& v) {
-                      if (v[0] != "ray" && v[0] != "camera")
-                          throw UsageError("--depth takes 'ray' or 'camera', got '" + v[0] + "'");
-                      c.depth = v[0] == "camera" ? DepthMode::CameraZ : DepthMode::Ray;
-                  });
+    parser.enumOption("depth",
+                      "what Z holds: distance along the camera ray (default) or camera-space z",
+                      c.depth);
 }
 
 // Writability tried by creating a file (permission bits say nothing for root or read-only mounts),

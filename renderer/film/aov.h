@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "renderer/core/enum_names.h"
 #include "renderer/core/math.h"
 
 namespace kiln {
@@ -37,6 +38,11 @@ enum class AovKind : uint32_t {
 // What Z holds: the distance along the camera ray, or camera-space z (the distance along the view
 // axis, as OpenEXR's worldToCamera space and Nuke's/Blender's depth passes have it).
 enum class DepthMode { Ray, CameraZ };
+template <>
+struct EnumNames<DepthMode> {
+    static constexpr std::pair<DepthMode, const char*> table[] = {{DepthMode::Ray, "ray"},
+                                                                  {DepthMode::CameraZ, "camera"}};
+};
 
 constexpr int kMaxBounceLayers = 16;
 

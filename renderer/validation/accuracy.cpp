@@ -35,7 +35,9 @@ Image Image::fromChannels(const ChannelImage& file, const std::vector<std::strin
         int c = file.channel(name);
         return c >= 0 ? c : fallback;
     };
-    const int r = pick("R", 0), g = pick("G", 1), b = pick("B", 2), v = file.channel("variance.V") >= 0 ? file.channel("variance.V") : file.channel("variance");
+    // Variance: kiln's layer name (variance.V), or the bare channel of older files.
+    const int r = pick("R", 0), g = pick("G", 1), b = pick("B", 2),
+              v = pick("variance.V", file.channel("variance"));
     Image img;
     img.width = file.width, img.height = file.height;
     for (size_t i = 0; i < count; ++i) {

@@ -226,7 +226,9 @@ Fingerprint checkpointFingerprint(const RenderJob& job, const std::string& scene
                          std::to_string(p.rouletteMinBounces)},
         {"accumulate_bounces", p.accumulateBounces ? "yes" : "no"},
         {"microfacet", toString(p.microfacet)},
-        {"aovs", std::to_string(o.aovs.mask) + " bounces " + std::to_string(o.aovs.bounceLayers)},
+        {"aovs", std::to_string(o.aovs.mask) + " bounces " + std::to_string(o.aovs.bounceLayers) +
+                     " depth " + toString(o.aovs.depth) +
+                     (o.aovs.transparent ? " transparent" : "")},
         {"adaptive", s.adaptiveBatch > 0
                          ? std::to_string(s.adaptiveBatch) + " " + number(s.adaptiveTolerance)
                          : "off"},

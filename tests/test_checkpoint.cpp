@@ -107,8 +107,8 @@ constexpr int kSpp = 768;
 
 std::vector<std::string> cliRender(const std::string& out, int spp, bool adaptive) {
     // One thread: long enough on an idle machine for signals and limits to land mid-render.
-    std::vector<std::string> a{"render", test::spheres(), "-r", "64", "48", "-t", "1",
-                               "-s", std::to_string(spp), "-q", "-o", out};
+    std::vector<std::string> a{"render", test::spheres(),     "-r", "64", "48", "-t", "1",
+                               "-s",     std::to_string(spp), "-q", "-o", out};
     if (adaptive) a.insert(a.end(), {"-a", "8", "0.02"});
     return a;
 }
@@ -165,7 +165,8 @@ TEST(Checkpoint, SigtermSavesExits130AndResumes) {
     auto dir = test::scratchDir();
     std::string ref = (dir / "ref").string(), out = (dir / "t").string();
     ASSERT_EQ(test::runKilnProcess(cliRender(ref, kSpp, false)), 0);
-    std::vector<std::string> args = plus(cliRender(out, kSpp, false), {"--checkpoint-every", "100"});
+    std::vector<std::string> args =
+        plus(cliRender(out, kSpp, false), {"--checkpoint-every", "100"});
     pid_t pid = test::startKiln(args);
     ASSERT_TRUE(test::waitForHandler(pid, SIGTERM));
     std::this_thread::sleep_for(std::chrono::milliseconds(200));
@@ -183,7 +184,8 @@ TEST(Checkpoint, SigtermSavesExits130AndResumes) {
 TEST(Checkpoint, Sigusr1WritesACheckpointAndTheRenderGoesOn) {
     auto dir = test::scratchDir();
     std::string out = (dir / "u").string();
-    std::vector<std::string> args = plus(cliRender(out, kSpp, false), {"--checkpoint-every", "100"});
+    std::vector<std::string> args =
+        plus(cliRender(out, kSpp, false), {"--checkpoint-every", "100"});
     pid_t pid = test::startKiln(args);
     ASSERT_TRUE(test::waitForHandler(pid, SIGUSR1));
     ::kill(pid, SIGUSR1);
@@ -225,6 +227,14 @@ TEST(Checkpoint, ResumeWithoutACheckpointStartsAndAForeignOneIsAOneLineExit2) {
     std::string text = test::readText(err);
     EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1) << text;
     EXPECT_NE(text.find("seed is '0'"), std::string::npos) << text;
+    // What the film records differs too: a transparent film's sums are not an opaque one's.
+    for (const char* option : {"--transparent", "--sampler"}) {
+        std::vector<std::string> other = plus(small, {"--resume", option});
+        if (std::string(option) == "--sampler") other.push_back("sobol");
+        EXPECT_EQ(test::runKilnProcess(other, -1, 0, err), 2) << option;
+        std::string refusal = test::readText(err);
+        EXPECT_EQ(std::count(refusal.begin(), refusal.end(), '\n'), 1) << refusal;
+    }
 }
 
 // A small tmpfs for the duration of a test (root only: CI runs as root), unmounted however the

@@ -63,6 +63,18 @@ TEST(AccuracySweep, QuickRunErrorFallsWithSppAndReusesTheReference) {
     ASSERT_GE(spp.size(), 4u);
     EXPECT_LT(rel.back(), rel.front() / 4);  // 16 spp against 1 spp
     EXPECT_LT(logLogSlope(spp, rel), -0.6);  // about -1
+    // The other sampler's sweep converges too (Sobol: at least as fast), and the summary compares.
+    std::vector<double> otherSpp, otherRel;
+    for (const AccuracyRun& r : first.runs)
+        if (r.group == "sampler") {
+            EXPECT_NE(r.sampler, first.runs.front().sampler);
+            otherSpp.push_back(r.spp), otherRel.push_back(r.error.relMse);
+        }
+    ASSERT_GE(otherSpp.size(), 2u);
+    EXPECT_LT(logLogSlope(otherSpp, otherRel), -0.6);
+    std::ifstream summary(std::filesystem::path(o.outDir) / "summary.md");
+    std::string text((std::istreambuf_iterator<char>(summary)), {});
+    EXPECT_NE(text.find("**Sampler**"), std::string::npos) << text;
     for (const char* f : {"accuracy.csv", "error_vs_time.svg", "spp.svg", "summary.md"})
         EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(o.outDir) / f)) << f;
     std::ifstream csv(std::filesystem::path(o.outDir) / "accuracy.csv");

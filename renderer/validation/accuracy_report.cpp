@@ -41,12 +41,43 @@ double timeAtError(const std::vector<AccuracyRun>& uniform, double relMse, bool&
     return 0;
 }
 
+// The other sampler's spp sweep against the default one's: efficiency at equal spp and the time
+// the default needs to reach the other's errors.
+void writeSamplerComparison(const AccuracyResult& r, const std::vector<AccuracyRun>& uniform,
+                            std::ostringstream& md) {
+    std::vector<double> efficiencyRatios, timeRatios;
+    std::string other;
+    for (const AccuracyRun& a : r.runs) {
+        if (a.group != "sampler") continue;
+        other = a.sampler;
+        for (const AccuracyRun& u : uniform)
+            if (u.spp == a.spp && u.efficiency > 0)
+                efficiencyRatios.push_back(a.efficiency / u.efficiency);
+        bool extrapolated;
+        double t = timeAtError(uniform, a.error.relMse, extrapolated);
+        if (t > 0 && !extrapolated && a.spp >= 16) timeRatios.push_back(a.seconds / t);
+    }
+    if (efficiencyRatios.empty() || uniform.empty()) return;
+    auto median = [](std::vector<double> v) {
+        std::sort(v.begin(), v.end());
+        return v[v.size() / 2];
+    };
+    md << "- **Sampler** (" << other << " against " << uniform.front().sampler
+       << ", path tracing, equal spp): efficiency ratio " << fmt(median(efficiencyRatios))
+       << " (median of " << efficiencyRatios.size() << " spp counts)";
+    if (!timeRatios.empty())
+        md << "; time to equal error " << fmt(median(timeRatios)) << "x the "
+           << uniform.front().sampler << " sampler's (median over " << timeRatios.size()
+           << " spp counts >= 16)";
+    md << ".\n";
+}
+
 }  // namespace
 
 void writeAccuracyReport(const AccuracyOptions& o, const AccuracyResult& r) {
     std::ostringstream csv;
     csv << "group,label,spp,mean_spp,light_samples,sampling,max_depth,roulette,adaptive_tolerance,"
-           "accel,seconds,rays,"
+           "accel,sampler,seconds,rays,"
            "rmse,rel_mse,bias,efficiency";
     std::vector<std::string> layers;
     if (!r.runs.empty())
@@ -56,8 +87,9 @@ void writeAccuracyReport(const AccuracyOptions& o, const AccuracyResult& r) {
     for (const AccuracyRun& a : r.runs) {
         csv << a.group << "," << a.label << "," << a.spp << "," << a.meanSpp << ","
             << a.lightSamples << "," << a.sampling << "," << a.maxDepth << "," << a.roulette << ","
-            << a.adaptiveTolerance << "," << a.accel << "," << a.seconds << "," << a.rays << ","
-            << a.error.rmse << "," << a.error.relMse << "," << a.error.bias << "," << a.efficiency;
+            << a.adaptiveTolerance << "," << a.accel << "," << a.sampler << "," << a.seconds << ","
+            << a.rays << "," << a.error.rmse << "," << a.error.relMse << "," << a.error.bias << ","
+            << a.efficiency;
         for (size_t k = 0; k < layers.size(); ++k)
             csv << "," << (k < a.aovErrors.size() ? a.aovErrors[k].second.relMse : 0.0);
         csv << "\n";
@@ -66,9 +98,9 @@ void writeAccuracyReport(const AccuracyOptions& o, const AccuracyResult& r) {
     std::map<std::string, PlotSeries> byTime, bySpp;
     std::vector<AccuracyRun> uniform;
     for (const AccuracyRun& a : r.runs) {
-        std::string series = a.group == "spp"        ? "path (GI)"
-                             : a.group == "strategy" ? "direct: " + a.sampling
-                                                     : "";
+        std::string series = a.group == "spp" || a.group == "sampler" ? "path (GI), " + a.sampler
+                             : a.group == "strategy"                  ? "direct: " + a.sampling
+                                                                      : "";
         if (a.group == "adaptive") series = "adaptive (GI)";
         if (series.empty()) continue;
         byTime[series].name = series;
@@ -172,6 +204,7 @@ void writeAccuracyReport(const AccuracyOptions& o, const AccuracyResult& r) {
                << (t > 0 ? fmt(t) + (extrapolated ? " (extrapolated)" : "") : "out of range")
                << " | " << (t > 0 ? fmt(t / a.seconds) + "x" : "-") << " |\n";
         }
+    writeSamplerComparison(r, uniform, md);
     if (has("light_samples")) md << "\n- **Light samples** (direct lighting, 16 spp): ";
     for (const AccuracyRun& a : r.runs)
         if (a.group == "light_samples")

@@ -22,6 +22,7 @@ struct Setting {
     int adaptiveBatch = 0;
     float adaptiveTolerance = 0;
     bool referenceAccel = false;
+    SamplerKind sampler = RenderSettings{}.sampler;
 };
 
 // One render with its time, rays and image.
@@ -40,6 +41,7 @@ Rendered render(const Scene& scene, const Accelerator& accel, const Setting& s, 
     settings.width = w, settings.height = h, settings.spp = s.spp, settings.seed = seed,
     settings.progress = false;
     settings.adaptiveBatch = s.adaptiveBatch, settings.adaptiveTolerance = s.adaptiveTolerance;
+    settings.sampler = s.sampler;
     RenderJob job(scene, accel, options);
     Film film = job.makeFilm();
     RenderStats stats = job.render(film);
@@ -137,6 +139,7 @@ AccuracyResult runAccuracy(const AccuracyOptions& o) {
         a.sampling = toString(s.path.sampling);
         a.roulette = toString(s.path.roulette);
         a.accel = s.referenceAccel ? "reference" : "embree";
+        a.sampler = toString(s.sampler);
         a.adaptiveTolerance = s.adaptiveTolerance;
         a.seconds = r.seconds, a.meanSpp = r.meanSpp, a.rays = r.rays;
         a.error = compareImages(r.image, ref);
@@ -153,6 +156,15 @@ AccuracyResult runAccuracy(const AccuracyOptions& o) {
         Setting s;
         s.spp = spp;
         run("spp", std::to_string(spp) + " spp", s, giRef);
+    }
+    // The same sweep with the other sampler: what the low-discrepancy sequence buys (or costs).
+    SamplerKind other = RenderSettings{}.sampler == SamplerKind::Sobol ? SamplerKind::Independent
+                                                                       : SamplerKind::Sobol;
+    for (int spp = 1; spp <= maxSpp; spp *= (o.quick ? 4 : 2)) {
+        Setting s;
+        s.spp = spp;
+        s.sampler = other;
+        run("sampler", std::string(toString(other)) + " " + std::to_string(spp), s, giRef);
     }
     for (DirectSampling d :
          {DirectSampling::Hemisphere, DirectSampling::Light, DirectSampling::Mis})

@@ -262,14 +262,21 @@ Scene loadScene(const std::string& path, const LoadOptions& options) {
     warnDarkLights(scene);
 
     using Rule = LoadOptions::CameraRule;
+    // The course rule places a perspective camera by its field of view: an orthographic camera
+    // keeps the view the file gives it.
+    bool courseRule =
+        options.cameraRule == Rule::Framed || (options.cameraRule == Rule::Auto && scene.isCs184);
+    if (courseRule && scene.hasFileCamera && scene.camera.orthographic()) {
+        if (options.cameraRule == Rule::Framed)
+            scene.warnings.push_back(
+                "the camera is orthographic: the CS184 framing rule does not apply to it");
+        courseRule = false;
+    }
     if (!scene.hasFileCamera)
         applyDefaultFraming(scene);
-    else if (options.cameraRule == Rule::Framed ||
-             (options.cameraRule == Rule::Auto && scene.isCs184))
+    else if (courseRule)
         applyCs184Framing(scene);
-    scene.framedByCourseRule =
-        scene.hasFileCamera &&
-        (options.cameraRule == Rule::Framed || (options.cameraRule == Rule::Auto && scene.isCs184));
+    scene.framedByCourseRule = scene.hasFileCamera && courseRule;
 
     validateView(scene);
     scene.loadSeconds =

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
 
@@ -41,6 +42,48 @@ Material materialFromAssimp(const aiMaterial* am) {
         m.emission = Color(emissive.r, emissive.g, emissive.b);
     }
     return m;
+}
+
+// Assimp's MDL reader gives a model without skins a zero-initialised colour, alpha 0 included
+// (PhosphoricAcid_MDl5.mdl renders black); no file states a diffuse colour of alpha 0.
+bool unsetMdlColour(const std::string& path, const aiMaterial* am) {
+    aiColor4D c;
+    return lowerExtension(path) == ".mdl" && am->Get(AI_MATKEY_COLOR_DIFFUSE, c) == AI_SUCCESS &&
+           c.r == 0 && c.g == 0 && c.b == 0 && c.a == 0;
+}
+
+// Assimp's AMF reader gives a mesh whose file states no vertex colours a colour set of zeros,
+// alpha included (test1.amf renders black).
+bool unsetColours(const aiMesh* am) {
+    for (unsigned v = 0; v < am->mNumVertices; ++v) {
+        const aiColor4D& c = am->mColors[0][v];
+        if (c.r != 0 || c.g != 0 || c.b != 0 || c.a != 0) return false;
+    }
+    return true;
+}
+
+// Assimp 5.2's AMF reader stores <rx>/<ry>/<rz> of a constellation instance into its
+// <deltax>/<deltay>/<deltaz> and drops the rotation (test8.amf: instances at x = -45 and 45 instead
+// of -5 and 5), and keeps only the first <volume> of an object.
+void warnAmfLimits(const std::string& path, Scene& scene) {
+    std::ifstream in(path);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (text.find("<constellation") != std::string::npos)
+        scene.warnings.push_back(
+            "Assimp misplaces AMF constellation instances (their rotation "
+            "<rx>/<ry>/<rz> replaces the offset <deltax>/<deltay>/<deltaz>)");
+    size_t volumes = 0;
+    for (size_t at = text.find("<volume"); at != std::string::npos;
+         at = text.find("<volume", at + 1))
+        ++volumes;
+    size_t objects = 0;
+    for (size_t at = text.find("<object"); at != std::string::npos;
+         at = text.find("<object", at + 1))
+        ++objects;
+    if (volumes > objects)
+        scene.warnings.push_back(
+            "Assimp imports only the first <volume> of each AMF object; the "
+            "others are missing");
 }
 
 // Assimp reports some silent repairs only through its logger: this collects them for one import.
@@ -328,6 +371,7 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
         throw SceneError(path, std::string("cannot import: ") + importer.GetErrorString());
     if (as->mFlags & AI_SCENE_FLAGS_INCOMPLETE)
         throw SceneError(path, "cannot import: the file is incomplete");
+    if (lowerExtension(path) == ".amf") warnAmfLimits(path, scene);
 
     // Materials: through the CGL pass for COLLADA (matched by name or id), else Assimp's colours.
     uint32_t materialBase = uint32_t(scene.materials.size());
@@ -335,6 +379,12 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
         Material m = materialFromAssimp(as->mMaterials[i]);
         aiColor3D diffuse;
         bool statesColour = as->mMaterials[i]->Get(AI_MATKEY_COLOR_DIFFUSE, diffuse) == AI_SUCCESS;
+        if (statesColour && unsetMdlColour(path, as->mMaterials[i])) {
+            m.albedo = Material{}.albedo, statesColour = false;
+            scene.warnings.push_back(
+                "the MDL file has no skin and Assimp gives its material the "
+                "colour (0, 0, 0, 0); using the default grey");
+        }
         if (extras) {
             auto byId = extras->materialsById.find(m.name);
             if (byId == extras->materialsById.end()) {
@@ -395,7 +445,11 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
                 mesh.uvs.insert(mesh.uvs.end(),
                                 {am->mTextureCoords[0][v].x, am->mTextureCoords[0][v].y});
         }
-        if (am->HasVertexColors(0)) {  // glTF COLOR_0 and OBJ "v x y z r g b": linear
+        if (am->HasVertexColors(0) && unsetColours(am)) {
+            scene.warnings.push_back("mesh '" + mesh.name +
+                                     "': every vertex colour Assimp reports is (0, 0, 0, 0), not "
+                                     "a colour the file states; ignored");
+        } else if (am->HasVertexColors(0)) {  // glTF COLOR_0 and OBJ "v x y z r g b": linear
             mesh.colors.reserve(3 * am->mNumVertices);
             for (unsigned v = 0; v < am->mNumVertices; ++v)
                 mesh.colors.insert(mesh.colors.end(),

@@ -212,7 +212,10 @@ Fingerprint checkpointFingerprint(const RenderJob& job, const std::string& scene
         {"environment_rotation", number(load.environmentRotationDeg)},
         {"camera", vec(c.position) + " / " + vec(c.forward) + " / " + vec(c.up) + " / fov " +
                        number(c.hFovDeg) + " " + number(c.vFovDeg) + " / lens " +
-                       number(c.apertureRadius) + " " + number(c.focalDistance)},
+                       number(c.apertureRadius) + " " + number(c.focalDistance) +
+                       (c.orthographic() ? " / orthographic " + number(c.orthoHalfWidth) + " " +
+                                               number(c.orthoHalfHeight)
+                                         : "")},
         {"resolution", std::to_string(s.width) + "x" + std::to_string(s.height)},
         {"seed", std::to_string(s.seed)},
         {"sampler", toString(s.sampler)},

@@ -25,6 +25,28 @@ std::array<float, 16> toFloat(const Mat& m) {
     return f;
 }
 
+// NDC: x = 0.5 + 0.5 xc / (zc tan(hfov/2)), y = 0.5 - 0.5 yc / (zc tan(vfov/2)); w = zc.
+Mat perspectiveNdc(const CameraModel& model) {
+    double tx = std::tan(model.hFovDeg() * kPi / 360.0),
+           ty = std::tan(model.vFovDeg() * kPi / 360.0);
+    Mat project{};
+    project[0 * 4 + 0] = 0.5 / tx;
+    project[1 * 4 + 1] = -0.5 / ty;
+    project[2 * 4 + 0] = 0.5, project[2 * 4 + 1] = 0.5, project[2 * 4 + 3] = 1;
+    project[3 * 4 + 2] = 1;  // z' / w = 1 / zc: keeps the matrix invertible
+    return project;
+}
+
+// Orthographic: x = 0.5 + 0.5 xc / half width, y = 0.5 - 0.5 yc / half height, z' = zc; w = 1.
+Mat orthographicNdc(const CameraModel& model) {
+    Mat project{};
+    project[0 * 4 + 0] = 0.5 / model.orthoHalfWidth();
+    project[1 * 4 + 1] = -0.5 / model.orthoHalfHeight();
+    project[2 * 4 + 2] = 1;
+    project[3 * 4 + 0] = 0.5, project[3 * 4 + 1] = 0.5, project[3 * 4 + 3] = 1;
+    return project;
+}
+
 }  // namespace
 
 ExrCamera exrCamera(const Scene& scene, const RenderSettings& settings) {
@@ -48,14 +70,7 @@ ExrCamera exrCamera(const Scene& scene, const RenderSettings& settings) {
         toCamera[2 * 4 + c] = axes[c].z, toCamera[3 * 4 + c] = -dot(eye, axes[c]);
     }
     toCamera[15] = 1;
-    // NDC: x = 0.5 + 0.5 xc / (zc tan(hfov/2)), y = 0.5 - 0.5 yc / (zc tan(vfov/2)); w = zc.
-    double tx = std::tan(model.hFovDeg() * kPi / 360.0),
-           ty = std::tan(model.vFovDeg() * kPi / 360.0);
-    Mat project{};
-    project[0 * 4 + 0] = 0.5 / tx;
-    project[1 * 4 + 1] = -0.5 / ty;
-    project[2 * 4 + 0] = 0.5, project[2 * 4 + 1] = 0.5, project[2 * 4 + 3] = 1;
-    project[3 * 4 + 2] = 1;  // z' / w = 1 / zc: keeps the matrix invertible
+    Mat project = model.orthographic() ? orthographicNdc(model) : perspectiveNdc(model);
     return {toFloat(toCamera), toFloat(multiply(toCamera, project))};
 }
 

@@ -9,12 +9,15 @@
 namespace kiln {
 namespace {
 
-// The path options with the camera's pixel spread for this image (texture footprints).
+// The path options with the camera's pixel spread for this image (texture footprints). Parallel
+// rays spread by no angle: an orthographic view filters at the finest level.
 PathOptions withPixelSpread(const Scene& scene, const RenderJobOptions& options) {
     PathOptions path = options.path;
     const RenderSettings& s = options.settings;
     CameraModel camera(scene.camera, s.width, s.height);
-    path.pixelSpread = camera.vFovDeg() * kPi / 180.0f / float(std::max(1, s.height));
+    path.pixelSpread = camera.orthographic()
+                           ? 0.0f
+                           : camera.vFovDeg() * kPi / 180.0f / float(std::max(1, s.height));
     return path;
 }
 
@@ -56,7 +59,7 @@ Metadata RenderJob::metadata(const RenderStats& stats, const Film& film) const {
     const PathOptions& p = options_.path;
     CameraModel camera(scene_.camera, s.width, s.height);
     auto text = [](auto v) { return std::to_string(v); };
-    return Metadata{
+    Metadata meta{
         {"integrator", integrator_->name()},
         {"accelerator", accel_.stats().description},
         {"spp", text(s.spp)},
@@ -87,6 +90,10 @@ Metadata RenderJob::metadata(const RenderStats& stats, const Film& film) const {
         {"plan", plan_.compact()},
         {"plan_decisions", plan_.text()},
         {"nonfinite_samples", text(stats.nonFiniteSamples)}};
+    if (camera.orthographic())
+        meta["orthographic_half_size"] =
+            text(camera.orthoHalfWidth()) + " " + text(camera.orthoHalfHeight());
+    return meta;
 }
 
 }  // namespace kiln

@@ -6,8 +6,10 @@
 #include <assimp/Importer.hpp>
 #include <assimp/LogStream.hpp>
 #include <charconv>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
 
@@ -40,6 +42,48 @@ Material materialFromAssimp(const aiMaterial* am) {
         m.emission = Color(emissive.r, emissive.g, emissive.b);
     }
     return m;
+}
+
+// Assimp's MDL reader gives a model without skins a zero-initialised colour, alpha 0 included
+// (PhosphoricAcid_MDl5.mdl renders black); no file states a diffuse colour of alpha 0.
+bool unsetMdlColour(const std::string& path, const aiMaterial* am) {
+    aiColor4D c;
+    return lowerExtension(path) == ".mdl" && am->Get(AI_MATKEY_COLOR_DIFFUSE, c) == AI_SUCCESS &&
+           c.r == 0 && c.g == 0 && c.b == 0 && c.a == 0;
+}
+
+// Assimp's AMF reader gives a mesh whose file states no vertex colours a colour set of zeros,
+// alpha included (test1.amf renders black).
+bool unsetColours(const aiMesh* am) {
+    for (unsigned v = 0; v < am->mNumVertices; ++v) {
+        const aiColor4D& c = am->mColors[0][v];
+        if (c.r != 0 || c.g != 0 || c.b != 0 || c.a != 0) return false;
+    }
+    return true;
+}
+
+// Assimp 5.2's AMF reader stores <rx>/<ry>/<rz> of a constellation instance into its
+// <deltax>/<deltay>/<deltaz> and drops the rotation (test8.amf: instances at x = -45 and 45 instead
+// of -5 and 5), and keeps only the first <volume> of an object.
+void warnAmfLimits(const std::string& path, Scene& scene) {
+    std::ifstream in(path);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (text.find("<constellation") != std::string::npos)
+        scene.warnings.push_back(
+            "Assimp misplaces AMF constellation instances (their rotation "
+            "<rx>/<ry>/<rz> replaces the offset <deltax>/<deltay>/<deltaz>)");
+    size_t volumes = 0;
+    for (size_t at = text.find("<volume"); at != std::string::npos;
+         at = text.find("<volume", at + 1))
+        ++volumes;
+    size_t objects = 0;
+    for (size_t at = text.find("<object"); at != std::string::npos;
+         at = text.find("<object", at + 1))
+        ++objects;
+    if (volumes > objects)
+        scene.warnings.push_back(
+            "Assimp imports only the first <volume> of each AMF object; the "
+            "others are missing");
 }
 
 // Assimp reports some silent repairs only through its logger: this collects them for one import.
@@ -128,6 +172,56 @@ Mat4 worldOf(const aiScene* as, const NodeWorlds& worlds, const aiString& name) 
     return Mat4::identity();
 }
 
+// The view a camera's file states, in world space, before kiln's Camera is set from it.
+struct CameraView {
+    Vec3d position, look, up;
+    float hFovDeg = 0;   // full horizontal angle (perspective)
+    double lengthScale;  // the camera node's scale along its view axis (clip planes, ortho width)
+    bool clipPlanes = true;  // false: Assimp's clip planes are its defaults, not the file's
+};
+
+// 3DS: from the file's own camera chunk (read3dsCamera), placed by Assimp's root node (its Z-up to
+// Y-up rotation), since Assimp 5.2 drops the target and reads the lens as an angle.
+std::optional<CameraView> view3ds(const std::string& path, const aiCamera* ac,
+                                  const NodeWorlds& worlds) {
+    std::optional<Camera3ds> c = read3dsCamera(path, ac->mName.C_Str());
+    if (!c) return std::nullopt;
+    const Mat4& root = worlds.front().second;
+    CameraView v;
+    v.position = root.point(Vec3d(c->position));
+    v.look = root.point(Vec3d(c->target)) - v.position;
+    Vec3d f = normalize(v.look), up = root.vector(Vec3d(0, 0, 1));
+    double bank = radians(double(c->bankDeg));  // about the view axis, right-handed (as Assimp)
+    v.up = up * std::cos(bank) + cross(f, up) * std::sin(bank) +
+           f * (dot(f, up) * (1 - std::cos(bank)));
+    v.hFovDeg = fovFrom3dsLens(c->lensMm);
+    v.lengthScale = 1;
+    v.clipPlanes = false;  // 3DS cameras state no clip planes; Assimp's far 1000 is made up
+    return v;
+}
+
+CameraView viewFromAssimp(const std::string& ext, const aiScene* as, const aiCamera* ac,
+                          const NodeWorlds& worlds) {
+    Mat4 world = worldOf(as, worlds, ac->mName);
+    bool gltf = ext == ".gltf" || ext == ".glb";
+    CameraView v;
+    // glTF: Assimp copies the node's translation into mPosition, which the node already applies.
+    v.position = world.point(gltf ? Vec3d(0.0) : toVec3d(ac->mPosition));
+    v.look = world.vector(toVec3d(ac->mLookAt)), v.up = world.vector(toVec3d(ac->mUp));
+    // ASE, LWS and OpenGEX cameras look down their node's -Z, but Assimp reports +Z (OpenGEX:
+    // Blender's exporter writes its camera matrix, whose -Z is the view, as the corpus files show).
+    if (ext == ".ase" || ext == ".lws" || ext == ".ogex") v.look = -v.look;
+    v.lengthScale = length(v.look) / length(toVec3d(ac->mLookAt));
+    if (gltf && ac->mAspect > 0) {
+        // glTF states yfov; Assimp stores yfov * aspect, so the ratio gives back the file's value.
+        float vFov = ac->mHorizontalFOV / ac->mAspect;
+        v.hFovDeg = degrees(2.0f * std::atan(std::tan(0.5f * vFov) * ac->mAspect));
+    } else {
+        v.hFovDeg = degrees(ac->mHorizontalFOV);
+    }
+    return v;
+}
+
 // The first usable camera. Assimp 5.2 stores the full horizontal angle in mHorizontalFOV (checked
 // against the files: Blender 49.13 degrees, NFF "angle 60", COLLADA yfov with aspect 1), and
 // per-format quirks checked on assimp-testmodels are undone here (docs/import.md).
@@ -136,51 +230,60 @@ void readCamera(const std::string& path, const aiScene* as, const NodeWorlds& wo
     std::string ext = lowerExtension(path);
     const aiCamera* ac = as->mCameras[0];
     std::string name = ac->mName.C_Str();
-    if (ac->mOrthographicWidth > 0 || !(ac->mHorizontalFOV > 0)) {
+    bool ortho = ac->mOrthographicWidth > 0;
+    if (!ortho && !(ac->mHorizontalFOV > 0)) {
         scene.warnings.push_back("camera '" + name +
-                                 "' is orthographic, which kiln does not render; using the "
+                                 "' states no field of view; using the default framing instead");
+        return;
+    }
+    std::optional<CameraView> view =
+        ext == ".3ds" ? view3ds(path, ac, worlds) : viewFromAssimp(ext, as, ac, worlds);
+    if (!view) {
+        scene.warnings.push_back("camera '" + name +
+                                 "': no camera chunk of that name in the 3DS file; using the "
                                  "default framing instead");
         return;
     }
-    if (ext == ".3ds") {
-        // Assimp 5.2 drops a 3DS camera's target (mLookAt is reset to +Z), so its direction is
-        // lost.
-        scene.warnings.push_back("camera '" + name +
-                                 "': Assimp does not keep a 3DS camera's target; using the default "
-                                 "framing instead");
-        return;
-    }
-    Mat4 world = worldOf(as, worlds, ac->mName);
-    bool gltf = ext == ".gltf" || ext == ".glb";
-    // glTF: Assimp copies the node's translation into mPosition, which the node already applies.
-    Vec3d position = world.point(gltf ? Vec3d(0.0) : toVec3d(ac->mPosition));
-    Vec3d look = world.vector(toVec3d(ac->mLookAt)), up = world.vector(toVec3d(ac->mUp));
-    // ASE and LWS cameras look down their node's -Z, but Assimp reports +Z.
-    if (ext == ".ase" || ext == ".lws") look = -look;
-    if (!(length(look) > 0) || !(length(up) > 0) || !isFinite(Vec3(position)))
+    if (!(length(view->look) > 0) || !(length(view->up) > 0) || !isFinite(Vec3(view->position)))
         throw SceneError(path, "camera '" + name + "' has no valid position or direction");
     Camera& cam = scene.camera;
     float aspect = ac->mAspect > 0 ? ac->mAspect : 4.0f / 3.0f;
-    if (gltf && ac->mAspect > 0) {
-        // glTF states yfov; Assimp stores yfov * aspect, so the ratio gives back the file's value.
-        cam.vFovDeg = degrees(ac->mHorizontalFOV / ac->mAspect);
-        cam.hFovDeg = degrees(2.0f * std::atan(std::tan(radians(0.5f * cam.vFovDeg)) * aspect));
+    if (ortho) {  // mOrthographicWidth: half the width (glTF xmag); the height from mAspect
+        cam.orthoHalfWidth = float(ac->mOrthographicWidth * view->lengthScale);
+        cam.orthoHalfHeight = cam.orthoHalfWidth / aspect;
     } else {
-        cam.hFovDeg = degrees(ac->mHorizontalFOV);
+        cam.hFovDeg = view->hFovDeg;
         cam.vFovDeg = degrees(2.0f * std::atan(std::tan(radians(0.5f * cam.hFovDeg)) / aspect));
     }
-    cam.position = scene.stored(position);
-    cam.forward = Vec3(normalize(look));
-    cam.up = Vec3(normalize(up));
+    cam.position = scene.stored(view->position);
+    cam.forward = Vec3(normalize(view->look));
+    cam.up = Vec3(normalize(view->up));
     // Clip distances are in the camera node's units: scale them as the node scales its view axis.
-    double axisScale = length(look) / length(toVec3d(ac->mLookAt));
-    if (ac->mClipPlaneNear > 0) cam.nearClip = float(ac->mClipPlaneNear * axisScale);
-    if (ac->mClipPlaneFar > ac->mClipPlaneNear) cam.farClip = float(ac->mClipPlaneFar * axisScale);
+    if (view->clipPlanes && ac->mClipPlaneNear > 0)
+        cam.nearClip = float(ac->mClipPlaneNear * view->lengthScale);
+    if (view->clipPlanes && ac->mClipPlaneFar > ac->mClipPlaneNear)
+        cam.farClip = float(ac->mClipPlaneFar * view->lengthScale);
     cam.fromFile = true;
     scene.hasFileCamera = true;
 }
 
-void readLights(const aiScene* as, const NodeWorlds& worlds, Scene& scene) {
+// kiln's point and spot lights fall off with the square of the distance, as physics says; a file
+// stating another falloff (COLLADA/FBX constant or linear attenuation) is lit less far than meant.
+void warnAttenuation(const aiLight* al, Scene& scene) {
+    if (al->mType != aiLightSource_POINT && al->mType != aiLightSource_SPOT) return;
+    if (al->mAttenuationQuadratic > 0 ||
+        !(al->mAttenuationConstant > 0 || al->mAttenuationLinear > 0))
+        return;
+    char msg[240];
+    std::snprintf(msg, sizeof msg,
+                  "light '%s' states attenuation constant %g linear %g quadratic 0; kiln's lights "
+                  "fall off with the inverse square of the distance, so it lights less far",
+                  al->mName.C_Str(), al->mAttenuationConstant, al->mAttenuationLinear);
+    scene.warnings.push_back(msg);
+}
+
+void readLights(const std::string& path, const aiScene* as, const NodeWorlds& worlds,
+                Scene& scene) {
     for (unsigned i = 0; i < as->mNumLights; ++i) {
         const aiLight* al = as->mLights[i];
         Mat4 world = worldOf(as, worlds, al->mName);
@@ -188,7 +291,13 @@ void readLights(const aiScene* as, const NodeWorlds& worlds, Scene& scene) {
         l.name = al->mName.C_Str();
         l.radiance = Color(al->mColorDiffuse.r, al->mColorDiffuse.g, al->mColorDiffuse.b);
         l.position = scene.stored(world.point(toVec3d(al->mPosition)));
-        Vec3 dir = Vec3(world.vector(toVec3d(al->mDirection)));
+        // SIB: Assimp 5.2 reports the light's target point as its direction (heffalump.sib's sun
+        // would shine upwards).
+        Vec3d aim = lowerExtension(path) == ".sib"
+                        ? toVec3d(al->mDirection) - toVec3d(al->mPosition)
+                        : toVec3d(al->mDirection);
+        Vec3 dir = Vec3(world.vector(aim));
+        warnAttenuation(al, scene);
         if (length(dir) > 0) l.direction = normalize(dir);
         switch (al->mType) {
             case aiLightSource_POINT:
@@ -262,6 +371,7 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
         throw SceneError(path, std::string("cannot import: ") + importer.GetErrorString());
     if (as->mFlags & AI_SCENE_FLAGS_INCOMPLETE)
         throw SceneError(path, "cannot import: the file is incomplete");
+    if (lowerExtension(path) == ".amf") warnAmfLimits(path, scene);
 
     // Materials: through the CGL pass for COLLADA (matched by name or id), else Assimp's colours.
     uint32_t materialBase = uint32_t(scene.materials.size());
@@ -269,6 +379,12 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
         Material m = materialFromAssimp(as->mMaterials[i]);
         aiColor3D diffuse;
         bool statesColour = as->mMaterials[i]->Get(AI_MATKEY_COLOR_DIFFUSE, diffuse) == AI_SUCCESS;
+        if (statesColour && unsetMdlColour(path, as->mMaterials[i])) {
+            m.albedo = Material{}.albedo, statesColour = false;
+            scene.warnings.push_back(
+                "the MDL file has no skin and Assimp gives its material the "
+                "colour (0, 0, 0, 0); using the default grey");
+        }
         if (extras) {
             auto byId = extras->materialsById.find(m.name);
             if (byId == extras->materialsById.end()) {
@@ -329,7 +445,11 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
                 mesh.uvs.insert(mesh.uvs.end(),
                                 {am->mTextureCoords[0][v].x, am->mTextureCoords[0][v].y});
         }
-        if (am->HasVertexColors(0)) {  // glTF COLOR_0 and OBJ "v x y z r g b": linear
+        if (am->HasVertexColors(0) && unsetColours(am)) {
+            scene.warnings.push_back("mesh '" + mesh.name +
+                                     "': every vertex colour Assimp reports is (0, 0, 0, 0), not "
+                                     "a colour the file states; ignored");
+        } else if (am->HasVertexColors(0)) {  // glTF COLOR_0 and OBJ "v x y z r g b": linear
             mesh.colors.reserve(3 * am->mNumVertices);
             for (unsigned v = 0; v < am->mNumVertices; ++v)
                 mesh.colors.insert(mesh.colors.end(),
@@ -356,7 +476,16 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
     }
 
     if (extras) return;  // COLLADA lights and camera come from the CGL pass
-    readLights(as, worlds, scene);
+    if (lowerExtension(path) == ".q3s" || lowerExtension(path) == ".q3o") {
+        // Assimp 5.2 gives a Quick3D scene a camera at the origin (inside WusonOrange.q3s) and a
+        // light of colour 0: neither is the file's view.
+        if (as->mNumCameras > 0 || as->mNumLights > 0)
+            scene.warnings.push_back(
+                "Assimp does not read the Quick3D scene's camera and light (camera at the origin, "
+                "light black); using the default framing and light rig instead");
+        return;
+    }
+    readLights(path, as, worlds, scene);
     if (as->mNumCameras > 0) readCamera(path, as, worlds, scene);
 }
 

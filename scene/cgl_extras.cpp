@@ -341,11 +341,20 @@ class Parser {
         std::string id = urlTarget(inst.attribute("url"));
         pugi::xml_node def = find(id);
         if (!def) throw SceneError(file_, "instance_camera names missing camera '" + id + "'");
-        pugi::xml_node persp = def.child("optics").child("technique_common").child("perspective");
-        if (!persp)
+        pugi::xml_node optics = def.child("optics").child("technique_common");
+        pugi::xml_node persp = optics.child("perspective");
+        if (pugi::xml_node ortho = optics.child("orthographic"))
+            persp = ortho;
+        else if (!persp)
             throw SceneError(file_,
-                             "camera '" + id +
-                                 "' has no <perspective> (only perspective cameras are supported)");
+                             "camera '" + id + "' has neither <perspective> nor <orthographic>");
+        placeCamera(persp.name() == std::string("orthographic")
+                        ? orthographicCamera(id, persp, world)
+                        : perspectiveCamera(id, persp),
+                    persp, world);
+    }
+
+    Camera perspectiveCamera(const std::string& id, pugi::xml_node persp) {
         Camera cam;
         pugi::xml_node xfov = persp.child("xfov"), yfov = persp.child("yfov"),
                        aspect = persp.child("aspect_ratio");
@@ -362,6 +371,34 @@ class Parser {
         if (!(cam.hFovDeg > 0 && cam.hFovDeg < 180 && cam.vFovDeg > 0 && cam.vFovDeg < 180))
             throw SceneError(file_,
                              "camera '" + id + "' has a field of view outside (0, 180) degrees");
+        return cam;
+    }
+
+    // <orthographic>: xmag and ymag are half the view's width and height in the camera node's
+    // units (Blender writes its orthographic scale / 2); one of them with aspect_ratio gives the
+    // other.
+    Camera orthographicCamera(const std::string& id, pugi::xml_node ortho, const Mat4& world) {
+        auto number = [&](const char* name) {
+            pugi::xml_node n = ortho.child(name);
+            return n ? expectNumbers(file_, n, name, 1)[0] : 0.0;
+        };
+        double xmag = number("xmag"), ymag = number("ymag"), aspect = number("aspect_ratio");
+        if (aspect > 0 && !(ymag > 0)) ymag = xmag / aspect;
+        if (aspect > 0 && !(xmag > 0)) xmag = ymag * aspect;
+        if (!(xmag > 0)) xmag = ymag;
+        if (!(ymag > 0)) ymag = xmag;
+        Camera cam;
+        cam.orthoHalfWidth = float(xmag * length(world.vector(Vec3d(1, 0, 0))));
+        cam.orthoHalfHeight = float(ymag * length(world.vector(Vec3d(0, 1, 0))));
+        if (!(cam.orthoHalfWidth > 0 && cam.orthoHalfHeight > 0 &&
+              std::isfinite(cam.orthoHalfWidth) && std::isfinite(cam.orthoHalfHeight)))
+            throw SceneError(
+                file_, "orthographic camera '" + id + "' has no positive, finite xmag or ymag");
+        return cam;
+    }
+
+    // Places a camera read from its optics: the node's -Z is the view, +Y up.
+    void placeCamera(Camera cam, pugi::xml_node persp, const Mat4& world) {
         Vec3d fwd = world.vector(Vec3d(0, 0, -1)), up = world.vector(Vec3d(0, 1, 0));
         // Clip distances are in the camera node's units (the <unit> and any node scale).
         if (pugi::xml_node n = persp.child("znear"))

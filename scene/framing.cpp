@@ -17,6 +17,26 @@ void applyCs184Framing(Scene& scene) {
     scene.camera.up = Vec3(0, 1, 0);  // the course's up vector (sin(phi) >= 0 always)
 }
 
+namespace {
+
+// Sum over the lights of the cosine between the view direction (towards the camera) and the
+// direction from which each light arrives; ambient and environment lights count for neither side.
+float lightsFacing(const Scene& scene, Vec3 target, Vec3 dir) {
+    float facing = 0;
+    for (const Light& l : scene.lights) {
+        Vec3 from(0.0f);
+        if (l.kind == LightKind::Directional)
+            from = -l.direction;
+        else if (l.kind == LightKind::Point || l.kind == LightKind::Spot ||
+                 l.kind == LightKind::Area)
+            from = l.position - target;
+        if (length(from) > 0) facing += dot(normalize(from), dir);
+    }
+    return facing;
+}
+
+}  // namespace
+
 void applyDefaultFraming(Scene& scene) {
     Bounds3 b = scene.storedBounds();
     if (b.empty()) return;
@@ -26,6 +46,9 @@ void applyDefaultFraming(Scene& scene) {
     Vec3 target = b.centroid();
     float radius = 0.5f * length(b.diagonal());
     Vec3 dir = normalize(Vec3(0.0f, 0.25f, 1.0f));
+    // Lights behind the scene light only the side the front view cannot see (AC's
+    // SphereWithLight renders black): look from the back when the lights are mostly there.
+    if (lightsFacing(scene, target, dir) < 0) dir.z = -dir.z;
     // A flat scene seen (nearly) edge-on shows nothing: look along its normal axis instead.
     Vec3 size = b.diagonal();
     int thin = size.x <= size.y && size.x <= size.z ? 0 : (size.y <= size.z ? 1 : 2);
@@ -41,6 +64,13 @@ void applyDefaultFraming(Scene& scene) {
     cam.up = Vec3(0, 1, 0);
     cam.nearClip = distance * 1e-4f;
     cam.fromFile = false;
+}
+
+void fitOrthoToAspect(float& halfWidth, float& halfHeight, float aspect) {
+    if (halfWidth < halfHeight * aspect)
+        halfWidth = halfHeight * aspect;
+    else if (halfWidth > halfHeight * aspect)
+        halfHeight = halfWidth / aspect;
 }
 
 void fitFovToAspect(float& hFovDeg, float& vFovDeg, float aspect) {

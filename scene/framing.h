@@ -16,5 +16,7 @@ void applyDefaultFraming(Scene& scene);
 
 // Widens one field of view so that tan(h/2)/tan(v/2) equals the image aspect (the course's rule).
 void fitFovToAspect(float& hFovDeg, float& vFovDeg, float aspect);
+// The same rule for an orthographic camera's half width and height.
+void fitOrthoToAspect(float& halfWidth, float& halfHeight, float aspect);
 
 }  // namespace kiln

@@ -1,6 +1,7 @@
 // Format readers. Each fills a Scene in world space (Y up) and throws SceneError on bad input.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "renderer/core/memory.h"
@@ -25,6 +26,16 @@ void readAssimpTextures(const aiScene* as, const aiMaterial* am, const std::stri
 // A warning for each feature of an Assimp material that kiln's rendering of it drops (metal, gloss,
 // opacity, transmission, clearcoat, specular colour, an emissive colour turning it into a light).
 void warnDroppedMaterialFeatures(const aiMaterial* am, const Material& m, Scene& scene);
+
+// A 3DS camera as its editor chunk (0x4700) states it, in the file's Z-up coordinates.
+struct Camera3ds {
+    Vec3 position, target;
+    float bankDeg = 0, lensMm = 0;
+};
+// The camera of the named object, if the file has one.
+std::optional<Camera3ds> read3dsCamera(const std::string& path, const std::string& name);
+// Its horizontal field of view in degrees.
+float fovFrom3dsLens(float lensMm);
 
 // The file name's extension, lower case, with its dot ("" when it has none).
 std::string lowerExtension(const std::string& path);

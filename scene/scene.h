@@ -64,6 +64,11 @@ struct Camera {
     float nearClip = 0.001f, farClip = 1e30f;
     float apertureRadius = 0.0f;  // thin lens when > 0
     float focalDistance = 1.0f;
+    // Orthographic when > 0: half the view's width and height in scene units (glTF xmag/ymag,
+    // COLLADA <orthographic>); the field of view and the lens are then unused, and the aspect is
+    // fitted at render time as the field of view is.
+    float orthoHalfWidth = 0.0f, orthoHalfHeight = 0.0f;
+    bool orthographic() const { return orthoHalfWidth > 0; }
     // Only the camera's direction survives the CS184 framing rule; this is that direction
     // (from the scene centre towards the camera) when the file had a camera.
     bool fromFile = false;

@@ -129,8 +129,12 @@ std::string sceneInfoText(const Scene& scene) {
        << (scene.framedByCourseRule ? "file direction, CS184 framing"
            : scene.hasFileCamera    ? "file"
                                     : "default framing")
-       << " at " << vec(Vec3d(c.position) + scene.origin) << " looking " << vec(c.forward)
-       << " hfov " << num(c.hFovDeg) << " vfov " << num(c.vFovDeg) << "\n";
+       << " at " << vec(Vec3d(c.position) + scene.origin) << " looking " << vec(c.forward);
+    if (c.orthographic())
+        os << " orthographic half width " << num(c.orthoHalfWidth) << " half height "
+           << num(c.orthoHalfHeight) << "\n";
+    else
+        os << " hfov " << num(c.hFovDeg) << " vfov " << num(c.vFovDeg) << "\n";
     for (const std::string& w : scene.warnings) os << "warning     " << w << "\n";
     return os.str();
 }
@@ -154,6 +158,8 @@ std::string sceneInfoJson(const Scene& scene) {
                   {"up", jsonVec(c.up)},
                   {"hfov", jsonNumber(c.hFovDeg)},
                   {"vfov", jsonNumber(c.vFovDeg)},
+                  {"orthographic_half_width", jsonNumber(c.orthoHalfWidth)},
+                  {"orthographic_half_height", jsonNumber(c.orthoHalfHeight)},
                   {"from_file", scene.hasFileCamera}}},
                 {"bbox", {{"min", jsonVec(b.lo)}, {"max", jsonVec(b.hi)}}},
                 {"geometry_bytes", s.geometryBytes},

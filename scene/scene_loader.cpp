@@ -187,6 +187,49 @@ void warnDarkLights(Scene& scene) {
         scene.warnings.push_back("every light has zero power: only emission will be visible");
 }
 
+// Reasons an image will be black that the scene shows before any ray (each says which).
+void warnBlackImage(Scene& scene) {
+    std::vector<uint32_t> used;
+    for (const TriangleMesh& m : scene.meshes)
+        used.insert(used.end(), m.materialIds.begin(), m.materialIds.end());
+    for (const Sphere& s : scene.spheres) used.push_back(s.material);
+    bool anyVisible = false;
+    for (uint32_t id : used) {
+        const Material& m = scene.materials[id];
+        anyVisible |= m.kind != MaterialKind::Lambertian || maxComponent(m.albedo) > 0 ||
+                      m.albedoTexture >= 0 || maxComponent(m.emission) > 0;
+    }
+    if (!anyVisible && !used.empty())
+        scene.warnings.push_back(
+            "every material's diffuse colour is black, as the file states, "
+            "and nothing emits: the image will be black");
+    // Point, spot and directional lights only, all outside the scene's bounds: the most irradiance
+    // they can give any surface. Below 1e-3 a white surface reflects under one 8-bit sRGB code.
+    Bounds3 b = scene.storedBounds();
+    if (b.empty() || scene.lights.empty()) return;
+    double most = 0;
+    for (const Light& l : scene.lights) {
+        if (l.kind == LightKind::Directional) {
+            most += maxComponent(l.radiance);
+            continue;
+        }
+        if (l.kind != LightKind::Point && l.kind != LightKind::Spot) return;
+        Vec3 nearest = min(max(l.position, b.lo), b.hi);
+        double d = length(l.position - nearest);
+        if (!(d > 0)) return;  // inside the bounds: no bound on what it lights
+        most += maxComponent(l.radiance) / (d * d);
+    }
+    if (most < 1e-3) {
+        char msg[240];
+        std::snprintf(msg, sizeof msg,
+                      "the lights give the scene an irradiance of at most %.3g (they are far away "
+                      "for their intensity, which falls off with the square of the distance): the "
+                      "image will look black",
+                      most);
+        scene.warnings.push_back(msg);
+    }
+}
+
 // Beyond 2^24 / 100 the float spacing at the scene's far edge exceeds 1% of a typical edge.
 void warnFloatResolution(Scene& scene) {
     Bounds3 b = scene.storedBounds();
@@ -260,16 +303,24 @@ Scene loadScene(const std::string& path, const LoadOptions& options) {
         addDefaultLightRig(scene);
     }
     warnDarkLights(scene);
+    warnBlackImage(scene);
 
     using Rule = LoadOptions::CameraRule;
+    // The course rule places a perspective camera by its field of view: an orthographic camera
+    // keeps the view the file gives it.
+    bool courseRule =
+        options.cameraRule == Rule::Framed || (options.cameraRule == Rule::Auto && scene.isCs184);
+    if (courseRule && scene.hasFileCamera && scene.camera.orthographic()) {
+        if (options.cameraRule == Rule::Framed)
+            scene.warnings.push_back(
+                "the camera is orthographic: the CS184 framing rule does not apply to it");
+        courseRule = false;
+    }
     if (!scene.hasFileCamera)
         applyDefaultFraming(scene);
-    else if (options.cameraRule == Rule::Framed ||
-             (options.cameraRule == Rule::Auto && scene.isCs184))
+    else if (courseRule)
         applyCs184Framing(scene);
-    scene.framedByCourseRule =
-        scene.hasFileCamera &&
-        (options.cameraRule == Rule::Framed || (options.cameraRule == Rule::Auto && scene.isCs184));
+    scene.framedByCourseRule = scene.hasFileCamera && courseRule;
 
     validateView(scene);
     scene.loadSeconds =

@@ -52,8 +52,13 @@ void validateCamera(const std::string& file, const Camera& c) {
     if (!isFinite(c.position) || !isFinite(c.forward) || !isFinite(c.up))
         throw SceneError(file, "the camera has a non-finite position or direction");
     if (!(length(c.forward) > 0)) throw SceneError(file, "the camera has no view direction");
-    if (!(c.hFovDeg > 0 && c.hFovDeg < 180 && c.vFovDeg > 0 && c.vFovDeg < 180))
+    if (c.orthographic()) {
+        if (!(std::isfinite(c.orthoHalfWidth) && c.orthoHalfHeight > 0 &&
+              std::isfinite(c.orthoHalfHeight)))
+            throw SceneError(file, "the orthographic camera's width or height is not positive");
+    } else if (!(c.hFovDeg > 0 && c.hFovDeg < 180 && c.vFovDeg > 0 && c.vFovDeg < 180)) {
         throw SceneError(file, "the camera's field of view is outside (0, 180) degrees");
+    }
     if (!(c.nearClip >= 0 && c.farClip > c.nearClip))
         throw SceneError(file, "the camera's clip planes are not 0 <= near < far");
     if (!(c.apertureRadius >= 0 && std::isfinite(c.apertureRadius) && c.focalDistance > 0))

@@ -2,6 +2,7 @@
 // value written in a file the test writes itself.
 #include <filesystem>
 
+#include "renderer/accel/accelerator.h"
 #include "scene/scene_loader.h"
 #include "test_support.h"
 
@@ -47,14 +48,136 @@ TEST(ImportCameras, GltfFieldOfViewAndPositionAsWritten) {
     EXPECT_NEAR(s.camera.nearClip, 0.01f, 1e-7f);
 }
 
-TEST(ImportCameras, OrthographicCameraWarnsAndFramesTheScene) {
+std::string centimetreCollada(bool withLight);
+
+// A unit quad [0,1]^2 at z = 0 seen by this camera from a node at (0.5, 0.5, 3).
+std::string gltfQuadWithCamera(const std::string& camera) {
+    return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1]}], "nodes": [{"mesh": 0}, {"translation": [0.5, 0.5, 3.0], "camera": 0}], "cameras": [)" +
+           camera +
+           R"(], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}], "buffers": [{"byteLength": 60, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAACAPwAAgD8AAAAAAAAAAAAAgD8AAAAAAAABAAIAAAACAAMA"}], "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 12}], "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}, {"bufferView": 1, "componentType": 5123, "count": 6, "type": "SCALAR"}]})";
+}
+
+// Which pixels of a w x h render see a surface (albedo AOV non-zero).
+std::vector<std::vector<bool>> coverage(const Scene& s, int w, int h) {
+    AovRequest aovs;
+    aovs.add(AovKind::Albedo);
+    auto accel = makeEmbreeAccelerator(s);
+    Film f = test::renderJob(s, *accel, test::jobOptions(w, h, 4, PathOptions{}, aovs));
+    size_t r = test::aovChannel(f, "albedo.R");
+    std::vector<std::vector<bool>> hit(size_t(h), std::vector<bool>(size_t(w), false));
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) hit[size_t(y)][size_t(x)] = f.aov(x, y, r) > 0;
+    return hit;
+}
+
+// glTF orthographic xmag = ymag = 1 (half extents): the view spans [-0.5, 1.5] vertically; at
+// 96 x 64 the width widens to 3 units (the aspect fit), 32 pixels per unit, so the quad covers
+// exactly columns 32..63 and rows 16..47 (pixel edges fall on the quad's edges).
+TEST(ImportCameras, OrthographicViewOfAUnitQuadCoversItsPixelExtent) {
     auto dir = test::scratchDir();
     Scene s = loadScene(test::writeFile(
         dir / "ortho.gltf",
-        gltfWithCamera(
+        gltfQuadWithCamera(
             R"({"type": "orthographic", "orthographic": {"xmag": 1.0, "ymag": 1.0, "zfar": 100, "znear": 0.01}})")));
-    EXPECT_FALSE(s.hasFileCamera);
-    EXPECT_TRUE(hasWarning(s, "orthographic")) << (s.warnings.empty() ? "" : s.warnings[0]);
+    ASSERT_TRUE(s.hasFileCamera);
+    ASSERT_TRUE(s.camera.orthographic());
+    EXPECT_FLOAT_EQ(s.camera.orthoHalfWidth, 1.0f);
+    EXPECT_FLOAT_EQ(s.camera.orthoHalfHeight, 1.0f);
+    auto hit = coverage(s, 96, 64);
+    int wrong = 0;
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 96; ++x) {
+            bool expected = x >= 32 && x < 64 && y >= 16 && y < 48;
+            wrong += hit[size_t(y)][size_t(x)] != expected;
+        }
+    EXPECT_EQ(wrong, 0);
+}
+
+// xmag 2, ymag 1: Assimp reports mOrthographicWidth = xmag and mAspect = xmag / ymag.
+TEST(ImportCameras, OrthographicGltfKeepsBothMagnifications) {
+    auto dir = test::scratchDir();
+    Scene s = loadScene(test::writeFile(
+        dir / "ortho.gltf",
+        gltfQuadWithCamera(
+            R"({"type": "orthographic", "orthographic": {"xmag": 2.0, "ymag": 1.0, "zfar": 100, "znear": 0.01}})")));
+    EXPECT_FLOAT_EQ(s.camera.orthoHalfWidth, 2.0f);
+    EXPECT_FLOAT_EQ(s.camera.orthoHalfHeight, 1.0f);
+    Vec3d p = s.world(s.camera.position);
+    EXPECT_NEAR(p.z, 3.0, 1e-6);
+}
+
+// COLLADA <orthographic> in a Z-up file (where the CS184 rule would move a perspective camera):
+// xmag 50 cm with aspect 2 is half a metre wide and a quarter high, and the camera stays where the
+// file puts it.
+TEST(ImportCameras, ColladaOrthographicIsScaledAndNotReframed) {
+    auto dir = test::scratchDir();
+    std::string dae = centimetreCollada(false);
+    auto replace = [&](const std::string& from, const std::string& to) {
+        size_t at = dae.find(from);
+        ASSERT_NE(at, std::string::npos) << from;
+        dae.replace(at, from.size(), to);
+    };
+    replace("<perspective><yfov>40</yfov><aspect_ratio>1</aspect_ratio>",
+            "<orthographic><xmag>50</xmag><aspect_ratio>2</aspect_ratio>");
+    replace("</perspective>", "</orthographic>");
+    replace("<up_axis>Y_UP</up_axis>", "<up_axis>Z_UP</up_axis>");
+    Scene s = loadScene(test::writeFile(dir / "ortho.dae", dae));
+    ASSERT_TRUE(s.camera.orthographic());
+    EXPECT_FALSE(s.framedByCourseRule);
+    EXPECT_NEAR(s.camera.orthoHalfWidth, 0.5f, 1e-6f);
+    EXPECT_NEAR(s.camera.orthoHalfHeight, 0.25f, 1e-6f);
+    EXPECT_NEAR(s.camera.nearClip, 0.1f, 1e-7f);
+    // Node (0, 50, 500) cm in Z-up: the course matrix maps it to (0, 5, 0.5) m.
+    Vec3d p = s.world(s.camera.position);
+    EXPECT_NEAR(std::abs(p.y) + std::abs(p.z), 5.5, 1e-5);
+    // Asking for the course rule explicitly is answered with a warning, not a moved camera.
+    LoadOptions framed;
+    framed.cameraRule = LoadOptions::CameraRule::Framed;
+    std::string path = (dir / "ortho.dae").string();
+    Scene f = loadScene(path, framed);
+    EXPECT_TRUE(hasWarning(f, "CS184 framing rule does not apply"));
+    EXPECT_NEAR(f.world(f.camera.position).x, p.x, 1e-6);
+}
+
+// 3DS: Assimp 5.2 drops the target and reads the lens as an angle. TargetCameraAnim.3ds states
+// position (-65.8677, 16.1213, -2.42502), target (100.410, 28.2159, 0), lens 53.333 (= 2400 / 45)
+// in Z-up coordinates, which Assimp's root node turns to Y-up: (x, z, -y).
+TEST(ImportCameras, ThreeDsCameraAsTheFileStatesIt) {
+    std::string path = "/usr/share/assimp/models/3DS/TargetCameraAnim.3ds";
+    ASSERT_TRUE(std::filesystem::exists(path)) << "assimp-testmodels (tools/setup.sh) missing";
+    Scene s = loadAsFile(path);
+    ASSERT_TRUE(s.hasFileCamera);
+    Vec3d p = s.world(s.camera.position);
+    EXPECT_NEAR(p.x, -65.8677, 1e-3);
+    EXPECT_NEAR(p.y, -2.42502, 1e-3);
+    EXPECT_NEAR(p.z, -16.1213, 1e-3);
+    Vec3 toTarget = normalize(Vec3(Vec3d(100.41005, 0.0, -28.215897) - p));
+    EXPECT_GT(dot(s.camera.forward, toTarget), 0.99999f);
+    EXPECT_NEAR(s.camera.hFovDeg, 45.0f, 1e-3f);
+    EXPECT_NEAR(s.camera.up.y, 1.0f, 1e-6f);  // bank 0: the file's +Z
+}
+
+// OpenGEX from Blender: the camera matrix is Blender's, whose -Z is the view (default scene: camera
+// at (7.48, -6.51, 5.34) looking at the cube at the origin). Assimp reports +Z.
+TEST(ImportCameras, OpenGexCameraLooksAtTheScene) {
+    auto dir = test::scratchDir();
+    Scene s = loadAsFile(test::writeFile(dir / "cam.ogex", R"(Metric (key = "up") {string {"z"}}
+GeometryNode $node1 { Name {string {"Tri"}} ObjectRef {ref {$geometry1}}
+  Transform { float[16] { {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1} } } }
+CameraNode $node2 { Name {string {"Camera"}} ObjectRef {ref {$camera1}}
+  Transform { float[16] { {0.6858805, 0.7276338, -0.0108168, 0.0,
+    -0.3173701, 0.3124686, 0.8953433, 0.0, 0.6548619, -0.6106656, 0.4452454, 0.0,
+    7.4811316, -6.5076399, 5.3436651, 1.0} } } }
+GeometryObject $geometry1 { Mesh (primitive = "triangles") {
+  VertexArray (attrib = "position") { float[3] { {-1, -1, 0}, {1, -1, 0}, {0, 1, 0} } }
+  IndexArray { unsigned_int32[3] { {0, 1, 2} } } } }
+CameraObject $camera1 { Param (attrib = "fov") {float {0.857556}} }
+)"));
+    ASSERT_TRUE(s.hasFileCamera);
+    Vec3d p = s.world(s.camera.position);
+    EXPECT_NEAR(p.x, 7.4811316, 1e-4);
+    Vec3 toOrigin = normalize(Vec3(-p));
+    EXPECT_GT(dot(s.camera.forward, toOrigin), 0.99f);
 }
 
 // NFF states the full angle ("angle 60") and a from/at pair.

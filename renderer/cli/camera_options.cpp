@@ -54,7 +54,8 @@ void CameraOptions::apply(Scene& scene) const {
         if (position || lookAt || up)
             pointCamera(cam, position ? stored(scene, *position) : cam.position,
                         lookAt ? stored(scene, *lookAt) : centre, up ? *up : cam.up);
-        if (fovDeg > 0) cam.hFovDeg = cam.vFovDeg = fovDeg;
+        if (fovDeg > 0)  // a perspective view, whatever the file's camera was
+            cam.hFovDeg = cam.vFovDeg = fovDeg, cam.orthoHalfWidth = cam.orthoHalfHeight = 0;
         if (turntable > 0)
             cam = orbitCamera(cam, orbitCentre ? stored(scene, *orbitCentre) : centre,
                               orbitAxis ? *orbitAxis : cam.up, turntable, frame);

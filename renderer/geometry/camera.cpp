@@ -15,9 +15,15 @@ CameraModel::CameraModel(const Camera& camera, int width, int height)
     if (width <= 0 || height <= 0)
         throw SceneError("camera", "image size must be positive, not " + std::to_string(width) +
                                        " x " + std::to_string(height));
-    fitFovToAspect(hFov_, vFov_, float(width) / float(height));
-    tanX_ = std::tan(radians(hFov_) / 2);
-    tanY_ = std::tan(radians(vFov_) / 2);
+    float aspect = float(width) / float(height);
+    if (camera.orthographic()) {
+        tanX_ = camera.orthoHalfWidth, tanY_ = camera.orthoHalfHeight;
+        fitOrthoToAspect(tanX_, tanY_, aspect);
+    } else {
+        fitFovToAspect(hFov_, vFov_, aspect);
+        tanX_ = std::tan(radians(hFov_) / 2);
+        tanY_ = std::tan(radians(vFov_) / 2);
+    }
     xScale_ = 2.0f / float(width), yScale_ = 2.0f / float(height);
     forward_ = normalize(camera.forward);
     right_ = cross(forward_, camera.up);
@@ -32,6 +38,8 @@ CameraModel::CameraModel(const Camera& camera, int width, int height)
 Ray CameraModel::generateRay(float px, float py, float lensU, float lensV) const {
     float x = (px * xScale_ - 1.0f) * tanX_;
     float y = (1.0f - py * yScale_) * tanY_;
+    if (cam_.orthographic())  // parallel rays; clip planes are distances from the camera plane
+        return Ray{cam_.position + right_ * x + up_ * y, cam_.nearClip, forward_, cam_.farClip};
     Vec3 dir = normalize(right_ * x + up_ * y + forward_);
     Ray ray{cam_.position, 0.0f, dir, kInfinity};
     // Clip planes are distances along the view axis, as in the course program.

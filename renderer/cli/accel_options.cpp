@@ -9,6 +9,7 @@
 namespace kiln {
 
 void AcceleratorChoice::addOptions(ArgParser& parser, bool withKind) {
+    OptionGroup group(parser, "Accelerator");
     if (withKind)
         parser.option(
             "accel", "", 1, "embree|reference|brute",

@@ -1,8 +1,11 @@
-// A small table-driven option parser: long and short names, fixed argument counts, generated help,
-// and one-line errors for bad flags.
+// The commands' option declarations, a thin adapter over CLI11's CLI::App: long and short names,
+// fixed argument counts, groups in the generated help, and one-line errors for bad flags. CLI11
+// gives the GNU forms: -s4, -s 4, --spp=4, --spp 4, bundled switches (-qH) and -- (what follows
+// is a file name, even one starting with '-').
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -18,11 +21,18 @@ class UsageError : public std::runtime_error {
 
 class ArgParser {
   public:
-    ArgParser(std::string command, std::string synopsis)
-        : command_(std::move(command)), synopsis_(std::move(synopsis)) {}
+    ArgParser(std::string command, std::string synopsis);
+    ~ArgParser();
+    ArgParser(ArgParser&&) noexcept;
+    ArgParser& operator=(ArgParser&&) noexcept;
+
+    // The help section the following declarations are listed under ("Options" until set);
+    // returns the one before. OptionGroup sets it for a scope.
+    std::string group(const std::string& name);
 
     using Handler = std::function<void(const std::vector<std::string>&)>;
-    // shortName may be empty; metavar names the arguments in help ("" for a switch).
+    // shortName may be empty; metavar names the arguments in help ("" for a switch). The handler
+    // runs when the option is met, in command-line order (a later -o overrides an earlier one).
     void option(const std::string& longName, const std::string& shortName, int nargs,
                 const std::string& metavar, const std::string& help, Handler handler);
     void flag(const std::string& longName, const std::string& shortName, const std::string& help,
@@ -40,7 +50,7 @@ class ArgParser {
     }
     // Returns positional arguments. Throws UsageError; sets helpRequested() on -h/--help.
     std::vector<std::string> parse(const std::vector<std::string>& args);
-    bool helpRequested() const { return help_; }
+    bool helpRequested() const;
     std::string helpText() const;
 
     // "--NAME takes CHOICES, got 'VALUE'"
@@ -50,14 +60,23 @@ class ArgParser {
     static double toDouble(const std::string& option, const std::string& text);
 
   private:
-    struct Option {
-        std::string longName, shortName, metavar, help;
-        int nargs;
-        Handler handler;
-    };
-    std::string command_, synopsis_;
-    std::vector<Option> options_;
-    bool help_ = false;
+    struct Impl;  // CLI::App and what its callbacks write; on the heap so a parser can move
+    std::unique_ptr<Impl> impl_;
+};
+
+// Declarations made while it lives are listed under NAME in --help; the group before comes back
+// at the end of the scope, so shared declarations do not regroup the caller's own.
+class OptionGroup {
+  public:
+    OptionGroup(ArgParser& parser, const std::string& name)
+        : parser_(parser), previous_(parser.group(name)) {}
+    ~OptionGroup() { parser_.group(previous_); }
+    OptionGroup(const OptionGroup&) = delete;
+    OptionGroup& operator=(const OptionGroup&) = delete;
+
+  private:
+    ArgParser& parser_;
+    std::string previous_;
 };
 
 }  // namespace kiln

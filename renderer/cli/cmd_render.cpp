@@ -75,6 +75,7 @@ double seconds(std::chrono::steady_clock::time_point since) {
 }
 
 void addCameraOptions(ArgParser& parser, RenderCommand& c) {
+    OptionGroup group(parser, "Camera");
     parser.option("aperture", "b", 1, "R",
                   "thin-lens aperture radius in scene units, CS184's -b (default 0: pinhole)",
                   [&c](const std::vector<std::string>& v) {
@@ -90,6 +91,7 @@ void addCameraOptions(ArgParser& parser, RenderCommand& c) {
 }
 
 void addOutputOptions(ArgParser& parser, RenderCommand& c) {
+    OptionGroup group(parser, "Output");
     addOutputNameOptions(parser, c.output, c.job.job.path);
     parser.option("file", "f", 1, "OUT.png", "CS184 form: preview file; the EXR goes beside it",
                   [&c](const std::vector<std::string>& v) { c.output = v[0]; });
@@ -110,6 +112,7 @@ void addOutputOptions(ArgParser& parser, RenderCommand& c) {
 }
 
 void addLongRenderOptions(ArgParser& parser, RenderCommand& c) {
+    OptionGroup group(parser, "Long renders");
     auto seconds = [](const std::string& name, const std::string& text) {
         double v = ArgParser::toDouble(name, text);
         if (!(v > 0 && v < 1e9)) throw UsageError(name + " takes seconds > 0, got '" + text + "'");
@@ -148,6 +151,7 @@ std::string joined(const std::vector<std::string>& names, const char* separator)
 }
 
 void addCompressionOption(ArgParser& parser, RenderCommand& c) {
+    OptionGroup group(parser, "Output");
     const std::vector<std::string>& known = exrCompressions();
     parser.option("compression", "", 1, joined(known, "|"),
                   "EXR compression (default zip; pxr24, b44, b44a, dwaa, dwab are lossy)",
@@ -161,6 +165,7 @@ void addCompressionOption(ArgParser& parser, RenderCommand& c) {
 
 // Alpha and Z conventions of the EXR (see docs/output.md).
 void addCompositingOptions(ArgParser& parser, RenderCommand& c) {
+    OptionGroup group(parser, "Output");
     parser.flag("transparent", "",
                 "transparent background (Cycles' Film > Transparent): background seen directly "
                 "leaves the image, alpha counts non-emitting surfaces only",
@@ -203,6 +208,8 @@ void checkColour(RenderCommand& c) {
 
 // What a job queue drives: one JSON result on stdout, progress as JSON lines on stderr.
 void addQueueOptions(ArgParser& parser, RenderCommand& c) {
+    OptionGroup group(parser, "Messages");
+    parser.flag("quiet", "q", "no progress bar", c.quiet);
     parser.flag("json", "",
                 "print one JSON result on stdout: outputs, times, rays, samples, peak memory, "
                 "warnings (docs/output.md)",
@@ -268,6 +275,7 @@ void printJsonResult(const RenderCommand& c, const Scene& scene, const OutputPat
 }
 
 void addDebugOptions(ArgParser& parser, RenderCommand& c) {
+    OptionGroup group(parser, "Debug");
     parser.option("pixel", "", 2, "X Y",
                   "debug: trace only this pixel (with --sample) and print what it returns",
                   [&c](const std::vector<std::string>& v) {
@@ -276,7 +284,6 @@ void addDebugOptions(ArgParser& parser, RenderCommand& c) {
                   });
     parser.intOption("sample", "", "debug: the sample index to replay with --pixel", c.debugSample,
                      0, 1 << 30);
-    parser.flag("quiet", "q", "no progress bar", c.quiet);
     parser.flag("traversal-floor", "",
                 "benchmark: after the render, render again recording every ray, trace the "
                 "recorded rays alone in the same calls, and print how much of the render time "

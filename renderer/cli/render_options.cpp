@@ -39,6 +39,7 @@ void addEnvironmentOptions(ArgParser& parser, LoadOptions& load) {
 }  // namespace
 
 void addLoadOptions(ArgParser& parser, LoadOptions& load) {
+    OptionGroup group(parser, "Scene");
     parser.option("camera", "", 1, "file|framed",
                   "the file's camera as written, or the CS184 course framing (default: course "
                   "framing for Z-up COLLADA)",
@@ -55,6 +56,7 @@ void addLoadOptions(ArgParser& parser, LoadOptions& load) {
 }
 
 void addOutputNameOptions(ArgParser& parser, std::string& output, PathOptions& path) {
+    OptionGroup group(parser, "Output");
     parser.option("output", "", 1, "OUT",
                   "output base name: OUT.exr and OUT.png (default: scene name)",
                   [&output](const std::vector<std::string>& v) { output = v[0]; });
@@ -71,6 +73,7 @@ void addOutputNameOptions(ArgParser& parser, std::string& output, PathOptions& p
 }
 
 void addEmitterOption(ArgParser& parser, LoadOptions& load, PathOptions& path) {
+    OptionGroup group(parser, "Scene");
     parser.option(
         "emitters", "", 1, "lights|camera",
         "emissive meshes: lights (default, physically right) or camera: the CS184 "
@@ -84,6 +87,7 @@ void addEmitterOption(ArgParser& parser, LoadOptions& load, PathOptions& path) {
 }
 
 void addExposureOption(ArgParser& parser, float& stops) {
+    OptionGroup group(parser, "Output");
     parser.option("exposure", "", 1, "STOPS",
                   "scale the preview's light by 2^STOPS before the display transform (the EXR "
                   "keeps the rendered values)",
@@ -98,6 +102,7 @@ namespace {
 
 void addImageOptions(ArgParser& parser, RenderJobArgs& a) {
     RenderSettings& s = a.job.settings;
+    OptionGroup group(parser, "Image");
     parser.option("resolution", "r", 2, "W H", "image size (default 800 600)",
                   [&s](const std::vector<std::string>& v) {
                       s.width = ArgParser::toInt("-r", v[0], 1, 32768);
@@ -114,6 +119,7 @@ void addImageOptions(ArgParser& parser, RenderJobArgs& a) {
                 throw UsageError(
                     "--crop takes X0 X1 Y0 Y1 with 0 <= X0 < X1 <= 1 and 0 <= Y0 < Y1 <= 1");
         });
+    parser.group("Sampling");
     parser.intOption("spp", "s", "camera samples per pixel (default 1)", s.spp, 1, 1 << 20);
     parser.intOption("threads", "t", "worker threads (default: all cores)", s.threads, 1, 4096);
     parser.intOption("tile", "", "tile size in pixels (default 32)", s.tileSize, 1, 4096);
@@ -137,6 +143,7 @@ void addImageOptions(ArgParser& parser, RenderJobArgs& a) {
 
 void addTransportOptions(ArgParser& parser, RenderJobArgs& a) {
     PathOptions& p = a.job.path;
+    OptionGroup group(parser, "Transport");
     parser.option("integrator", "i", 1, "NAME",
                   "light transport: " + enumChoices<IntegratorKind>() + " (default path)",
                   [&a](const std::vector<std::string>& v) {
@@ -192,6 +199,7 @@ void addTransportOptions(ArgParser& parser, RenderJobArgs& a) {
 void RenderJobArgs::addOptions(ArgParser& parser) {
     addImageOptions(parser, *this);
     addTransportOptions(parser, *this);
+    OptionGroup group(parser, "Output");
     parser.option("aov", "", 1, "LIST",
                   std::string("EXR layers beside the beauty, comma-separated: ") +
                       AovRequest::names() +

@@ -9,6 +9,8 @@
 #include <cstdlib>
 #include <utility>
 
+#include "renderer/core/log.h"
+
 namespace kiln {
 
 namespace {
@@ -57,19 +59,13 @@ struct ArgParser::Impl {
     std::string group = "Options";
     std::vector<std::string> positional;
     bool help = false;
-    bool helpDeclared = false;
+    bool commonDeclared = false;
 
     Impl(std::string commandName, const std::string& synopsis)
         : command(std::move(commandName)), app("", "kiln " + command) {
-        app.set_help_flag();  // -h/--help is declared last, as a plain switch (see declareHelp)
+        app.set_help_flag();  // -h/--help is declared last, as a plain switch (declareCommon)
         app.formatter(std::make_shared<HelpFormatter>("usage: kiln " + command + " " + synopsis));
         app.add_option("positional", positional)->group("");  // hidden: the synopsis names them
-    }
-    // Help is the last group, so the command's own groups come first.
-    void declareHelp() {
-        if (helpDeclared) return;
-        helpDeclared = true;
-        app.add_flag("-h,--help", help, "show this help")->group("Help");
     }
     std::string usageHint() const { return "(see 'kiln " + command + " --help')"; }
     // One line naming the flag, whatever CLI11 found wrong.
@@ -90,6 +86,17 @@ ArgParser::ArgParser(std::string command, std::string synopsis)
 ArgParser::~ArgParser() = default;
 ArgParser::ArgParser(ArgParser&&) noexcept = default;
 ArgParser& ArgParser::operator=(ArgParser&&) noexcept = default;
+
+// Declared at the end, so the command's own groups come first in the help.
+void ArgParser::declareCommon() {
+    if (std::exchange(impl_->commonDeclared, true)) return;
+    OptionGroup messages(*this, "Messages");
+    enumOption<LogLevel>("log-level",
+                         "the least important messages shown on stderr (default info; warning: "
+                         "only warnings and errors)",
+                         [](LogLevel level) { setLogLevel(level); });
+    impl_->app.add_flag("-h,--help", impl_->help, "show this help")->group("Help");
+}
 
 std::string ArgParser::group(const std::string& name) { return std::exchange(impl_->group, name); }
 
@@ -151,7 +158,7 @@ double ArgParser::toDouble(const std::string& option, const std::string& text) {
 }
 
 std::vector<std::string> ArgParser::parse(const std::vector<std::string>& args) {
-    impl_->declareHelp();
+    declareCommon();
     std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 pops from the back
     try {
         impl_->app.parse(reversed);
@@ -163,8 +170,8 @@ std::vector<std::string> ArgParser::parse(const std::vector<std::string>& args) 
 
 bool ArgParser::helpRequested() const { return impl_->help; }
 
-std::string ArgParser::helpText() const {
-    impl_->declareHelp();
+std::string ArgParser::helpText() {
+    declareCommon();
     std::string text = impl_->app.help();
     while (text.size() > 1 && text.back() == '\n' && text[text.size() - 2] == '\n') text.pop_back();
     return text;

@@ -4,6 +4,7 @@
 // is a file name, even one starting with '-').
 #pragma once
 
+#include <concepts>
 #include <functional>
 #include <memory>
 #include <stdexcept>
@@ -48,10 +49,20 @@ class ArgParser {
             target = *value;
         });
     }
+    // The same, handing the value to apply(E) (for a choice that sets more than one field).
+    template <class E, class Apply>
+    requires std::invocable<Apply, E>
+    void enumOption(const std::string& longName, const std::string& help, Apply apply) {
+        option(longName, "", 1, enumChoices<E>(), help, [apply, longName](const auto& v) {
+            std::optional<E> value = parseEnum<E>(v[0]);
+            if (!value) throw UsageError(badChoice(longName, enumChoices<E>(), v[0]));
+            apply(*value);
+        });
+    }
     // Returns positional arguments. Throws UsageError; sets helpRequested() on -h/--help.
     std::vector<std::string> parse(const std::vector<std::string>& args);
     bool helpRequested() const;
-    std::string helpText() const;
+    std::string helpText();
 
     // "--NAME takes CHOICES, got 'VALUE'"
     static std::string badChoice(const std::string& longName, const std::string& choices,
@@ -60,6 +71,7 @@ class ArgParser {
     static double toDouble(const std::string& option, const std::string& text);
 
   private:
+    void declareCommon();  // --log-level and -h/--help, last in the help
     struct Impl;  // CLI::App and what its callbacks write; on the heap so a parser can move
     std::unique_ptr<Impl> impl_;
 };

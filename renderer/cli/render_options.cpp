@@ -5,6 +5,17 @@
 namespace kiln {
 
 namespace {
+// --emitters: emissive meshes as lights, or as the CS184 program treats them.
+enum class EmitterRule { Lights, Camera };
+}  // namespace
+
+template <>
+struct EnumNames<EmitterRule> {
+    static constexpr std::pair<EmitterRule, const char*> table[] = {
+        {EmitterRule::Lights, "lights"}, {EmitterRule::Camera, "camera"}};
+};
+
+namespace {
 
 void addTextureCacheOption(ArgParser& parser, LoadOptions& load) {
     parser.option("texture-cache-mb", "", 1, "MB",
@@ -40,15 +51,10 @@ void addEnvironmentOptions(ArgParser& parser, LoadOptions& load) {
 
 void addLoadOptions(ArgParser& parser, LoadOptions& load) {
     OptionGroup group(parser, "Scene");
-    parser.option("camera", "", 1, "file|framed",
-                  "the file's camera as written, or the CS184 course framing (default: course "
-                  "framing for Z-up COLLADA)",
-                  [&load](const std::vector<std::string>& v) {
-                      if (v[0] != "file" && v[0] != "framed")
-                          throw UsageError("--camera takes 'file' or 'framed', got '" + v[0] + "'");
-                      load.cameraRule = v[0] == "file" ? LoadOptions::CameraRule::File
-                                                       : LoadOptions::CameraRule::Framed;
-                  });
+    parser.enumOption("camera",
+                      "the file's camera as written, or the CS184 course framing (default: course "
+                      "framing for Z-up COLLADA)",
+                      load.cameraRule);
     parser.option("env", "e", 1, "MAP.exr", "add a lat-long environment light (CS184's -e)",
                   [&load](const std::vector<std::string>& v) { load.environmentMap = v[0]; });
     addTextureCacheOption(parser, load);
@@ -74,15 +80,13 @@ void addOutputNameOptions(ArgParser& parser, std::string& output, PathOptions& p
 
 void addEmitterOption(ArgParser& parser, LoadOptions& load, PathOptions& path) {
     OptionGroup group(parser, "Scene");
-    parser.option(
-        "emitters", "", 1, "lights|camera",
+    parser.enumOption<EmitterRule>(
+        "emitters",
         "emissive meshes: lights (default, physically right) or camera: the CS184 "
         "program's behaviour, seen by camera and -H rays only, lighting nothing "
         "(area lights stay lights)",
-        [&load, &path](const std::vector<std::string>& v) {
-            if (v[0] != "lights" && v[0] != "camera")
-                throw UsageError(ArgParser::badChoice("emitters", "lights or camera", v[0]));
-            load.emissiveMeshLights = path.unsampledEmittersLight = v[0] == "lights";
+        [&load, &path](EmitterRule rule) {
+            load.emissiveMeshLights = path.unsampledEmittersLight = rule == EmitterRule::Lights;
         });
 }
 
@@ -164,13 +168,7 @@ void addTransportOptions(ArgParser& parser, RenderJobArgs& a) {
         "direct light by uniform hemisphere sampling (same as --sampling hemisphere)",
         [&p](const std::vector<std::string>&) { p.sampling = DirectSampling::Hemisphere; });
     parser.enumOption("sampling", "direct lighting strategy (default mis)", p.sampling);
-    parser.option(
-        "heuristic", "", 1, "power|balance", "MIS heuristic (default power)",
-        [&p](const std::vector<std::string>& v) {
-            if (v[0] != "power" && v[0] != "balance")
-                throw UsageError("--heuristic takes power or balance, got '" + v[0] + "'");
-            p.powerHeuristic = v[0] == "power";
-        });
+    parser.enumOption("heuristic", "MIS heuristic (default power)", p.heuristic);
     parser.enumOption("rr",
                       "Russian roulette (default throughput; fixed = CS184's constant "
                       "continuation)",

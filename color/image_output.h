@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "color/color_config.h"
+#include "renderer/core/enum_names.h"
 #include "renderer/film/film.h"
 
 namespace kiln {
@@ -22,9 +23,21 @@ struct ExrCamera {
     std::array<float, 16> worldToCamera{}, worldToNDC{};
 };
 
+// The EXR compressions OIIO writes (pxr24, b44, b44a, dwaa and dwab are lossy).
+enum class ExrCompression { None, Rle, Zip, Zips, Piz, Pxr24, B44, B44a, Dwaa, Dwab };
+template <>
+struct EnumNames<ExrCompression> {
+    static constexpr std::pair<ExrCompression, const char*> table[] = {
+        {ExrCompression::None, "none"}, {ExrCompression::Rle, "rle"},
+        {ExrCompression::Zip, "zip"},   {ExrCompression::Zips, "zips"},
+        {ExrCompression::Piz, "piz"},   {ExrCompression::Pxr24, "pxr24"},
+        {ExrCompression::B44, "b44"},   {ExrCompression::B44a, "b44a"},
+        {ExrCompression::Dwaa, "dwaa"}, {ExrCompression::Dwab, "dwab"}};
+};
+
 struct ExrOptions {
     bool half = false;  // colour layers (beauty, light AOVs, albedo, N) as half; data stays float
-    std::string compression = "zip";  // one of exrCompressions()
+    ExrCompression compression = ExrCompression::Zip;
     std::optional<ExrCamera> camera;
     std::string software;  // the Software attribute; empty: "kiln VERSION"
     // The OCIO config's name for kiln's working space (its scene_linear): kiln:colorspace.
@@ -32,9 +45,6 @@ struct ExrOptions {
     // Cryptomatte manifests (JSON text) by layer name ("CryptoObject", "CryptoMaterial").
     std::map<std::string, std::string> cryptoManifests;
 };
-
-// The EXR compressions OIIO writes: none rle zip zips piz pxr24 b44 b44a dwaa dwab.
-const std::vector<std::string>& exrCompressions();
 
 // Beauty R,G,B,A (A: coverage, colour premultiplied by it), every AOV of the film's layout as
 // "layer.channel", Z, samples.count, variance.V and the Cryptomatte layers when requested.

@@ -15,6 +15,7 @@ namespace kiln {
 enum class DirectSampling { Hemisphere, Light, Mis };
 enum class Roulette { Off, Throughput, Fixed };
 enum class IntegratorKind { Path, Normals };
+enum class MisHeuristic { Power, Balance };
 
 template <>
 struct EnumNames<DirectSampling> {
@@ -33,12 +34,17 @@ struct EnumNames<IntegratorKind> {
     static constexpr std::pair<IntegratorKind, const char*> table[] = {
         {IntegratorKind::Path, "path"}, {IntegratorKind::Normals, "normals"}};
 };
+template <>
+struct EnumNames<MisHeuristic> {
+    static constexpr std::pair<MisHeuristic, const char*> table[] = {
+        {MisHeuristic::Power, "power"}, {MisHeuristic::Balance, "balance"}};
+};
 
 struct PathOptions {
     int maxDepth = 5;
     int lightSamples = 1;  // -l: light samples per shading point
     DirectSampling sampling = DirectSampling::Mis;
-    bool powerHeuristic = true;  // else balance
+    MisHeuristic heuristic = MisHeuristic::Power;
     Roulette roulette = Roulette::Throughput;
     float fixedContinuation = 0.65f;  // CS184's constant continuation probability (Roulette::Fixed)
     int rouletteMinBounces = 3;       // throughput roulette starts after this many bounces
@@ -80,8 +86,8 @@ class PathIntegrator final : public Integrator {
     Color probeEmission(const Ray& ray, const Hit& hit) const;
     TraceFn trace_;  // chosen once, for the plan
     float misWeight(float nf, float fPdf, float ng, float gPdf) const {
-        return opt_.powerHeuristic ? powerHeuristic(nf, fPdf, ng, gPdf)
-                                   : balanceHeuristic(nf, fPdf, ng, gPdf);
+        return opt_.heuristic == MisHeuristic::Power ? powerHeuristic(nf, fPdf, ng, gPdf)
+                                                     : balanceHeuristic(nf, fPdf, ng, gPdf);
     }
     PathOptions opt_;
     LightSet lights_;

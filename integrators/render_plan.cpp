@@ -1,5 +1,7 @@
 #include "integrators/render_plan.h"
 
+#include <fmt/format.h>
+
 #include <set>
 
 #include "renderer/core/sampler.h"
@@ -110,12 +112,10 @@ RenderPlan planFor(const Scene& scene, const Accelerator& accel, const AovReques
         p.thinLens ? "aperture > 0" : "no aperture");
     say(p.aovs.splitsLight() || general ? "light AOVs accumulated" : "no light AOVs accumulated",
         p.aovs.splitsLight() ? "requested with --aov" : "none requested");
-    char escape[96];
-    std::snprintf(escape, sizeof escape, "%.1f %% of probe rays from visible surfaces escape",
-                  100.0 * p.escapeFraction);
     say(p.closed ? "closed scene: roulette, not escape, ends paths"
                  : "open scene: paths mostly end by escaping",
-        escape);
+        fmt::format("{:.1f} % of probe rays from visible surfaces escape",
+                    100.0 * p.escapeFraction));
     return p;
 }
 

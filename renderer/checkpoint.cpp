@@ -1,5 +1,6 @@
 #include "renderer/checkpoint.h"
 
+#include <fmt/format.h>
 #include <zlib.h>
 
 #include <cstdio>
@@ -46,11 +47,7 @@ std::string unescape(const std::string& v) {
     return out;
 }
 
-std::string number(double v) {
-    char text[64];
-    std::snprintf(text, sizeof text, "%.17g", v);
-    return text;
-}
+std::string number(double v) { return fmt::format("{:.17g}", v); }
 
 std::string vec(const Vec3& v) { return number(v.x) + " " + number(v.y) + " " + number(v.z); }
 
@@ -65,9 +62,8 @@ std::string fileIdentity(const std::string& path) {
         crc = crc32(crc, reinterpret_cast<const Bytef*>(chunk.data()), uInt(in.gcount()));
         size += uint64_t(in.gcount());
     }
-    char text[64];
-    std::snprintf(text, sizeof text, " (%llu bytes, crc32 %08lx)", (unsigned long long)size, crc);
-    return std::filesystem::path(path).filename().string() + text;
+    return fmt::format("{} ({} bytes, crc32 {:08x})",
+                       std::filesystem::path(path).filename().string(), size, crc);
 }
 
 std::string headerText(const CheckpointInfo& info) {
@@ -224,7 +220,7 @@ Fingerprint checkpointFingerprint(const RenderJob& job, const std::string& scene
         {"max_depth", std::to_string(p.maxDepth)},
         {"light_samples", std::to_string(p.lightSamples)},
         {"sampling", toString(p.sampling)},
-        {"mis_heuristic", p.powerHeuristic ? "power" : "balance"},
+        {"mis_heuristic", toString(p.heuristic)},
         {"roulette", std::string(toString(p.roulette)) + " " + number(p.fixedContinuation) + " " +
                          std::to_string(p.rouletteMinBounces)},
         {"accumulate_bounces", p.accumulateBounces ? "yes" : "no"},

@@ -79,7 +79,7 @@ Metadata RenderJob::metadata(const RenderStats& stats, const Film& film) const {
         {"accumulate_bounces", p.accumulateBounces ? "yes" : "no"},
         {"adaptive",
          s.adaptiveBatch > 0 ? text(s.adaptiveBatch) + " " + text(s.adaptiveTolerance) : "off"},
-        {"mis_heuristic", p.powerHeuristic ? "power" : "balance"},
+        {"mis_heuristic", toString(p.heuristic)},
         {"microfacet", toString(p.microfacet)},
         {"camera", scene_.framedByCourseRule ? "cs184-framing"
                    : scene_.hasFileCamera    ? "file"

@@ -1,4 +1,6 @@
 // The .kiln scene description: XML read with pugixml. Documented in docs/kiln-scene.md.
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -252,11 +254,10 @@ std::array<int, 3> gridCounts(const std::string& file, pugi::xml_node n) {
     // plus the placement list and the accelerator's instance record.
     double need = total * (2 * sizeof(Instance) + 64);
     if (total > double(UINT32_MAX) || need > double(availableMemoryBytes())) {
-        char msg[160];
-        std::snprintf(msg, sizeof msg,
-                      "<instances> grid of %.0f instances would need about %.1f GiB; refusing",
-                      total, need / double(1ull << 30));
-        throw SceneError(file, msg);
+        throw SceneError(
+            file, fmt::format("<instances> grid of {:.0f} instances would need about {:.1f} GiB; "
+                              "refusing",
+                              total, need / double(1ull << 30)));
     }
     return counts;
 }

@@ -1,7 +1,9 @@
 #include "scene/mesh_tools.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
-#include <charconv>
+#include <iterator>
 #include <cstdio>
 #include <cstring>
 #include <stdexcept>
@@ -43,13 +45,12 @@ TriangleMesh subdivideMidpoint(const TriangleMesh& mesh) {
 
 void writeBinaryPly(const std::string& path, const TriangleMesh& mesh) {
     AtomicFile file(path);  // temporary, checked writes, fsync, rename
-    char header[320];
-    int n = std::snprintf(header, sizeof header,
-                          "ply\nformat binary_little_endian 1.0\ncomment written by kiln\nelement "
-                          "vertex %zu\nproperty float x\nproperty float y\nproperty float z\n"
-                          "element face %zu\nproperty list uchar int vertex_indices\nend_header\n",
-                          mesh.vertexCount(), mesh.triangleCount());
-    file.write(header, size_t(n));
+    std::string header = fmt::format(
+        "ply\nformat binary_little_endian 1.0\ncomment written by kiln\nelement vertex {}\n"
+        "property float x\nproperty float y\nproperty float z\nelement face {}\n"
+        "property list uchar int vertex_indices\nend_header\n",
+        mesh.vertexCount(), mesh.triangleCount());
+    file.write(header.data(), header.size());
     file.write(mesh.positions.data(), sizeof(float) * 3 * mesh.vertexCount());
     std::vector<unsigned char> faces(13 * std::min<size_t>(mesh.triangleCount(), 1 << 16));
     for (size_t t = 0; t < mesh.triangleCount();) {
@@ -64,33 +65,21 @@ void writeBinaryPly(const std::string& path, const TriangleMesh& mesh) {
 }
 
 void writeObj(const std::string& path, const TriangleMesh& mesh) {
-    AtomicFile file(path);  // temporary, checked writes, fsync, rename
-    std::vector<char> buf;
+    AtomicFile file(path);   // temporary, checked writes, fsync, rename
+    fmt::memory_buffer buf;  // shortest round-trip floats, as std::to_chars
     auto flush = [&] {
         file.write(buf.data(), buf.size());
         buf.clear();
     };
-    char line[96];
-    for (size_t v = 0; v < mesh.vertexCount(); ++v) {
-        char* p = line;
-        *p++ = 'v';
-        for (int k = 0; k < 3; ++k) {
-            *p++ = ' ';
-            p = std::to_chars(p, line + sizeof line, mesh.positions[3 * v + size_t(k)]).ptr;
-        }
-        *p++ = '\n';
-        buf.insert(buf.end(), line, p);
+    const float* p = mesh.positions.data();
+    for (size_t v = 0; v < mesh.vertexCount(); ++v, p += 3) {
+        fmt::format_to(std::back_inserter(buf), "v {} {} {}\n", p[0], p[1], p[2]);
         if (buf.size() > (1 << 20)) flush();
     }
-    for (size_t t = 0; t < mesh.triangleCount(); ++t) {
-        char* p = line;
-        *p++ = 'f';
-        for (int k = 0; k < 3; ++k) {
-            *p++ = ' ';
-            p = std::to_chars(p, line + sizeof line, mesh.indices[3 * t + size_t(k)] + 1).ptr;
-        }
-        *p++ = '\n';
-        buf.insert(buf.end(), line, p);
+    const auto* index = mesh.indices.data();
+    for (size_t t = 0; t < mesh.triangleCount(); ++t, index += 3) {
+        fmt::format_to(std::back_inserter(buf), "f {} {} {}\n", index[0] + 1, index[1] + 1,
+                       index[2] + 1);
         if (buf.size() > (1 << 20)) flush();
     }
     flush();

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <string_view>
 
+#include "renderer/core/log.h"
 #include "scene/importers.h"
 #include "scene/mapped_file.h"
 #include "scene/scene_error.h"
@@ -367,8 +368,7 @@ bool readObj(const std::string& path, Scene& scene) {
         throw SceneError(path, "more than 4 billion vertices or 1.4 billion triangles in one mesh");
     checkMemoryFor(path, total.positions, total.triangles);
     if (total.triangles >= 10'000'000)
-        std::fprintf(stderr, "kiln: loading %s: %llu vertices, %llu triangles\n", path.c_str(),
-                     (unsigned long long)total.positions, (unsigned long long)total.triangles);
+        logInfo("loading {}: {} vertices, {} triangles", path, total.positions, total.triangles);
 
     // Normal and uv arrays are indexed like positions: only valid when the counts agree.
     if ((useNormals && total.normals != total.positions) ||

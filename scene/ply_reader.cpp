@@ -1,6 +1,8 @@
 // A direct PLY reader: binary (both endians) and ASCII, vertex positions/normals/uvs, faces as
 // polygon lists (fan-triangulated) and tristrips (-1 restarts, degenerate strip triangles dropped).
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <bit>
 #include <cctype>
@@ -12,6 +14,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "renderer/core/log.h"
 #include "scene/importers.h"
 #include "scene/mapped_file.h"
 #include "scene/scene_error.h"
@@ -199,14 +202,11 @@ void checkMemoryFor(const std::string& path, uint64_t vertices, uint64_t triangl
     uint64_t need = vertices * 24 + triangles * 12 + triangles * 80;
     uint64_t have = availableMemoryBytes();
     if (need > have) {
-        char msg[256];
-        std::snprintf(msg, sizeof msg,
-                      "would need about %.1f GiB for %llu vertices and %llu faces (scene model and "
-                      "BVH), but only %.1f "
-                      "GiB of memory is available",
-                      double(need) / (1ull << 30), (unsigned long long)vertices,
-                      (unsigned long long)triangles, double(have) / (1ull << 30));
-        throw SceneError(path, msg);
+        throw SceneError(path, fmt::format("would need about {:.1f} GiB for {} vertices and {} "
+                                           "faces (scene model and BVH), but only {:.1f} GiB of "
+                                           "memory is available",
+                                           double(need) / (1ull << 30), vertices, triangles,
+                                           double(have) / (1ull << 30)));
     }
 }
 
@@ -396,8 +396,8 @@ void readPly(const std::string& path, Scene& scene) {
             if (packedFaces) {
                 for (; f0 < e.count; ++f0) {
                     if (report && f0 == nextReport) {
-                        std::fprintf(stderr, "kiln: loading %s: %d%% of %llu faces\n", path.c_str(),
-                                     int(100 * f0 / e.count), (unsigned long long)e.count);
+                        logInfo("loading {}: {}% of {} faces", path, int(100 * f0 / e.count),
+                                e.count);
                         nextReport += e.count / 4;
                     }
                     const unsigned char* rec =

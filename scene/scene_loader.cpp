@@ -1,5 +1,6 @@
 #include "scene/scene_loader.h"
 
+#include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
@@ -243,12 +244,10 @@ void warnFloatResolution(Scene& scene) {
     if (counted == 0 || !(edges > 0)) return;
     double typical = edges / double(counted), spacing = reach * std::ldexp(1.0, -24);
     if (spacing > 0.01 * typical) {
-        char msg[240];
-        std::snprintf(msg, sizeof msg,
-                      "the scene reaches %.3g units from its centre but its edges are about %.3g "
-                      "long: float spacing there (%.3g) blurs details",
-                      reach, typical, spacing);
-        scene.warnings.push_back(msg);
+        scene.warnings.push_back(
+            fmt::format("the scene reaches {:.3g} units from its centre but its edges are about "
+                        "{:.3g} long: float spacing there ({:.3g}) blurs details",
+                        reach, typical, spacing));
     }
 }
 

@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "renderer/core/enum_names.h"
 #include "scene/scene.h"
 
 namespace kiln {
@@ -19,6 +20,13 @@ struct LoadOptions {
     float environmentScale = 1.0f;                       // --env-strength
     float environmentRotationDeg = 0.0f;                 // --env-rotate, about the up axis
     float textureCacheMb = TextureSet::kDefaultCacheMb;  // --texture-cache-mb
+};
+
+// --camera's names (Auto is the default, not a name to give).
+template <>
+struct EnumNames<LoadOptions::CameraRule> {
+    static constexpr std::pair<LoadOptions::CameraRule, const char*> table[] = {
+        {LoadOptions::CameraRule::File, "file"}, {LoadOptions::CameraRule::Framed, "framed"}};
 };
 
 // Throws SceneError (one line: file and problem) on anything it cannot load.

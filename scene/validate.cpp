@@ -1,3 +1,4 @@
+#include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
@@ -72,12 +73,10 @@ void validateView(const Scene& scene) {
     float extent = maxComponent(b.diagonal());
     float reach = std::max(maxComponent(abs(b.lo)), maxComponent(abs(b.hi)));
     if (!(extent <= kMaxSceneExtent && reach <= kMaxSceneExtent)) {
-        char msg[200];
-        std::snprintf(msg, sizeof msg,
-                      "the scene and camera span %.3g units; kiln traces at most %.0e (float "
-                      "distances would overflow)",
-                      double(std::max(extent, reach)), double(kMaxSceneExtent));
-        throw SceneError(scene.sourcePath, msg);
+        throw SceneError(scene.sourcePath,
+                         fmt::format("the scene and camera span {:.3g} units; kiln traces at most "
+                                     "{:.0e} (float distances would overflow)",
+                                     double(std::max(extent, reach)), double(kMaxSceneExtent)));
     }
 }
 

@@ -66,13 +66,15 @@ TEST(Json, RenderPrintsOneResultAndProgressLines) {
     EXPECT_GE(j["seconds"]["render"].get<double>(), 0.0);
     EXPECT_EQ(j["interrupted"], false);
     EXPECT_TRUE(j["warnings"].is_array());
-    // Progress: JSON lines on stderr, the last one "done" at fraction 1.
+    // Progress: JSON lines on stderr (the messages too), the last progress one "done" at 1.
     std::istringstream err(r.err);
     std::string line;
     nlohmann::json last;
     int lines = 0;
-    while (std::getline(err, line))
-        if (!line.empty() && line[0] == '{') last = nlohmann::json::parse(line), ++lines;
+    while (std::getline(err, line)) {
+        nlohmann::json j = nlohmann::json::parse(line);  // with --json every line is JSON
+        if (j["event"] != "log") last = j, ++lines;      // messages are "log" events
+    }
     ASSERT_GE(lines, 1) << r.err;
     EXPECT_EQ(last["event"], "done");
     EXPECT_EQ(last["fraction"], 1.0);

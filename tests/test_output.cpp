@@ -95,7 +95,7 @@ TEST(ExrOutput, ChannelsTypesAndMetadataRoundTrip) {
         std::string path = (dir / (half ? "half.exr" : "float.exr")).string();
         ExrOptions opt;
         opt.half = half;
-        opt.compression = half ? "piz" : "zip";
+        opt.compression = half ? ExrCompression::Piz : ExrCompression::Zip;
         writeExr(path, f, {{"spp", "8"}, {"seed", "0"}, {"integrator", "path"}}, opt);
         auto in = OIIO::ImageInput::open(path);
         ASSERT_TRUE(in);

@@ -7,7 +7,7 @@ cd "$(dirname "$0")/.."
 packages=(build-essential cmake pkg-config
   libembree-dev libopenimageio-dev openimageio-tools libopenexr-dev openexr
   libopencolorio-dev opencolorio-tools libtbb-dev libassimp-dev libgtest-dev
-  libpugixml-dev zlib1g-dev libmurmurhash-dev nlohmann-json3-dev libfmt-dev help2man
+  libpugixml-dev zlib1g-dev libmurmurhash-dev nlohmann-json3-dev libfmt-dev libcli11-dev help2man
   assimp-testmodels
   slurmctld slurmd slurm-client munge)  # the farm tests' local cluster (tools/slurm_local.sh)
 

@@ -6,6 +6,7 @@
 #include <span>
 #include <string>
 
+#include "renderer/core/enum_names.h"
 #include "renderer/core/ray.h"
 #include "scene/scene.h"
 
@@ -51,6 +52,26 @@ struct EmbreeOptions {
 };
 
 enum class BvhSplit { Sah, MeanCentroid, Midpoint };
+
+template <>
+struct EnumNames<AcceleratorKind> {
+    static constexpr std::pair<AcceleratorKind, const char*> table[] = {
+        {AcceleratorKind::Embree, "embree"},
+        {AcceleratorKind::Reference, "reference"},
+        {AcceleratorKind::BruteForce, "brute"}};
+};
+template <>
+struct EnumNames<EmbreeOptions::Quality> {
+    static constexpr std::pair<EmbreeOptions::Quality, const char*> table[] = {
+        {EmbreeOptions::Quality::Low, "low"},
+        {EmbreeOptions::Quality::Medium, "medium"},
+        {EmbreeOptions::Quality::High, "high"}};
+};
+template <>
+struct EnumNames<BvhSplit> {
+    static constexpr std::pair<BvhSplit, const char*> table[] = {
+        {BvhSplit::Sah, "sah"}, {BvhSplit::MeanCentroid, "mean"}, {BvhSplit::Midpoint, "midpoint"}};
+};
 
 struct ReferenceBvhOptions {
     BvhSplit split = BvhSplit::Sah;

@@ -297,9 +297,7 @@ class EmbreeAccelerator final : public Accelerator {
         stats_.memoryBytes = uint64_t(std::max<int64_t>(0, gEmbreeBytes.load() - bytesBefore));
         stats_.description = std::string("embree ") + (options.robust ? "robust " : "") +
                              (options.watertight ? "watertight " : "") +
-                             (options.quality == EmbreeOptions::Quality::High  ? "high"
-                              : options.quality == EmbreeOptions::Quality::Low ? "low"
-                                                                               : "medium");
+                             toString(options.quality);
     }
 
     ~EmbreeAccelerator() override {

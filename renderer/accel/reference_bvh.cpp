@@ -62,11 +62,7 @@ ReferenceAccelerator::ReferenceAccelerator(const Scene& scene, const ReferenceBv
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     stats_.memoryBytes = top_.memoryBytes() + items_.size() * sizeof(Item);
     for (const Bvh& b : prototypeBvh_) stats_.memoryBytes += b.memoryBytes();
-    const char* split = options.split == BvhSplit::Sah        ? "sah"
-                        : options.split == BvhSplit::Midpoint ? "midpoint"
-                                                              : "mean";
-    stats_.description =
-        std::string("reference bvh ") + split + " leaf " + std::to_string(options.maxLeafSize);
+    stats_.description = std::string("reference bvh ") + toString(options.split) + " leaf " + std::to_string(options.maxLeafSize);
 }
 
 bool ReferenceAccelerator::testTriangle(const TriangleMesh& mesh, uint32_t tri, Ray& ray,

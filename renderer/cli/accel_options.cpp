@@ -1,5 +1,7 @@
 #include "renderer/cli/accel_options.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <thread>
@@ -9,34 +11,15 @@
 namespace kiln {
 
 void AcceleratorChoice::addOptions(ArgParser& parser, bool withKind) {
+    OptionGroup group(parser, "Accelerator");
     if (withKind)
-        parser.option(
-            "accel", "", 1, "embree|reference|brute",
+        parser.enumOption(
+            "accel",
             "traversal: Embree (default), the reference BVH, or brute force (every ray against "
             "every primitive: CS184's timing without a BVH; refused when estimated over an hour)",
-            [this](const std::vector<std::string>& v) {
-                if (v[0] == "embree")
-                    kind = AcceleratorKind::Embree;
-                else if (v[0] == "reference")
-                    kind = AcceleratorKind::Reference;
-                else if (v[0] == "brute")
-                    kind = AcceleratorKind::BruteForce;
-                else
-                    throw UsageError(
-                        ArgParser::badChoice("accel", "embree, reference or brute", v[0]));
-            });
-    parser.option(
-        "embree-quality", "", 1, "low|medium|high", "Embree BVH build quality (default medium)",
-        [this](const std::vector<std::string>& v) {
-            if (v[0] == "low")
-                embree.quality = EmbreeOptions::Quality::Low;
-            else if (v[0] == "medium")
-                embree.quality = EmbreeOptions::Quality::Medium;
-            else if (v[0] == "high")
-                embree.quality = EmbreeOptions::Quality::High;
-            else
-                throw UsageError("--embree-quality takes low, medium or high, got '" + v[0] + "'");
-        });
+            kind);
+    parser.enumOption("embree-quality", "Embree BVH build quality (default medium)",
+                      embree.quality);
     parser.option("no-robust", "", 0, "",
                   "drop RTC_SCENE_FLAG_ROBUST (faster, may leak through shared edges)",
                   [this](const std::vector<std::string>&) { embree.robust = false; });
@@ -46,18 +29,7 @@ void AcceleratorChoice::addOptions(ArgParser& parser, bool withKind) {
                   [this](const std::vector<std::string>&) { embree.watertight = true; });
     parser.option("compact", "", 0, "", "RTC_SCENE_FLAG_COMPACT: smaller Embree BVH",
                   [this](const std::vector<std::string>&) { embree.compact = true; });
-    parser.option(
-        "bvh-split", "", 1, "sah|mean|midpoint", "reference BVH split rule (default sah)",
-        [this](const std::vector<std::string>& v) {
-            if (v[0] == "sah")
-                reference.split = BvhSplit::Sah;
-            else if (v[0] == "mean")
-                reference.split = BvhSplit::MeanCentroid;
-            else if (v[0] == "midpoint")
-                reference.split = BvhSplit::Midpoint;
-            else
-                throw UsageError("--bvh-split takes sah, mean or midpoint, got '" + v[0] + "'");
-        });
+    parser.enumOption("bvh-split", "reference BVH split rule (default sah)", reference.split);
     parser.intOption("bvh-leaf", "", "reference BVH maximum leaf size (default 4)",
                      reference.maxLeafSize, 1, 255);
 }
@@ -76,15 +48,11 @@ std::unique_ptr<Accelerator> AcceleratorChoice::build(const Scene& scene,
                                                       const RenderJobOptions* render) const {
     if (kind == AcceleratorKind::BruteForce) {
         double estimate = render ? bruteForceSeconds(scene, *render) : 0;
-        if (estimate > kBruteForceLimitSeconds) {
-            char text[300];
-            std::snprintf(text, sizeof text,
-                          "--accel brute: %llu primitives at this size would take about %.1f "
-                          "hours (limit %.0f minutes); use a smaller -r/-s or the BVH",
-                          (unsigned long long)bruteForcePrimitiveCount(scene), estimate / 3600,
-                          kBruteForceLimitSeconds / 60);
-            throw UsageError(text);
-        }
+        if (estimate > kBruteForceLimitSeconds)
+            throw UsageError(fmt::format(
+                "--accel brute: {} primitives at this size would take about {:.1f} hours (limit "
+                "{:.0f} minutes); use a smaller -r/-s or the BVH",
+                bruteForcePrimitiveCount(scene), estimate / 3600, kBruteForceLimitSeconds / 60));
         return makeBruteForceAccelerator(scene);
     }
     if (kind == AcceleratorKind::Reference) return makeReferenceAccelerator(scene, reference);

@@ -21,6 +21,7 @@ Vec3 stored(const Scene& scene, Vec3 world) { return Vec3(Vec3d(world) - scene.o
 }  // namespace
 
 void CameraOptions::addOptions(ArgParser& parser) {
+    OptionGroup group(parser, "Camera");
     parser.option("position", "", 3, "X Y Z", "camera position (world coordinates)",
                   vec3Into(position, "--position"));
     parser.option("look-at", "", 3, "X Y Z", "point the camera looks at (default: bbox centre)",

@@ -1,6 +1,7 @@
 // kiln bench accel: build time and rays/s of both accelerators, 1 and all threads, with ratios
 // measured in the same run (the machine is shared and noisy; absolute figures drift, ratios much
 // less).
+#include <fmt/format.h>
 #include <sys/resource.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
@@ -292,22 +293,22 @@ int runBench(const std::vector<std::string>& args) {
             perRay[k][0] = double(counters.boxTests) / double(sets[k]->size());
             perRay[k][1] = double(counters.primTests) / double(sets[k]->size());
         }
-        char line[256];
-        std::snprintf(line, sizeof line, "%-26s %9llu %6llu %6llu %8.2f %8.1f %8.1f %8.1f %8.1f\n",
-                      name.c_str(), (unsigned long long)bs.nodes, (unsigned long long)bs.leaves,
-                      (unsigned long long)bs.maxDepth, bs.sahCost, perRay[0][0], perRay[0][1],
-                      perRay[1][0], perRay[1][1]);
-        statsTable += line;
+        statsTable +=
+            fmt::format("{:<26} {:>9} {:>6} {:>6} {:8.2f} {:8.1f} {:8.1f} {:8.1f} {:8.1f}\n", name,
+                        bs.nodes, bs.leaves, bs.maxDepth, bs.sahCost, perRay[0][0], perRay[0][1],
+                        perRay[1][0], perRay[1][1]);
         double base = cs184Baseline(path);
         for (int a = 0; a < 2; ++a) {
-            char ratio[32] = "", vs[32] = "";
-            if (a == 0) std::snprintf(ratio, sizeof ratio, "%.2fx", rate[0][1] / rate[1][1]);
+            std::string ratio, vs;
+            if (a == 0) ratio = fmt::format("{:.2f}x", rate[0][1] / rate[1][1]);
             if (base > 0 && a == 0)
-                std::snprintf(vs, sizeof vs, "%.1fx", std::max(rate[0][1], rate[0][2]) / base);
-            std::printf("%-26s %9llu %-9s %8.3f %8.2f %8.2f %8.2f %8.2f %8.2f %8s %8s\n",
-                        a == 0 ? name.c_str() : "", (unsigned long long)scene.instancedTriangles(),
-                        a == 0 ? "embree" : "reference", accels[a]->stats().buildSeconds,
-                        rate[a][0], rate[a][1], rate[a][2], rate[a][3], rate[a][4], ratio, vs);
+                vs = fmt::format("{:.1f}x", std::max(rate[0][1], rate[0][2]) / base);
+            fmt::print(
+                "{:<26} {:>9} {:<9} {:8.3f} {:8.2f} {:8.2f} {:8.2f} {:8.2f} {:8.2f} {:>8} {:>8}\n",
+                a == 0 ? name : "", scene.instancedTriangles(),
+                toString(a == 0 ? AcceleratorKind::Embree : AcceleratorKind::Reference),
+                accels[a]->stats().buildSeconds, rate[a][0], rate[a][1], rate[a][2], rate[a][3],
+                rate[a][4], ratio, vs);
         }
         std::fflush(stdout);
     }

@@ -1,7 +1,10 @@
+#include <fmt/format.h>
+
 #include <cstdio>
 
 #include "renderer/cli/accel_options.h"
 #include "renderer/cli/commands.h"
+#include "renderer/core/log.h"
 #include "renderer/validation/crosscheck.h"
 #include "scene/scene_loader.h"
 
@@ -101,8 +104,10 @@ int runCrosscheck(const std::vector<std::string>& args) {
             }
     }
     if (report.totalGenuine() > uint64_t(maxGenuine)) {
-        std::fprintf(stderr, "kiln crosscheck: %llu genuine mismatches (bound %d)\n",
-                     (unsigned long long)report.totalGenuine(), maxGenuine);
+        logMessage(
+            LogLevel::Error,
+            fmt::format("{} genuine mismatches (bound {})", report.totalGenuine(), maxGenuine),
+            "crosscheck");
         return 1;
     }
     return 0;

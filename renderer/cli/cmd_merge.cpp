@@ -7,6 +7,7 @@
 #include "color/image_output.h"
 #include "renderer/cli/cli_args.h"
 #include "renderer/cli/commands.h"
+#include "renderer/core/log.h"
 #include "renderer/shard_merge.h"
 
 namespace kiln {
@@ -17,7 +18,11 @@ ExrOptions exrOptionsOf(const Metadata& meta) {
     auto it = meta.find("exr_storage");
     if (it == meta.end()) return exr;
     exr.half = it->second.rfind("half", 0) == 0;
-    exr.compression = it->second.substr(it->second.find(' ') + 1);
+    std::string compression = it->second.substr(it->second.find(' ') + 1);
+    std::optional<ExrCompression> known = parseEnum<ExrCompression>(compression);
+    if (!known)
+        throw UsageError("the shards name an unknown EXR compression '" + compression + "'");
+    exr.compression = *known;
     return exr;
 }
 
@@ -72,12 +77,12 @@ int runMerge(const std::vector<std::string>& args) {
     writeExr(base + ".exr", merged.film, meta, exrOptionsOf(meta));
     writePreview(base + ".png", merged.film, metaOr(meta, "display", "sRGB"),
                  metaOr(meta, "view", "Standard"));
-    std::fprintf(stderr,
-                 "kiln: merged %zu shards (%llu samples, %.1f MiB) -> %s.exr, %s.png; read and "
-                 "combine %.3fs (%.0f MiB/s), write %.3fs\n",
-                 shards.size(), (unsigned long long)merged.film.totalSamples(),
-                 double(shardBytes) / (1 << 20), base.c_str(), base.c_str(), mergeSeconds,
-                 double(shardBytes) / (1 << 20) / std::max(mergeSeconds, 1e-9), secondsSince(t1));
+    logInfo(
+        "merged {} shards ({} samples, {:.1f} MiB) -> {}.exr, {}.png; read and combine {:.3f}s "
+        "({:.0f} MiB/s), write {:.3f}s",
+        shards.size(), merged.film.totalSamples(), double(shardBytes) / (1 << 20), base, base,
+        mergeSeconds, double(shardBytes) / (1 << 20) / std::max(mergeSeconds, 1e-9),
+        secondsSince(t1));
     return 0;
 }
 

@@ -18,6 +18,7 @@
 #include "renderer/cli/commands.h"
 #include "renderer/cli/render_options.h"
 #include "renderer/core/json.h"
+#include "renderer/core/log.h"
 #include "renderer/core/memory.h"
 #include "renderer/exr_scene.h"
 #include "renderer/long_render.h"
@@ -26,6 +27,18 @@
 #include "scene/scene_loader.h"
 
 namespace kiln {
+namespace {
+enum class ProgressOutput { Bar, Json, None };  // --progress
+}  // namespace
+
+template <>
+struct EnumNames<ProgressOutput> {
+    static constexpr std::pair<ProgressOutput, const char*> table[] = {
+        {ProgressOutput::Bar, "bar"},
+        {ProgressOutput::Json, "json"},
+        {ProgressOutput::None, "none"}};
+};
+
 namespace {
 
 // Signals only set flags: the render stops (or checkpoints) at the next pixel, and a signal that
@@ -45,7 +58,7 @@ struct RenderCommand {
     float exposure = 0;         // stops
     ExrOptions exr;
     bool transparent = false, json = false;
-    std::string progress = "bar";
+    ProgressOutput progress = ProgressOutput::Bar;
     std::vector<std::string> warnings;  // also in the --json result
     std::string colourConfig;           // the OCIO config in force
     DepthMode depth = DepthMode::Ray;
@@ -75,6 +88,7 @@ double seconds(std::chrono::steady_clock::time_point since) {
 }
 
 void addCameraOptions(ArgParser& parser, RenderCommand& c) {
+    OptionGroup group(parser, "Camera");
     parser.option("aperture", "b", 1, "R",
                   "thin-lens aperture radius in scene units, CS184's -b (default 0: pinhole)",
                   [&c](const std::vector<std::string>& v) {
@@ -90,6 +104,7 @@ void addCameraOptions(ArgParser& parser, RenderCommand& c) {
 }
 
 void addOutputOptions(ArgParser& parser, RenderCommand& c) {
+    OptionGroup group(parser, "Output");
     addOutputNameOptions(parser, c.output, c.job.job.path);
     parser.option("file", "f", 1, "OUT.png", "CS184 form: preview file; the EXR goes beside it",
                   [&c](const std::vector<std::string>& v) { c.output = v[0]; });
@@ -110,6 +125,7 @@ void addOutputOptions(ArgParser& parser, RenderCommand& c) {
 }
 
 void addLongRenderOptions(ArgParser& parser, RenderCommand& c) {
+    OptionGroup group(parser, "Long renders");
     auto seconds = [](const std::string& name, const std::string& text) {
         double v = ArgParser::toDouble(name, text);
         if (!(v > 0 && v < 1e9)) throw UsageError(name + " takes seconds > 0, got '" + text + "'");
@@ -141,26 +157,16 @@ void addLongRenderOptions(ArgParser& parser, RenderCommand& c) {
                   });
 }
 
-std::string joined(const std::vector<std::string>& names, const char* separator) {
-    std::string text;
-    for (const std::string& n : names) text += (text.empty() ? "" : separator) + n;
-    return text;
-}
-
 void addCompressionOption(ArgParser& parser, RenderCommand& c) {
-    const std::vector<std::string>& known = exrCompressions();
-    parser.option("compression", "", 1, joined(known, "|"),
-                  "EXR compression (default zip; pxr24, b44, b44a, dwaa, dwab are lossy)",
-                  [&c, &known](const std::vector<std::string>& v) {
-                      if (std::find(known.begin(), known.end(), v[0]) == known.end())
-                          throw UsageError("--compression takes " + joined(known, ", ") +
-                                           "; got '" + v[0] + "'");
-                      c.exr.compression = v[0];
-                  });
+    OptionGroup group(parser, "Output");
+    parser.enumOption("compression",
+                      "EXR compression (default zip; pxr24, b44, b44a, dwaa, dwab are lossy)",
+                      c.exr.compression);
 }
 
 // Alpha and Z conventions of the EXR (see docs/output.md).
 void addCompositingOptions(ArgParser& parser, RenderCommand& c) {
+    OptionGroup group(parser, "Output");
     parser.flag("transparent", "",
                 "transparent background (Cycles' Film > Transparent): background seen directly "
                 "leaves the image, alpha counts non-emitting surfaces only",
@@ -194,8 +200,7 @@ void checkColour(RenderCommand& c) {
         ColorSetup setup = checkColorConfig(c.display, c.view);
         c.display = setup.display, c.view = setup.view, c.colourConfig = setup.configPath;
         c.exr.colorSpace = setup.sceneLinear;
-        for (const std::string& w : setup.warnings)
-            std::fprintf(stderr, "kiln: warning: %s\n", w.c_str());
+        for (const std::string& w : setup.warnings) logWarning("{}", w);
     } catch (const std::invalid_argument& e) {
         throw UsageError(e.what());
     }
@@ -203,24 +208,24 @@ void checkColour(RenderCommand& c) {
 
 // What a job queue drives: one JSON result on stdout, progress as JSON lines on stderr.
 void addQueueOptions(ArgParser& parser, RenderCommand& c) {
+    OptionGroup group(parser, "Messages");
+    parser.flag("quiet", "q", "no progress bar", c.quiet);
     parser.flag("json", "",
                 "print one JSON result on stdout: outputs, times, rays, samples, peak memory, "
-                "warnings (docs/output.md)",
+                "warnings (docs/output.md); messages on stderr become JSON lines",
                 c.json);
-    parser.option(
-        "progress", "", 1, "bar|json|none",
-        "progress on stderr: a bar (plain lines when not a terminal), JSON lines, or "
-        "none (as -q)",
-        [&c](const std::vector<std::string>& v) {
-            if (v[0] != "bar" && v[0] != "json" && v[0] != "none")
-                throw UsageError("--progress takes bar, json or none, got '" + v[0] + "'");
-            c.progress = v[0];
-        });
+    parser.enumOption("progress",
+                      "progress on stderr: a bar (plain lines when not a terminal), JSON lines "
+                      "(the messages too), or none (as -q)",
+                      c.progress);
 }
 
 void applyQueueOptions(const RenderCommand& c, RenderJobOptions& options) {
-    options.settings.progress = !c.quiet && c.progress != "none";
-    Progress::setStyle(c.progress == "json" ? ProgressStyle::Json : ProgressStyle::Text);
+    options.settings.progress = !c.quiet && c.progress != ProgressOutput::None;
+    Progress::setStyle(c.progress == ProgressOutput::Json ? ProgressStyle::Json
+                                                          : ProgressStyle::Text);
+    // Machine output asked for: every message a JSON line too, so a queue parses all of stderr.
+    if (c.json || c.progress == ProgressOutput::Json) setLogFormat(LogFormat::JsonLines);
 }
 
 // Which kiln wrote the file: the libraries as kiln:libraries (the commit goes in Software).
@@ -268,6 +273,7 @@ void printJsonResult(const RenderCommand& c, const Scene& scene, const OutputPat
 }
 
 void addDebugOptions(ArgParser& parser, RenderCommand& c) {
+    OptionGroup group(parser, "Debug");
     parser.option("pixel", "", 2, "X Y",
                   "debug: trace only this pixel (with --sample) and print what it returns",
                   [&c](const std::vector<std::string>& v) {
@@ -276,7 +282,6 @@ void addDebugOptions(ArgParser& parser, RenderCommand& c) {
                   });
     parser.intOption("sample", "", "debug: the sample index to replay with --pixel", c.debugSample,
                      0, 1 << 30);
-    parser.flag("quiet", "q", "no progress bar", c.quiet);
     parser.flag("traversal-floor", "",
                 "benchmark: after the render, render again recording every ray, trace the "
                 "recorded rays alone in the same calls, and print how much of the render time "
@@ -331,16 +336,11 @@ void printTraversalFloor(const Accelerator& accel, const RenderJob& job, const R
     // recording needs is known before it starts: the rays plus an eighth for the call records and
     // the chunks' slack.
     uint64_t need = first.rays * sizeof(Ray) / 8 * 9, available = availableMemoryBytes();
-    if (need > available) {
-        char text[200];
-        std::snprintf(
-            text, sizeof text,
-            "--traversal-floor: recording the render's %llu rays needs %.1f MiB, %.1f MiB "
+    if (need > available)
+        throw UsageError(fmt::format(
+            "--traversal-floor: recording the render's {} rays needs {:.1f} MiB, {:.1f} MiB "
             "available (the image is written; fewer samples or a --crop fit)",
-            (unsigned long long)first.rays, double(need) / (1 << 20),
-            double(available) / (1 << 20));
-        throw UsageError(text);
-    }
+            first.rays, double(need) / (1 << 20), double(available) / (1 << 20)));
     RecordingAccelerator recorder(accel);
     RenderJob again(job, recorder);
     Film film = again.makeFilm();
@@ -349,33 +349,29 @@ void printTraversalFloor(const Accelerator& accel, const RenderJob& job, const R
     ReplayStats replay = recorder.replay(job.options().settings.threads);
     if (replay.rays != second.rays || replay.hits != recorder.recordedHits())
         throw std::logic_error("traversal floor: the replay traced other rays than the render");
-    std::fprintf(stderr,
-                 "kiln: traversal floor: the render's %llu rays traced again alone, in the same "
-                 "calls: %.3fs (%.2f Mrays/s) against the render's %.3fs: traversal %.0f %%, "
-                 "shading, sampling and film %.0f %%\n",
-                 (unsigned long long)replay.rays, replay.seconds,
-                 double(replay.rays) / replay.seconds * 1e-6, first.seconds,
-                 100.0 * replay.seconds / first.seconds,
-                 100.0 * (1.0 - replay.seconds / first.seconds));
+    logInfo(
+        "traversal floor: the render's {} rays traced again alone, in the same calls: {:.3f}s "
+        "({:.2f} Mrays/s) against the render's {:.3f}s: traversal {:.0f} %, shading, sampling "
+        "and film {:.0f} %",
+        replay.rays, replay.seconds, double(replay.rays) / replay.seconds * 1e-6, first.seconds,
+        100.0 * replay.seconds / first.seconds, 100.0 * (1.0 - replay.seconds / first.seconds));
     // Batched calls are 16-wide packets in Embree's default mode, loops of single rays otherwise.
     const char* kinds[4] = {"closest hit, one ray per call", "closest hit, batched",
                             "occlusion, one ray per call", "occlusion, batched"};
     for (size_t k = 0; k < 4; ++k)
         if (replay.raysOf[k])
-            std::fprintf(stderr, "kiln:   %-32s %11llu rays %7.1f ns per ray per thread\n",
-                         kinds[k], (unsigned long long)replay.raysOf[k],
-                         replay.threadSeconds[k] / double(replay.raysOf[k]) * 1e9);
+            logInfo("  {:<32} {:>11} rays {:7.1f} ns per ray per thread", kinds[k],
+                    replay.raysOf[k], replay.threadSeconds[k] / double(replay.raysOf[k]) * 1e9);
 }
 
 void warnHemisphereBlind(const RenderJob& job, const std::string& scenePath) {
     const RenderJobOptions& o = job.options();
     if (job.plan().deltaLightsOnly && o.path.sampling == DirectSampling::Hemisphere &&
         o.integrator == IntegratorKind::Path)
-        std::fprintf(
-            stderr,
-            "kiln: warning: %s: hemisphere sampling cannot see point, spot or directional lights, "
-            "the only lights here: the image will be black but for emitters\n",
-            scenePath.c_str());
+        logWarning(
+            "{}: hemisphere sampling cannot see point, spot or directional lights, the only "
+            "lights here: the image will be black but for emitters",
+            scenePath);
 }
 
 // SIGINT and SIGTERM stop the render at a pixel boundary, SIGUSR1 asks for a checkpoint; the
@@ -402,25 +398,20 @@ struct SignalScope {
 void printSummary(const std::string& scenePath, const OutputPaths& out, const std::string& heat,
                   const RenderStats& stats, double load, double build, double write) {
     double mrays = stats.seconds > 0 ? double(stats.rays) / stats.seconds * 1e-6 : 0.0;
-    std::fprintf(stderr,
-                 "kiln: %s -> %s, %s%s%s\n"
-                 "kiln: %llu samples, %llu rays, %.2f Mrays/s; time load %.3fs, build %.3fs, "
-                 "render %.3fs, write %.3fs\n",
-                 scenePath.c_str(), out.exr.c_str(), out.preview.c_str(), heat.empty() ? "" : ", ",
-                 heat.c_str(), (unsigned long long)stats.samples, (unsigned long long)stats.rays,
-                 mrays, load, build, stats.seconds, write);
+    logInfo("{} -> {}, {}{}{}", scenePath, out.exr, out.preview, heat.empty() ? "" : ", ", heat);
+    logInfo(
+        "{} samples, {} rays, {:.2f} Mrays/s; time load {:.3f}s, build {:.3f}s, render {:.3f}s, "
+        "write {:.3f}s",
+        stats.samples, stats.rays, mrays, load, build, stats.seconds, write);
     struct rusage usage {};
     getrusage(RUSAGE_SELF, &usage);
-    std::fprintf(stderr, "kiln: peak resident memory %.1f MiB\n", double(usage.ru_maxrss) / 1024.0);
+    logInfo("peak resident memory {:.1f} MiB", double(usage.ru_maxrss) / 1024.0);
     if (stats.nonFiniteSamples) {
-        std::fprintf(
-            stderr,
-            "kiln: warning: %llu non-finite samples were dropped (not written into the image)\n",
-            (unsigned long long)stats.nonFiniteSamples);
+        logWarning("{} non-finite samples were dropped (not written into the image)",
+                   stats.nonFiniteSamples);
         for (const BadSample& b : stats.firstBadSamples)
-            std::fprintf(stderr,
-                         "kiln:   replay with: kiln render %s ... --pixel %d %d --sample %d\n",
-                         scenePath.c_str(), b.x, b.y, b.sample);
+            logInfo("  replay with: kiln render {} ... --pixel {} {} --sample {}", scenePath, b.x,
+                    b.y, b.sample);
     }
 }
 
@@ -447,8 +438,7 @@ void checkOutputsFit(const RenderCommand& c, const RenderJobOptions& o, const Ou
     fs::path dir = fs::path(out.exr).parent_path();
     for (const std::string& path : {out.exr, out.preview, out.checkpoint})
         if (int n = removeStaleTemporaries(path))
-            std::fprintf(stderr, "kiln: removed %d temporary file(s) of %s left by a killed kiln\n",
-                         n, path.c_str());
+            logInfo("removed {} temporary file(s) of {} left by a killed kiln", n, path);
     try {
         checkOutputSpace(dir.empty() ? "." : dir.string(),
                          need.exr + need.preview + need.checkpoint);
@@ -470,7 +460,7 @@ int writeOutputs(const RenderCommand& c, const OutputPaths& out, const Film& fil
         try {
             write();
         } catch (const std::exception& e) {
-            std::fprintf(stderr, "kiln: error: %s\n", e.what());
+            logError("{}", e.what());
             ++failures;
         }
     };
@@ -493,7 +483,8 @@ Metadata renderMetadata(const RenderJob& job, const RenderCommand& c, const std:
     meta["exposure"] = std::to_string(c.exposure);
     addBuildToMetadata(meta);
     // For kiln merge, which writes the EXR the way this render would.
-    meta["exr_storage"] = std::string(c.exr.half ? "half " : "float ") + c.exr.compression;
+    meta["exr_storage"] =
+        std::string(c.exr.half ? "half " : "float ") + toString(c.exr.compression);
     return meta;
 }
 
@@ -510,7 +501,7 @@ int renderLong(const RenderCommand& c, const RenderJob& job,
     lo.metadata = [&](const RenderStats& stats, const Film& film) {
         return renderMetadata(job, c, scenePath, stats, film);
     };
-    lo.report = [](const std::string& text) { std::fprintf(stderr, "kiln: %s\n", text.c_str()); };
+    lo.report = [](const std::string& text) { logInfo("{}", text); };
     LongRenderResult r = [&] {
         try {
             return runLongRender(job, lo);
@@ -519,9 +510,8 @@ int renderLong(const RenderCommand& c, const RenderJob& job,
         }
     }();
     if (r.checkpointBytes)
-        std::fprintf(stderr, "kiln: checkpoint %s: %.1f MiB written in %.3fs\n",
-                     out.checkpoint.c_str(), double(r.checkpointBytes) / (1 << 20),
-                     r.checkpointSeconds);
+        logInfo("checkpoint {}: {:.1f} MiB written in {:.3f}s", out.checkpoint,
+                double(r.checkpointBytes) / (1 << 20), r.checkpointSeconds);
     auto t2 = std::chrono::steady_clock::now();
     std::string heatPath;
     int failures =
@@ -536,10 +526,9 @@ int renderLong(const RenderCommand& c, const RenderJob& job,
                         {loadTime, buildTime, writeTime});
     if (failures) return 1;
     if (r.stats.interrupted || r.stats.timeLimitReached) {
-        std::fprintf(stderr,
-                     "kiln: %s: wrote %sthe image so far (per-pixel sample counts in the EXR)\n",
-                     r.stats.interrupted ? "interrupted" : "time limit reached",
-                     lo.checkpointPath.empty() ? "" : (out.checkpoint + " and ").c_str());
+        logInfo("{}: wrote {}the image so far (per-pixel sample counts in the EXR)",
+                r.stats.interrupted ? "interrupted" : "time limit reached",
+                lo.checkpointPath.empty() ? "" : out.checkpoint + " and ");
         return r.stats.interrupted ? kExitInterrupted : kExitTimeLimit;
     }
     if (c.traversalFloor) printTraversalFloor(*accel, job, r.stats);
@@ -589,8 +578,7 @@ int runRender(const std::vector<std::string>& args) {
     double loadTime = seconds(t0);
     c.camera.apply(scene);
     applyThinLens(scene, c);
-    for (const std::string& w : scene.warnings)
-        std::fprintf(stderr, "kiln: warning: %s: %s\n", scenePath.c_str(), w.c_str());
+    for (const std::string& w : scene.warnings) logWarning("{}: {}", scenePath, w);
     auto t1 = std::chrono::steady_clock::now();
     std::unique_ptr<Accelerator> accel = c.accel.build(scene, &jobOptions);
     double buildTime = seconds(t1);

@@ -2,6 +2,8 @@
 // intersection, direct lighting, global illumination, Russian roulette, adaptive sampling) for the
 // given scenes, every image rendered through RenderJob and captioned with the kiln flags that
 // make it, sized to a time budget, as one HTML page.
+#include <fmt/format.h>
+
 #include <cctype>
 #include <chrono>
 #include <cstdio>
@@ -14,6 +16,7 @@
 #include "renderer/cli/commands.h"
 #include "renderer/cli/html_page.h"
 #include "renderer/cli/render_options.h"
+#include "renderer/core/log.h"
 #include "renderer/render_job.h"
 #include "scene/scene_loader.h"
 
@@ -233,17 +236,9 @@ RenderStats Cs184Report::render(SceneReport& s, const Accelerator& accel,
     return stats;
 }
 
-std::string fixed(double v, int digits) {
-    char text[64];
-    std::snprintf(text, sizeof text, "%.*f", digits, v);
-    return text;
-}
+std::string fixed(double v, int digits) { return fmt::format("{:.{}f}", v, digits); }
 
-std::string significant(double v) {
-    char text[64];
-    std::snprintf(text, sizeof text, "%.3g", v);
-    return text;
-}
+std::string significant(double v) { return fmt::format("{:.3g}", v); }
 
 // Part 1's table: normal shading with Embree, the reference BVH and no BVH at all.
 void Cs184Report::timingTable(SceneReport& s, Size size, double share) {
@@ -387,14 +382,13 @@ void Cs184Report::run() {
                 sceneStart + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                  std::chrono::duration<double>(0.9 * share)));
         page_.paragraph("Scene time: " + fixed(secondsSince(sceneStart), 1) + " s.");
-        std::fprintf(stderr, "kiln: report: %s done, %.1f s\n", s.path.c_str(),
-                     secondsSince(sceneStart));
+        logInfo("report: {} done, {:.1f} s", s.path, secondsSince(sceneStart));
     }
     page_.paragraph("Total time: " + fixed(secondsSince(start), 1) + " s of a " +
                     fixed(o_.budget, 0) + " s budget.");
     std::string index = (fs::path(o_.dir) / "index.html").string();
     page_.write(index);
-    std::fprintf(stderr, "kiln: report: %s, %.1f s\n", index.c_str(), secondsSince(start));
+    logInfo("report: {}, {:.1f} s", index, secondsSince(start));
 }
 
 }  // namespace

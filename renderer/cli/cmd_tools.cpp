@@ -4,6 +4,7 @@
 
 #include "renderer/cli/cli_args.h"
 #include "renderer/cli/commands.h"
+#include "renderer/core/log.h"
 #include "scene/importers.h"
 #include "scene/mesh_tools.h"
 #include "scene/scene_loader.h"
@@ -51,8 +52,8 @@ int runTools(const std::vector<std::string>& args) {
     else
         writeBinaryPly(pos[1], joined);
     double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    std::fprintf(stderr, "kiln: %s: %zu vertices, %zu triangles, %.2f s\n", pos[1].c_str(),
-                 joined.vertexCount(), joined.triangleCount(), s);
+    logInfo("{}: {} vertices, {} triangles, {:.2f} s", pos[1], joined.vertexCount(),
+            joined.triangleCount(), s);
     return 0;
 }
 

@@ -8,6 +8,7 @@
 #include "renderer/build_info.h"
 #include "renderer/cli/cli_args.h"
 #include "renderer/cli/commands.h"
+#include "renderer/core/log.h"
 #include "scene/scene_error.h"
 
 namespace {
@@ -54,16 +55,17 @@ int main(int argc, char** argv) {
         if (command == "farm") return kiln::runFarm(args);
         if (command == "tools") return kiln::runTools(args);
         if (command == "report") return kiln::runReport(args);
-        std::fprintf(stderr, "kiln: unknown command '%s'\n%s", command.c_str(), kUsage);
+        kiln::logError("unknown command '{}'", command);
+        std::fputs(kUsage, stderr);
         return 2;
     } catch (const kiln::UsageError& e) {
-        std::fprintf(stderr, "kiln %s: %s\n", command.c_str(), e.what());
+        kiln::logMessage(kiln::LogLevel::Error, e.what(), command);  // "kiln render: ..."
         return 2;
     } catch (const kiln::SceneError& e) {
-        std::fprintf(stderr, "kiln: error: %s\n", e.what());
+        kiln::logError("{}", e.what());
         return 2;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "kiln: error: %s\n", e.what());
+        kiln::logError("{}", e.what());
         return 1;
     }
 }

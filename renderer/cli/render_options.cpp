@@ -5,6 +5,17 @@
 namespace kiln {
 
 namespace {
+// --emitters: emissive meshes as lights, or as the CS184 program treats them.
+enum class EmitterRule { Lights, Camera };
+}  // namespace
+
+template <>
+struct EnumNames<EmitterRule> {
+    static constexpr std::pair<EmitterRule, const char*> table[] = {
+        {EmitterRule::Lights, "lights"}, {EmitterRule::Camera, "camera"}};
+};
+
+namespace {
 
 void addTextureCacheOption(ArgParser& parser, LoadOptions& load) {
     parser.option("texture-cache-mb", "", 1, "MB",
@@ -39,15 +50,11 @@ void addEnvironmentOptions(ArgParser& parser, LoadOptions& load) {
 }  // namespace
 
 void addLoadOptions(ArgParser& parser, LoadOptions& load) {
-    parser.option("camera", "", 1, "file|framed",
-                  "the file's camera as written, or the CS184 course framing (default: course "
-                  "framing for Z-up COLLADA)",
-                  [&load](const std::vector<std::string>& v) {
-                      if (v[0] != "file" && v[0] != "framed")
-                          throw UsageError("--camera takes 'file' or 'framed', got '" + v[0] + "'");
-                      load.cameraRule = v[0] == "file" ? LoadOptions::CameraRule::File
-                                                       : LoadOptions::CameraRule::Framed;
-                  });
+    OptionGroup group(parser, "Scene");
+    parser.enumOption("camera",
+                      "the file's camera as written, or the CS184 course framing (default: course "
+                      "framing for Z-up COLLADA)",
+                      load.cameraRule);
     parser.option("env", "e", 1, "MAP.exr", "add a lat-long environment light (CS184's -e)",
                   [&load](const std::vector<std::string>& v) { load.environmentMap = v[0]; });
     addTextureCacheOption(parser, load);
@@ -55,6 +62,7 @@ void addLoadOptions(ArgParser& parser, LoadOptions& load) {
 }
 
 void addOutputNameOptions(ArgParser& parser, std::string& output, PathOptions& path) {
+    OptionGroup group(parser, "Output");
     parser.option("output", "", 1, "OUT",
                   "output base name: OUT.exr and OUT.png (default: scene name)",
                   [&output](const std::vector<std::string>& v) { output = v[0]; });
@@ -71,19 +79,19 @@ void addOutputNameOptions(ArgParser& parser, std::string& output, PathOptions& p
 }
 
 void addEmitterOption(ArgParser& parser, LoadOptions& load, PathOptions& path) {
-    parser.option(
-        "emitters", "", 1, "lights|camera",
+    OptionGroup group(parser, "Scene");
+    parser.enumOption<EmitterRule>(
+        "emitters",
         "emissive meshes: lights (default, physically right) or camera: the CS184 "
         "program's behaviour, seen by camera and -H rays only, lighting nothing "
         "(area lights stay lights)",
-        [&load, &path](const std::vector<std::string>& v) {
-            if (v[0] != "lights" && v[0] != "camera")
-                throw UsageError(ArgParser::badChoice("emitters", "lights or camera", v[0]));
-            load.emissiveMeshLights = path.unsampledEmittersLight = v[0] == "lights";
+        [&load, &path](EmitterRule rule) {
+            load.emissiveMeshLights = path.unsampledEmittersLight = rule == EmitterRule::Lights;
         });
 }
 
 void addExposureOption(ArgParser& parser, float& stops) {
+    OptionGroup group(parser, "Output");
     parser.option("exposure", "", 1, "STOPS",
                   "scale the preview's light by 2^STOPS before the display transform (the EXR "
                   "keeps the rendered values)",
@@ -98,6 +106,7 @@ namespace {
 
 void addImageOptions(ArgParser& parser, RenderJobArgs& a) {
     RenderSettings& s = a.job.settings;
+    OptionGroup group(parser, "Image");
     parser.option("resolution", "r", 2, "W H", "image size (default 800 600)",
                   [&s](const std::vector<std::string>& v) {
                       s.width = ArgParser::toInt("-r", v[0], 1, 32768);
@@ -114,6 +123,7 @@ void addImageOptions(ArgParser& parser, RenderJobArgs& a) {
                 throw UsageError(
                     "--crop takes X0 X1 Y0 Y1 with 0 <= X0 < X1 <= 1 and 0 <= Y0 < Y1 <= 1");
         });
+    parser.group("Sampling");
     parser.intOption("spp", "s", "camera samples per pixel (default 1)", s.spp, 1, 1 << 20);
     parser.intOption("threads", "t", "worker threads (default: all cores)", s.threads, 1, 4096);
     parser.intOption("tile", "", "tile size in pixels (default 32)", s.tileSize, 1, 4096);
@@ -137,6 +147,7 @@ void addImageOptions(ArgParser& parser, RenderJobArgs& a) {
 
 void addTransportOptions(ArgParser& parser, RenderJobArgs& a) {
     PathOptions& p = a.job.path;
+    OptionGroup group(parser, "Transport");
     parser.option("integrator", "i", 1, "NAME",
                   "light transport: " + enumChoices<IntegratorKind>() + " (default path)",
                   [&a](const std::vector<std::string>& v) {
@@ -157,13 +168,7 @@ void addTransportOptions(ArgParser& parser, RenderJobArgs& a) {
         "direct light by uniform hemisphere sampling (same as --sampling hemisphere)",
         [&p](const std::vector<std::string>&) { p.sampling = DirectSampling::Hemisphere; });
     parser.enumOption("sampling", "direct lighting strategy (default mis)", p.sampling);
-    parser.option(
-        "heuristic", "", 1, "power|balance", "MIS heuristic (default power)",
-        [&p](const std::vector<std::string>& v) {
-            if (v[0] != "power" && v[0] != "balance")
-                throw UsageError("--heuristic takes power or balance, got '" + v[0] + "'");
-            p.powerHeuristic = v[0] == "power";
-        });
+    parser.enumOption("heuristic", "MIS heuristic (default power)", p.heuristic);
     parser.enumOption("rr",
                       "Russian roulette (default throughput; fixed = CS184's constant "
                       "continuation)",
@@ -192,6 +197,7 @@ void addTransportOptions(ArgParser& parser, RenderJobArgs& a) {
 void RenderJobArgs::addOptions(ArgParser& parser) {
     addImageOptions(parser, *this);
     addTransportOptions(parser, *this);
+    OptionGroup group(parser, "Output");
     parser.option("aov", "", 1, "LIST",
                   std::string("EXR layers beside the beauty, comma-separated: ") +
                       AovRequest::names() +

@@ -1,5 +1,7 @@
 #include "renderer/farm/farm_job.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -21,18 +23,13 @@ int sppOf(const RenderTask& task) {
     return spp;
 }
 
-std::string fraction(int i, int n) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.17g", double(i) / n);
-    return text;
-}
+std::string fraction(int i, int n) { return fmt::format("{:.17g}", double(i) / n); }
 
 // Part `part` of `parts` of one render: its own output in DIR/shards.
 RenderTask partOf(const RenderTask& task, ShardBy by, int part, int parts, size_t taskIndex,
                   const std::string& dir) {
     RenderTask p = task;
-    char name[64];
-    std::snprintf(name, sizeof name, "shards/r%04zu_p%03d", taskIndex, part);
+    std::string name = fmt::format("shards/r{:04}_p{:03}", taskIndex, part);
     p.output = (fs::path(dir) / name).string();
     if (by == ShardBy::Samples) {
         int spp = sppOf(task);

@@ -1,5 +1,7 @@
 #include "renderer/farm/job_file.h"
 
+#include <fmt/format.h>
+
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -34,11 +36,7 @@ void onlyKeys(const json& object, const std::set<std::string>& allowed, const st
 
 std::string numberText(const json& v, const std::string& where) {
     if (v.is_number_integer()) return std::to_string(v.get<long long>());
-    if (v.is_number()) {
-        char text[32];
-        std::snprintf(text, sizeof text, "%.9g", v.get<double>());
-        return text;
-    }
+    if (v.is_number()) return fmt::format("{:.9g}", v.get<double>());
     if (v.is_string()) return v.get<std::string>();
     fail(where, "must be a string or a number");
 }
@@ -174,9 +172,7 @@ std::string expandOutputName(const std::string& pattern, const OutputVariables& 
         if (name == "frame" || name == "index") {
             int value = name == "frame" ? vars.frame : vars.index;
             int digits = width.empty() ? 0 : std::atoi(width.c_str());
-            char text[32];
-            std::snprintf(text, sizeof text, "%0*d", std::min(digits, 12), value);
-            out += text;
+            out += fmt::format("{:0{}}", value, std::min(digits, 12));
         } else if (name == "scene" || name == "camera" || name == "settings") {
             out += name == "scene" ? vars.scene : name == "camera" ? vars.camera : vars.settings;
         } else {

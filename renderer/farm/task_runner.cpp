@@ -1,5 +1,7 @@
 #include "renderer/farm/task_runner.h"
 
+#include <fmt/format.h>
+
 #include <chrono>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -106,9 +108,7 @@ std::string summaryLine(const std::vector<TaskResult>& results) {
                 .append(outcomeName(o))
                 .append(",");
     }
-    char total[64];
-    std::snprintf(total, sizeof total, " %.2fs rendering", seconds);
-    return line + total;
+    return line + fmt::format(" {:.2f}s rendering", seconds);
 }
 
 std::string summaryJson(const std::vector<TaskResult>& results) {

@@ -1,5 +1,7 @@
 // kiln bench accuracy's sweep: renders each setting, compares it with a converged reference
 // (cached as EXR between runs) and collects error against time.
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -63,9 +65,7 @@ Image reference(const Scene& scene, const Accelerator& accel, const AccuracyOpti
                       "|" + std::to_string(o.width) + "x" + std::to_string(o.height) + "|" +
                       std::to_string(o.referenceSpp) + "|m" + std::to_string(depth) + "|" +
                       KILN_VERSION + "|aovs:" + o.aovs;
-    char name[64];
-    std::snprintf(name, sizeof name, "reference-m%d-%016llx.exr", depth,
-                  (unsigned long long)fnv(key));
+    std::string name = fmt::format("reference-m{}-{:016x}.exr", depth, fnv(key));
     std::string path = (fs::path(o.outDir) / name).string();
     ChannelImage cachedImage;
     if (readChannelImage(path, cachedImage) && cachedImage.width == o.width &&
@@ -199,9 +199,7 @@ AccuracyResult runAccuracy(const AccuracyOptions& o) {
         s.spp = o.maxSpp;
         s.adaptiveBatch = 32;
         s.adaptiveTolerance = tol;
-        char label[32];
-        std::snprintf(label, sizeof label, "tol=%.4g", tol);
-        run("adaptive", label, s, giRef);
+        run("adaptive", fmt::format("tol={:.4g}", tol), s, giRef);
     }
     for (bool ref : {false, true}) {
         Setting s;

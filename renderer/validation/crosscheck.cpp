@@ -1,5 +1,6 @@
 #include "renderer/validation/crosscheck.h"
 
+#include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -171,10 +172,10 @@ CrosscheckReport crosscheck(const Scene& scene, const Accelerator& a, const Acce
 }
 
 std::string formatRay(const Ray& r) {
-    char buf[256];
-    std::snprintf(buf, sizeof buf, "%a %a %a %a %a %a %a %a", r.origin.x, r.origin.y, r.origin.z,
-                  r.dir.x, r.dir.y, r.dir.z, r.tMin, r.tMax);
-    return buf;
+    std::string text;
+    for (float v : {r.origin.x, r.origin.y, r.origin.z, r.dir.x, r.dir.y, r.dir.z, r.tMin, r.tMax})
+        text += fmt::format("{}{:a}", text.empty() ? "" : " ", double(v));  // exact: hex floats
+    return text;
 }
 
 bool parseRay(const std::string& text, Ray& r) {

@@ -24,7 +24,8 @@ constexpr const char* kFarmUsage =
     "       kiln farm status DIR | merge DIR | resubmit DIR\n";
 
 struct SubmitArgs {
-    std::string input, dir, output, by = "frames";
+    std::string input, dir, output;
+    farm::ShardBy by = farm::ShardBy::Frames;
     int shards = 1, checkpointSeconds = 60;
     bool keepCheckpoints = false;
     std::vector<std::string> renderArgs, sbatch;
@@ -34,8 +35,7 @@ struct SubmitArgs {
 ArgParser submitParser(SubmitArgs& a) {
     ArgParser p("farm submit", "FILE.json|SCENE [render options] --shards N [options]");
     p.intOption("shards", "n", "array tasks to split the work into", a.shards, 1, 100000);
-    p.option("by", "", 1, "samples|region|frames", "how to split (default frames)",
-             [&a](const auto& v) { a.by = v[0]; });
+    p.enumOption("by", "how to split (default frames)", a.by);
     p.option("dir", "d", 1, "DIR", "job directory (default: FILE or SCENE name + .farm)",
              [&a](const auto& v) { a.dir = v[0]; });
     p.option("output", "o", 1, "OUT", "SCENE form: output base (default DIR/SCENE name)",
@@ -141,8 +141,7 @@ std::vector<int> allShards(const farm::FarmJob& job) {
 int submitCommand(const std::vector<std::string>& args) {
     SubmitArgs a = parseSubmit(args);
     std::string dir = a.dir.empty() ? fs::path(a.input).stem().string() + ".farm" : a.dir;
-    farm::FarmJob job =
-        farm::planFarmJob(submitTasks(a, dir), farm::parseShardBy(a.by), a.shards, dir);
+    farm::FarmJob job = farm::planFarmJob(submitTasks(a, dir), a.by, a.shards, dir);
     job.kiln = farm::kilnExecutable();
     job.checkpointSeconds = a.checkpointSeconds;
     job.keepCheckpoints = a.keepCheckpoints;

@@ -1,6 +1,8 @@
 // kiln farm: renders split into shards over a Slurm cluster (docs/farm.md). submit writes the job
 // directory and submits the array and its merge job; status, merge and resubmit work on it;
 // run-shard is what each array task runs.
+#include <fmt/format.h>
+
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -8,6 +10,7 @@
 
 #include "renderer/cli/cli_args.h"
 #include "renderer/cli/commands.h"
+#include "renderer/core/log.h"
 #include "renderer/farm/child_process.h"
 #include "renderer/farm/farm_status.h"
 #include "renderer/farm/job_file.h"
@@ -18,13 +21,20 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// "kiln farm: ..." through the log (farm status reads these lines back from the shard logs).
+template <class... Args>
+void farmNote(fmt::format_string<Args...> format, Args&&... args) {
+    logMessage(LogLevel::Info, fmt::format(format, std::forward<Args>(args)...), "farm");
+}
+
 constexpr const char* kFarmUsage =
     "usage: kiln farm submit FILE.json|SCENE [render options] --shards N [--by "
     "samples|region|frames] [-d DIR] [-o OUT] [--partition P] [--time T] [--mem M]\n"
     "       kiln farm status DIR | merge DIR | resubmit DIR\n";
 
 struct SubmitArgs {
-    std::string input, dir, output, by = "frames";
+    std::string input, dir, output;
+    farm::ShardBy by = farm::ShardBy::Frames;
     int shards = 1, checkpointSeconds = 60;
     bool keepCheckpoints = false;
     std::vector<std::string> renderArgs, sbatch;
@@ -34,8 +44,7 @@ struct SubmitArgs {
 ArgParser submitParser(SubmitArgs& a) {
     ArgParser p("farm submit", "FILE.json|SCENE [render options] --shards N [options]");
     p.intOption("shards", "n", "array tasks to split the work into", a.shards, 1, 100000);
-    p.option("by", "", 1, "samples|region|frames", "how to split (default frames)",
-             [&a](const auto& v) { a.by = v[0]; });
+    p.enumOption("by", "how to split (default frames)", a.by);
     p.option("dir", "d", 1, "DIR", "job directory (default: FILE or SCENE name + .farm)",
              [&a](const auto& v) { a.dir = v[0]; });
     p.option("output", "o", 1, "OUT", "SCENE form: output base (default DIR/SCENE name)",
@@ -141,8 +150,7 @@ std::vector<int> allShards(const farm::FarmJob& job) {
 int submitCommand(const std::vector<std::string>& args) {
     SubmitArgs a = parseSubmit(args);
     std::string dir = a.dir.empty() ? fs::path(a.input).stem().string() + ".farm" : a.dir;
-    farm::FarmJob job =
-        farm::planFarmJob(submitTasks(a, dir), farm::parseShardBy(a.by), a.shards, dir);
+    farm::FarmJob job = farm::planFarmJob(submitTasks(a, dir), a.by, a.shards, dir);
     job.kiln = farm::kilnExecutable();
     job.checkpointSeconds = a.checkpointSeconds;
     job.keepCheckpoints = a.keepCheckpoints;
@@ -173,10 +181,9 @@ int submitCommand(const std::vector<std::string>& args) {
         throw;
     }
     std::printf("%ld\n", s.arrayJob);
-    std::fprintf(
-        stderr, "kiln farm: %s: array job %ld with %zu shards by %s%s; kiln farm status %s\n",
-        job.dir.c_str(), s.arrayJob, job.shards.size(), farm::shardByName(job.by),
-        s.mergeJob ? (", merge job " + std::to_string(s.mergeJob)).c_str() : "", job.dir.c_str());
+    farmNote("{}: array job {} with {} shards by {}{}; kiln farm status {}", job.dir, s.arrayJob,
+             job.shards.size(), farm::shardByName(job.by),
+             s.mergeJob ? ", merge job " + std::to_string(s.mergeJob) : "", job.dir);
     return 0;
 }
 
@@ -197,15 +204,13 @@ int runShardCommand(const std::vector<std::string>& args) {
     farm::FarmJob job = farm::readManifest(args[1]);
     int shard = ArgParser::toInt("run-shard INDEX", args[2], 0, int(job.shards.size()) - 1);
     const char* restarts = std::getenv("SLURM_RESTART_COUNT");
-    std::fprintf(stderr, "kiln farm: shard %d of %s, run %d\n", shard, job.dir.c_str(),
-                 restarts ? std::atoi(restarts) + 1 : 1);
+    farmNote("shard {} of {}, run {}", shard, job.dir, restarts ? std::atoi(restarts) + 1 : 1);
     // Sample and region shards keep theirs: they are what kiln merge reads.
     farm::RunOptions run{job.checkpointSeconds, true, stderr,
                          job.keepCheckpoints || job.by != farm::ShardBy::Frames};
     int code = farm::exitCodeOf(farm::runTasks(job.shards[size_t(shard)].tasks, run));
     if (code == 130 && farm::lastForwardedSignal() == SIGTERM)
-        std::fprintf(stderr, "kiln farm: shard %d: %s\n", shard,
-                     farm::requeueSelfBeforeTimeLimit().c_str());
+        farmNote("shard {}: {}", shard, farm::requeueSelfBeforeTimeLimit());
     return code;
 }
 
@@ -223,8 +228,8 @@ int mergeCommand(const std::vector<std::string>& args) {
         if (code == 0) farm::markComplete(m.output, cmd);
         if (code == 0 && !job.keepCheckpoints)
             for (const std::string& in : m.inputs) fs::remove(in + ".ckpt");
-        std::fprintf(stderr, "kiln farm: merge %s: %s\n", m.output.c_str(),
-                     code == 0 ? "done" : ("failed, exit " + std::to_string(code)).c_str());
+        farmNote("merge {}: {}", m.output,
+                 code == 0 ? "done" : "failed, exit " + std::to_string(code));
         failed += code != 0;
     }
     return failed ? 1 : 0;
@@ -236,16 +241,15 @@ int resubmitCommand(const std::vector<std::string>& args) {
     for (const farm::ShardStatus& s : farm::farmStatus(job).shards)
         if (s.state == farm::ShardState::Failed) failed.push_back(s.shard);
     if (failed.empty()) {
-        std::fprintf(stderr, "kiln farm: %s: no failed shard, nothing resubmitted\n",
-                     job.dir.c_str());
+        farmNote("{}: no failed shard, nothing resubmitted", job.dir);
         return 0;
     }
     if (!job.submissions.empty() && job.submissions.back().mergeJob)
         farm::cancelIfPending(job.submissions.back().mergeJob);
     farm::Submission s = farm::submitShards(job, failed);
     std::printf("%ld\n", s.arrayJob);
-    std::fprintf(stderr, "kiln farm: %s: %zu failed shards resubmitted as array job %ld\n",
-                 job.dir.c_str(), failed.size(), s.arrayJob);
+    farmNote("{}: {} failed shards resubmitted as array job {}", job.dir, failed.size(),
+             s.arrayJob);
     return 0;
 }
 

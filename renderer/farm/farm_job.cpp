@@ -54,15 +54,11 @@ RenderTask taskFrom(const json& j) {
 }  // namespace
 
 ShardBy parseShardBy(const std::string& text) {
-    if (text == "samples") return ShardBy::Samples;
-    if (text == "region") return ShardBy::Region;
-    if (text == "frames") return ShardBy::Frames;
-    throw FarmInputError("--by takes samples, region or frames, got '" + text + "'");
+    if (std::optional<ShardBy> by = parseEnum<ShardBy>(text)) return *by;
+    throw FarmInputError(fmt::format("--by takes {}, got '{}'", enumChoices<ShardBy>(), text));
 }
 
-const char* shardByName(ShardBy by) {
-    return by == ShardBy::Samples ? "samples" : by == ShardBy::Region ? "region" : "frames";
-}
+const char* shardByName(ShardBy by) { return toString(by); }
 
 FarmJob planFarmJob(const std::vector<RenderTask>& tasks, ShardBy by, int shards,
                     const std::string& dir) {

@@ -5,11 +5,25 @@
 #include <string>
 #include <vector>
 
+#include "renderer/core/enum_names.h"
 #include "renderer/farm/render_task.h"
 
 namespace kiln::farm {
-
 enum class ShardBy { Samples, Region, Frames };
+}  // namespace kiln::farm
+
+namespace kiln {
+template <>
+struct EnumNames<farm::ShardBy> {
+    static constexpr std::pair<farm::ShardBy, const char*> table[] = {
+        {farm::ShardBy::Samples, "samples"},
+        {farm::ShardBy::Region, "region"},
+        {farm::ShardBy::Frames, "frames"}};
+};
+}  // namespace kiln
+
+namespace kiln::farm {
+
 ShardBy parseShardBy(const std::string& text);  // throws FarmInputError
 const char* shardByName(ShardBy by);
 

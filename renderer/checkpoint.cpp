@@ -82,7 +82,8 @@ std::string headerText(const CheckpointInfo& info) {
                         {"height", info.height},
                         {"sample_start", info.sampleStart},
                         {"sample_end", info.sampleEnd},
-                        {"complete", int(info.complete)}})
+                        {"complete", int(info.complete)},
+                        {"film_scale_exponent", info.filmScaleExponent}})
         put(k, std::to_string(v));
     put("rays", std::to_string(info.rays));
     put("nonfinite_samples", std::to_string(info.nonFiniteSamples));
@@ -154,6 +155,9 @@ CheckpointInfo parseHeader(const std::string& text, const std::string& path) {
     info.sampleStart = toInt(h, "sample_start", path),
     info.sampleEnd = toInt(h, "sample_end", path);
     info.complete = toInt(h, "complete", path) != 0;
+    // Absent in checkpoints from before films had a scale: those held light unscaled.
+    info.filmScaleExponent =
+        h.count("film_scale_exponent") ? toInt(h, "film_scale_exponent", path) : 0;
     info.rays = std::strtoull(h["rays"].c_str(), nullptr, 10);
     info.nonFiniteSamples = std::strtoull(h["nonfinite_samples"].c_str(), nullptr, 10);
     info.seconds = std::strtod(h["seconds"].c_str(), nullptr);
@@ -228,6 +232,7 @@ Fingerprint checkpointFingerprint(const RenderJob& job, const std::string& scene
         {"aovs", std::to_string(o.aovs.mask) + " bounces " + std::to_string(o.aovs.bounceLayers) +
                      " depth " + toString(o.aovs.depth) +
                      (o.aovs.transparent ? " transparent" : "")},
+        {"film_scale", "2^" + std::to_string(job.filmScaleExponent())},
         {"adaptive", s.adaptiveBatch > 0
                          ? std::to_string(s.adaptiveBatch) + " " + number(s.adaptiveTolerance)
                          : "off"},
@@ -257,6 +262,7 @@ CheckpointInfo checkpointInfo(const Fingerprint& fingerprint, const RenderJobOpt
     info.originX = film.originX(), info.originY = film.originY();
     info.width = film.width(), info.height = film.height();
     info.sampleStart = options.settings.sampleStart, info.sampleEnd = options.settings.spp;
+    info.filmScaleExponent = film.scaleExponent();
     info.complete = totals.complete;
     info.rays = totals.rays, info.nonFiniteSamples = totals.nonFiniteSamples;
     info.seconds = totals.seconds;
@@ -339,6 +345,7 @@ Film readCheckpoint(const std::string& path, CheckpointInfo& info) {
     info = readHeader(in, path);
     Film film(info.width, info.height, info.aovs);
     film.setRegion(info.originX, info.originY, info.fullWidth, info.fullHeight);
+    film.setScaleExponent(info.filmScaleExponent);
     std::vector<FilmBuffer> buffers = film.buffers();
     expectBufferCount(in, buffers.size(), path);
     for (const FilmBuffer& b : buffers) {
@@ -360,6 +367,11 @@ void mergeCheckpoint(const std::string& path, Film& into, CheckpointInfo& info) 
             throw CheckpointError(path + ": " + e.what());
         }
     }();
+    if (info.filmScaleExponent != into.scaleExponent())
+        throw CheckpointError(
+            fmt::format("{}: its film holds light scaled by 2^{}, the merged "
+                        "film 2^{}",
+                        path, info.filmScaleExponent, into.scaleExponent()));
     std::vector<FilmBuffer> buffers = into.buffers();
     size_t width = size_t(info.width);
     expectBufferCount(in, buffers.size(), path);

@@ -25,7 +25,8 @@ struct CheckpointInfo {
     int fullWidth = 0, fullHeight = 0;
     int originX = 0, originY = 0, width = 0, height = 0;  // the region its film holds
     int sampleStart = 0, sampleEnd = 0;                   // the samples [start, end) it renders
-    bool complete = false;                                // every pixel has them all
+    int filmScaleExponent = 0;  // its film's radiance scale (Film::setScaleExponent)
+    bool complete = false;      // every pixel has them all
     // Totals over every run that added to it (a resumed render adds its own).
     uint64_t rays = 0, nonFiniteSamples = 0;
     double seconds = 0;

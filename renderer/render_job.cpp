@@ -28,8 +28,9 @@ RenderJob::RenderJob(const Scene& scene, const Accelerator& accel, const RenderJ
       accel_(accel),
       options_(options),
       plan_(planFor(scene, accel, options.aovs, options.plan)),
-      integrator_(makeIntegrator(options.integrator, scene, accel, withPixelSpread(scene, options),
-                                 plan_)) {}
+      integrator_(
+          makeIntegrator(options.integrator, scene, accel, withPixelSpread(scene, options), plan_)),
+      filmScaleExponent_(kiln::filmScaleExponent(scene.brightestEmission())) {}
 
 RenderJob::RenderJob(const RenderJob& job, const Accelerator& accel)
     : scene_(job.scene_),
@@ -37,12 +38,14 @@ RenderJob::RenderJob(const RenderJob& job, const Accelerator& accel)
       options_(job.options_),
       plan_(job.plan_),
       integrator_(makeIntegrator(options_.integrator, scene_, accel,
-                                 withPixelSpread(scene_, options_), plan_)) {}
+                                 withPixelSpread(scene_, options_), plan_)),
+      filmScaleExponent_(job.filmScaleExponent_) {}
 
 Film RenderJob::makeFilm() const {
     const RenderSettings& s = options_.settings;
     Film film(s.filmWidth(), s.filmHeight(), options_.aovs);
     film.setRegion(s.filmOriginX(), s.filmOriginY(), s.width, s.height);
+    film.setScaleExponent(filmScaleExponent_);
     return film;
 }
 

@@ -33,6 +33,7 @@ class RenderJob {
     const Scene& scene() const { return scene_; }
     const RenderPlan& plan() const { return plan_; }
     const Integrator& integrator() const { return *integrator_; }
+    int filmScaleExponent() const { return filmScaleExponent_; }
 
     // A film of the render region's size, placed in the full image.
     Film makeFilm() const;
@@ -50,6 +51,7 @@ class RenderJob {
     RenderJobOptions options_;
     RenderPlan plan_;
     std::unique_ptr<Integrator> integrator_;
+    int filmScaleExponent_;  // from the scene's brightest emitter (fixed_sum.h)
 };
 
 }  // namespace kiln

@@ -107,6 +107,7 @@ MergedRender mergeShards(const std::vector<std::string>& paths) {
     checkMemory(first, uint64_t(x1 - x0) * uint64_t(y1 - y0));
     MergedRender out{Film(x1 - x0, y1 - y0, first.aovs), first};
     out.film.setRegion(x0, y0, first.fullWidth, first.fullHeight);
+    out.film.setScaleExponent(first.filmScaleExponent);
     out.info.originX = x0, out.info.originY = y0;
     out.info.width = x1 - x0, out.info.height = y1 - y0;
     out.info.sampleStart = 0, out.info.sampleEnd = spp;

@@ -1,5 +1,8 @@
 #include "scene/scene.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace kiln {
 
 const char* toString(MaterialKind kind) {
@@ -95,6 +98,21 @@ uint64_t Scene::instancedTriangles() const {
 
 bool Scene::holdsNothing() const {
     return meshes.empty() && spheres.empty() && lights.empty() && !hasFileCamera;
+}
+
+double Scene::brightestEmission() const {
+    double brightest = 0;
+    auto consider = [&brightest](const Color& c, double scale) {
+        double v = double(maxComponent(c)) * scale;
+        if (std::isfinite(v)) brightest = std::max(brightest, v);
+    };
+    for (const Material& m : materials) consider(m.emission, 1.0);
+    for (const Light& l : lights) {
+        consider(l.radiance, 1.0);
+        if (l.environmentImage)
+            for (const Color& c : l.environmentImage->pixels) consider(c, l.environmentScale);
+    }
+    return brightest;
 }
 
 namespace {

@@ -145,6 +145,9 @@ struct Scene {
     uint64_t uniqueTriangles() const;     // stored triangles
     uint64_t instancedTriangles() const;  // triangles as rendered (instances expanded)
     bool holdsNothing() const;            // no geometry, light or file camera stored yet
+    // The largest radiance (intensity, irradiance) component any light, emitting material or
+    // environment texel holds: sets the film's scale.
+    double brightestEmission() const;
 
     // Stored (float) coordinates of a world point, and back; the subtraction is in double so a
     // point far from the origin keeps the precision of its distance to Scene::origin.

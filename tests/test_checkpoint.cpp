@@ -43,6 +43,32 @@ TEST(Checkpoint, RoundTripHoldsEveryBufferOfTheFilmExactly) {
     EXPECT_EQ(info.rays, done.stats.rays);
 }
 
+// A scene whose lights are 1e25 times brighter gets a scaled film (fixed_sum.h); the checkpoint
+// keeps the scale, and a film of another scale is never merged into.
+TEST(Checkpoint, ABrightScenesFilmScaleSurvivesTheCheckpointAndRefusesAnotherScale) {
+    SmallRender r;
+    for (Light& l : r.scene.lights) l.radiance = l.radiance * 1e25f;
+    std::string ckpt = (test::scratchDir() / "bright.ckpt").string();
+    LongRenderResult done = r.run(r.options(4), ckpt, false);
+    int exponent = done.film.scaleExponent();
+    EXPECT_EQ(exponent, filmScaleExponent(r.scene.brightestEmission()));
+    EXPECT_GT(exponent, 40);
+    EXPECT_EQ(done.stats.nonFiniteSamples, 0u);
+    CheckpointInfo info;
+    Film back = readCheckpoint(ckpt, info);
+    EXPECT_EQ(info.filmScaleExponent, exponent);
+    EXPECT_EQ(back.scaleExponent(), exponent);
+    EXPECT_EQ(test::filmState(back), test::filmState(done.film));
+    EXPECT_EQ(back.pixel(12, 9).x, done.film.pixel(12, 9).x);
+    Film unscaled(24, 18, AovRequest::defaults());
+    try {
+        mergeCheckpoint(ckpt, unscaled, info);
+        ADD_FAILURE() << "merged a film of scale 2^" << exponent << " into one of 2^0";
+    } catch (const CheckpointError& e) {
+        EXPECT_NE(std::string(e.what()).find("scaled by 2^"), std::string::npos) << e.what();
+    }
+}
+
 TEST(Checkpoint, RefineSixteenToSixtyFourEqualsSixtyFour) {
     SmallRender r;
     auto dir = test::scratchDir();

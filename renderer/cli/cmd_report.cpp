@@ -179,6 +179,7 @@ double secondsSince(std::chrono::steady_clock::time_point t) {
 // A film holding one colour AOV layer ("direct", "indirect") of a render, to display on its own.
 Film layerFilm(const Film& film, const std::string& layer) {
     Film out(film.width(), film.height());
+    out.setScaleExponent(film.scaleExponent());
     const auto& channels = film.layout().channels();
     size_t first = channels.size();
     for (size_t c = 0; c < channels.size(); ++c)

@@ -99,24 +99,26 @@ AovRequest AovRequest::parse(const std::string& list, int maxDepth) {
 }
 
 AovLayout::AovLayout(const AovRequest& request) : request_(request) {
-    auto colour = [&](const std::string& layer, int field, const char* suffix = "RGB") {
+    auto colour = [&](const std::string& layer, int field, const char* suffix = "RGB",
+                      bool radiance = false) {
         for (int c = 0; c < 3; ++c)
-            channels_.push_back(
-                {layer + "." + std::string(1, suffix[c]), suffix[0] == 'R', false, field + c});
+            channels_.push_back({layer + "." + std::string(1, suffix[c]), suffix[0] == 'R', false,
+                                 field + c, radiance});
     };
-    if (request.has(AovKind::Emission)) colour("emission", kEmission);
-    if (request.has(AovKind::Direct)) colour("direct", kDirect);
-    if (request.has(AovKind::Indirect)) colour("indirect", kIndirect);
+    auto light = [&](const std::string& layer, int field) { colour(layer, field, "RGB", true); };
+    if (request.has(AovKind::Emission)) light("emission", kEmission);
+    if (request.has(AovKind::Direct)) light("direct", kDirect);
+    if (request.has(AovKind::Indirect)) light("indirect", kIndirect);
     const char* lobeNames[3] = {"diffuse", "specular", "transmission"};
     for (int d = 0; d < 2; ++d)
         for (int l = 0; l < 3; ++l) {
             AovKind k = AovKind(uint32_t(AovKind::DirectDiffuse) + uint32_t(3 * d + l));
             if (request.has(k))
-                colour(std::string(d == 0 ? "direct_" : "indirect_") + lobeNames[l],
-                       kLobes + 3 * (3 * d + l));
+                light(std::string(d == 0 ? "direct_" : "indirect_") + lobeNames[l],
+                      kLobes + 3 * (3 * d + l));
         }
     for (int b = 0; b < request.bounceLayers; ++b)
-        colour("bounce" + std::to_string(b + 1), kBounces + 3 * b);
+        light("bounce" + std::to_string(b + 1), kBounces + 3 * b);
     if (request.has(AovKind::Albedo)) colour("albedo", kAlbedo);
     if (request.has(AovKind::Normal)) colour("N", kNormal, "XYZ");
     if (request.has(AovKind::Position)) colour("P", kPosition, "XYZ");

@@ -94,6 +94,7 @@ struct AovChannel {
     bool colour = true;        // may be written as half
     bool firstSample = false;  // ids: the first sample's value, never averaged
     int field = 0;             // index into the record's flattened values (see AovLayout::gather)
+    bool radiance = false;     // light: held in the film's radiance scale (Film::scaleExponent)
 };
 
 class AovLayout {

@@ -24,6 +24,11 @@ Film::Film(int width, int height, const AovRequest& aovs)
     if (aovs.has(AovKind::CryptoMaterial)) crypto_[1].resize(n * kCryptoSlots);
 }
 
+void Film::setScaleExponent(int exponent) {
+    scaleExponent_ = exponent;
+    down_ = std::ldexp(1.0, -exponent), up_ = std::ldexp(1.0, exponent);
+}
+
 std::vector<FilmBuffer> Film::buffers() {
     auto sums = [](const char* name, std::vector<FixedSum>& v, size_t per) {
         return FilmBuffer{name, Accumulation::Sum, sizeof(FixedSum), uint32_t(per), v.data()};
@@ -59,12 +64,15 @@ bool Film::add(int x, int y, const SampleRecord& r) {
     const Color L = keepsLight ? r.L : Color(0.0f);
     // Every value converted before any is added: a sample enters the film whole or not at all.
     FixedSum fixed[256 + 5];
-    double illum = luminance(L);
-    if (!toFixed(L.x, fixed[0]) || !toFixed(L.y, fixed[1]) || !toFixed(L.z, fixed[2]) ||
-        !toFixed(illum, fixed[3]) || !toFixed(illum * illum, fixed[4]))
+    // Light is held in the film's scale; powers of two, so the scaling itself is exact.
+    double illum = luminance(L) * down_;
+    if (!toFixed(L.x * down_, fixed[0]) || !toFixed(L.y * down_, fixed[1]) ||
+        !toFixed(L.z * down_, fixed[2]) || !toFixed(illum, fixed[3]) ||
+        !toFixed(illum * illum, fixed[4]))
         return false;
     for (size_t c = 0; c < nc; ++c)
-        if (!toFixed(values[c], fixed[5 + c])) return false;
+        if (!toFixed(layout_.channels()[c].radiance ? values[c] * down_ : values[c], fixed[5 + c]))
+            return false;
     for (int k = 0; k < 3; ++k) sum_[3 * i + size_t(k)] += fixed[k];
     lum_[i] += fixed[3];
     lumSq_[i] += fixed[4];
@@ -129,16 +137,18 @@ Color Film::pixel(int x, int y) const {
     size_t i = index(x, y);
     if (!count_[i]) return Color(0.0f);
     double n = count_[i];
-    return Color(float(fromFixed(sum_[3 * i]) / n), float(fromFixed(sum_[3 * i + 1]) / n),
-                 float(fromFixed(sum_[3 * i + 2]) / n));
+    return Color(float(fromFixed(sum_[3 * i]) * up_ / n),
+                 float(fromFixed(sum_[3 * i + 1]) * up_ / n),
+                 float(fromFixed(sum_[3 * i + 2]) * up_ / n));
 }
 
 float Film::aov(int x, int y, size_t c) const {
     size_t i = index(x, y);
     if (layout_.channels()[c].firstSample)
         return count_[i] ? float(aovFirst_[i * firstChannels_ + slot_[c]]) : -1.0f;
-    return count_[i] ? float(fromFixed(aovSum_[i * sumChannels_ + slot_[c]]) / double(count_[i]))
-                     : 0.0f;
+    if (!count_[i]) return 0.0f;
+    double sum = fromFixed(aovSum_[i * sumChannels_ + slot_[c]]);
+    return float((layout_.channels()[c].radiance ? sum * up_ : sum) / double(count_[i]));
 }
 
 double Film::luminanceVariance(int x, int y) const {
@@ -146,7 +156,7 @@ double Film::luminanceVariance(int x, int y) const {
     double n = count_[i];
     if (n < 2) return 0.0;
     double s1 = fromFixed(lum_[i]), s2 = fromFixed(lumSq_[i]);
-    return std::max(0.0, (s2 - s1 * s1 / n) / (n - 1)) / n;
+    return std::max(0.0, (s2 - s1 * s1 / n) / (n - 1)) / n * up_ * up_;
 }
 
 uint64_t Film::totalSamples() const {

@@ -64,6 +64,10 @@ class Film {
     int fullWidth() const { return fullWidth_ > 0 ? fullWidth_ : width_; }
     int fullHeight() const { return fullHeight_ > 0 ? fullHeight_ : height_; }
     const AovLayout& layout() const { return layout_; }
+    // Light (beauty, luminance, light AOVs) is held divided by 2^exponent (fixed_sum.h,
+    // filmScaleExponent). Set before the first sample; part of the checkpoint.
+    void setScaleExponent(int exponent);
+    int scaleExponent() const { return scaleExponent_; }
 
     // Non-finite samples, and samples beyond the fixed-point range (kMaxSampleValue), are counted
     // (the caller reports them) and never enter the image.
@@ -81,8 +85,10 @@ class Film {
     // AOV channel c of the layout: the mean over samples (ids: the first sample's value).
     float aov(int x, int y, size_t c) const;
     // Sums of the samples' illuminance and its square (adaptive sampling, variance).
-    double luminanceSum(int x, int y) const { return fromFixed(lum_[index(x, y)]); }
-    double luminanceSquareSum(int x, int y) const { return fromFixed(lumSq_[index(x, y)]); }
+    double luminanceSum(int x, int y) const { return fromFixed(lum_[index(x, y)]) * up_; }
+    double luminanceSquareSum(int x, int y) const {
+        return fromFixed(lumSq_[index(x, y)]) * up_ * up_;
+    }
     // Estimator variance of the pixel's luminance mean: sample variance / n.
     double luminanceVariance(int x, int y) const;
     uint64_t totalSamples() const;
@@ -115,6 +121,8 @@ class Film {
     size_t index(int x, int y) const { return size_t(y) * size_t(width_) + size_t(x); }
     int width_, height_;
     int originX_ = 0, originY_ = 0, fullWidth_ = 0, fullHeight_ = 0;
+    int scaleExponent_ = 0;
+    double down_ = 1.0, up_ = 1.0;  // 2^-exponent into the sums, 2^exponent out of them
     AovLayout layout_;
     std::vector<size_t> slot_;   // per layout channel: its index in aovSum_ or aovFirst_
     std::vector<FixedSum> sum_;  // beauty RGB, 3 per pixel

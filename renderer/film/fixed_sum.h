@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 
 namespace kiln {
 
@@ -37,5 +38,17 @@ inline bool toFixed(double value, FixedSum& out) {
 }
 
 inline double fromFixed(FixedSum sum) { return double(sum) * kFixedQuantum; }
+
+// The film's radiance scale: light values are held divided by 2^exponent. Outside the window
+// below, the brightest emitter E is held near 2^8: samples are rounded to E * 2^-48 and kept up
+// to a luminance of E * 2^25 (the luminance square's limit), room for 1/pdf factors of close
+// lights. Scenes with emitters between 2^-20 and 2^20 keep exponent 0: their films hold exactly
+// what an unscaled film holds (limits 2^-40 and 2^33 absolute).
+inline int filmScaleExponent(double brightestEmitter) {
+    constexpr int kUnscaledRange = 20, kHeldAt = 8;
+    if (!(brightestEmitter > 0) || !std::isfinite(brightestEmitter)) return 0;
+    int e = std::ilogb(brightestEmitter);
+    return std::abs(e) > kUnscaledRange ? e - kHeldAt : 0;
+}
 
 }  // namespace kiln

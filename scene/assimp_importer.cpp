@@ -267,17 +267,29 @@ void readCamera(const std::string& path, const aiScene* as, const NodeWorlds& wo
     scene.hasFileCamera = true;
 }
 
-// kiln's point and spot lights fall off with the square of the distance, as physics says; a file
-// stating another falloff (COLLADA/FBX constant or linear attenuation) is lit less far than meant.
-void warnAttenuation(const aiLight* al, Scene& scene) {
+// kiln's point and spot lights fall off with the square of the distance, as physics says. FBX
+// states its falloff (DecayType and DecayStart, which Assimp turns into these factors): kiln uses
+// it (huesitos.fbx's lamp: linear, 1 / (0.000667 d), rendered black as 1 / d^2). Other readers
+// fill the factors with their own defaults (Assimp's aiLight: linear 1), so they keep 1 / d^2 and
+// a stated falloff other than quadratic is a warning.
+void readAttenuation(const std::string& path, const aiLight* al, Light& l, Scene& scene) {
     if (al->mType != aiLightSource_POINT && al->mType != aiLightSource_SPOT) return;
+    bool stated =
+        al->mAttenuationConstant > 0 || al->mAttenuationLinear > 0 || al->mAttenuationQuadratic > 0;
+    if (lowerExtension(path) == ".fbx" && stated) {
+        l.attenuationStated = true;
+        l.attenuationConstant = al->mAttenuationConstant;
+        l.attenuationLinear = al->mAttenuationLinear;
+        l.attenuationQuadratic = al->mAttenuationQuadratic;
+        return;
+    }
     if (al->mAttenuationQuadratic > 0 ||
         !(al->mAttenuationConstant > 0 || al->mAttenuationLinear > 0))
         return;
     char msg[240];
     std::snprintf(msg, sizeof msg,
-                  "light '%s' states attenuation constant %g linear %g quadratic 0; kiln's lights "
-                  "fall off with the inverse square of the distance, so it lights less far",
+                  "light '%s': Assimp reports attenuation constant %g linear %g quadratic 0 (for "
+                  "this format possibly its own default); kiln keeps the physical 1 / d^2",
                   al->mName.C_Str(), al->mAttenuationConstant, al->mAttenuationLinear);
     scene.warnings.push_back(msg);
 }
@@ -297,7 +309,7 @@ void readLights(const std::string& path, const aiScene* as, const NodeWorlds& wo
                         ? toVec3d(al->mDirection) - toVec3d(al->mPosition)
                         : toVec3d(al->mDirection);
         Vec3 dir = Vec3(world.vector(aim));
-        warnAttenuation(al, scene);
+        readAttenuation(path, al, l, scene);
         if (length(dir) > 0) l.direction = normalize(dir);
         switch (al->mType) {
             case aiLightSource_POINT:

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <iterator>
 #include <map>
 #include <sstream>
@@ -109,6 +110,30 @@ class AssimpLog {
         std::vector<std::string>& out_;
     };
     std::vector<std::string> messages_;
+};
+
+// Some of Assimp's parsers (OpenGEX's openddl: "nullptr returned by creating DDLNode.") print to
+// std::cerr, which broke kiln's one-line errors; while Assimp reads, what they print is collected
+// and becomes warnings.
+class CerrCapture {
+  public:
+    CerrCapture() : old_(std::cerr.rdbuf(text_.rdbuf())) {}
+    ~CerrCapture() { stop(); }
+    void stop() {
+        if (old_) std::cerr.rdbuf(old_);
+        old_ = nullptr;
+    }
+    CerrCapture(const CerrCapture&) = delete;
+    CerrCapture& operator=(const CerrCapture&) = delete;
+    void addWarnings(Scene& scene) const {
+        std::istringstream lines(text_.str());
+        for (std::string line; std::getline(lines, line);)
+            if (!line.empty()) scene.warnings.push_back("Assimp: " + line);
+    }
+
+  private:
+    std::ostringstream text_;
+    std::streambuf* old_;
 };
 
 // Assimp's OFF reader reserves what the header declares and then loops over it: a header claiming
@@ -370,6 +395,7 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
     unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                      aiProcess_SortByPType | aiProcess_ValidateDataStructure;
     const aiScene* as = nullptr;
+    CerrCapture printed;
     if (extras && extras->patchedXml)
         as = importer.ReadFileFromMemory(extras->patchedXml->data(), extras->patchedXml->size(),
                                          flags, "dae");
@@ -377,12 +403,14 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
         if (lowerExtension(path) == ".off") checkOffHeader(path);
         as = importer.ReadFile(path, flags);
     }
+    printed.stop();
     if (log.said("out-of-range indices"))
         throw SceneError(path, "faces have vertex indices out of range");
     if (!as || !as->mRootNode)
         throw SceneError(path, std::string("cannot import: ") + importer.GetErrorString());
     if (as->mFlags & AI_SCENE_FLAGS_INCOMPLETE)
         throw SceneError(path, "cannot import: the file is incomplete");
+    printed.addWarnings(scene);
     if (lowerExtension(path) == ".amf") warnAmfLimits(path, scene);
 
     // Materials: through the CGL pass for COLLADA (matched by name or id), else Assimp's colours.

@@ -1,7 +1,10 @@
 // Files that rendered all black in the Assimp corpus (docs/robustness.md): each is either read
 // right now or loaded with a warning that says why its image is black.
 #include <filesystem>
+#include <iostream>
+#include <sstream>
 
+#include "scene/scene_error.h"
 #include "scene/scene_loader.h"
 #include "test_support.h"
 
@@ -99,6 +102,16 @@ TEST(ImportBlack, AssimpReaderLimitsAreWarnings) {
     Scene zeros = loadScene(corpus("AMF/test1.amf"));  // no colours in the file: Assimp's zeros
     EXPECT_TRUE(zeros.meshes[0].colors.empty());
     EXPECT_TRUE(hasWarning(zeros, "(0, 0, 0, 0)"));
+}
+
+// OpenGEX's parser prints "nullptr returned by creating DDLNode." to std::cerr: kiln's error must
+// stay the only line.
+TEST(ImportBlack, AssimpPrintsNothingBesideKilnsError) {
+    std::ostringstream printed;
+    std::streambuf* old = std::cerr.rdbuf(printed.rdbuf());
+    EXPECT_THROW(loadScene(corpus("OpenGEX/empty_camera.ogex")), SceneError);
+    std::cerr.rdbuf(old);
+    EXPECT_EQ(printed.str(), "");
 }
 
 }  // namespace

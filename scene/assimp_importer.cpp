@@ -54,13 +54,16 @@ bool unsetMdlColour(const std::string& path, const aiMaterial* am) {
 }
 
 // Assimp's AMF reader gives a mesh whose file states no vertex colours a colour set of zeros,
-// alpha included (test1.amf renders black).
+// alpha included (test1.amf renders black); its Blender reader one of (-1, -1, -1, -1)
+// (BlenderDefault_250.blend renders black). Neither is a colour: all zero, or any negative.
 bool unsetColours(const aiMesh* am) {
+    bool allZero = true;
     for (unsigned v = 0; v < am->mNumVertices; ++v) {
         const aiColor4D& c = am->mColors[0][v];
-        if (c.r != 0 || c.g != 0 || c.b != 0 || c.a != 0) return false;
+        if (c.r < 0 || c.g < 0 || c.b < 0) return true;
+        allZero &= c.r == 0 && c.g == 0 && c.b == 0 && c.a == 0;
     }
-    return true;
+    return allZero;
 }
 
 // Assimp 5.2's AMF reader stores <rx>/<ry>/<rz> of a constellation instance into its
@@ -487,8 +490,8 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
         }
         if (am->HasVertexColors(0) && unsetColours(am)) {
             scene.warnings.push_back("mesh '" + mesh.name +
-                                     "': every vertex colour Assimp reports is (0, 0, 0, 0), not "
-                                     "a colour the file states; ignored");
+                                     "': the vertex colours Assimp reports are all (0, 0, 0, 0) "
+                                     "or negative, not colours the file states; ignored");
         } else if (am->HasVertexColors(0)) {  // glTF COLOR_0 and OBJ "v x y z r g b": linear
             mesh.colors.reserve(3 * am->mNumVertices);
             for (unsigned v = 0; v < am->mNumVertices; ++v)

@@ -102,6 +102,8 @@ TEST(ImportBlack, AssimpReaderLimitsAreWarnings) {
     Scene zeros = loadScene(corpus("AMF/test1.amf"));  // no colours in the file: Assimp's zeros
     EXPECT_TRUE(zeros.meshes[0].colors.empty());
     EXPECT_TRUE(hasWarning(zeros, "(0, 0, 0, 0)"));
+    Scene blend = loadScene(corpus("BLEND/BlenderDefault_250.blend"));  // Assimp: (-1, -1, -1, -1)
+    EXPECT_TRUE(blend.meshes[0].colors.empty());
 }
 
 // OpenGEX's parser prints "nullptr returned by creating DDLNode." to std::cerr: kiln's error must

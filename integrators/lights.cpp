@@ -275,7 +275,7 @@ bool LightSet::sample(size_t i, const Vec3& ref, float u1, float u2, LightSample
             out.p = l.position;
             out.pdf = 1;
             out.delta = true;
-            out.Li = l.radiance / dist2;
+            out.Li = l.radiance / l.falloffDenominator(dist2);
             if (l.kind == LightKind::Spot) out.Li = out.Li * spotFalloff(l, -out.wi);
             return maxComponent(out.Li) > 0;
         }

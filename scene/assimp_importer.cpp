@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <iterator>
 #include <map>
 #include <sstream>
@@ -53,13 +54,16 @@ bool unsetMdlColour(const std::string& path, const aiMaterial* am) {
 }
 
 // Assimp's AMF reader gives a mesh whose file states no vertex colours a colour set of zeros,
-// alpha included (test1.amf renders black).
+// alpha included (test1.amf renders black); its Blender reader one of (-1, -1, -1, -1)
+// (BlenderDefault_250.blend renders black). Neither is a colour: all zero, or any negative.
 bool unsetColours(const aiMesh* am) {
+    bool allZero = true;
     for (unsigned v = 0; v < am->mNumVertices; ++v) {
         const aiColor4D& c = am->mColors[0][v];
-        if (c.r != 0 || c.g != 0 || c.b != 0 || c.a != 0) return false;
+        if (c.r < 0 || c.g < 0 || c.b < 0) return true;
+        allZero &= c.r == 0 && c.g == 0 && c.b == 0 && c.a == 0;
     }
-    return true;
+    return allZero;
 }
 
 // Assimp 5.2's AMF reader stores <rx>/<ry>/<rz> of a constellation instance into its
@@ -109,6 +113,30 @@ class AssimpLog {
         std::vector<std::string>& out_;
     };
     std::vector<std::string> messages_;
+};
+
+// Some of Assimp's parsers (OpenGEX's openddl: "nullptr returned by creating DDLNode.") print to
+// std::cerr, which broke kiln's one-line errors; while Assimp reads, what they print is collected
+// and becomes warnings.
+class CerrCapture {
+  public:
+    CerrCapture() : old_(std::cerr.rdbuf(text_.rdbuf())) {}
+    ~CerrCapture() { stop(); }
+    void stop() {
+        if (old_) std::cerr.rdbuf(old_);
+        old_ = nullptr;
+    }
+    CerrCapture(const CerrCapture&) = delete;
+    CerrCapture& operator=(const CerrCapture&) = delete;
+    void addWarnings(Scene& scene) const {
+        std::istringstream lines(text_.str());
+        for (std::string line; std::getline(lines, line);)
+            if (!line.empty()) scene.warnings.push_back("Assimp: " + line);
+    }
+
+  private:
+    std::ostringstream text_;
+    std::streambuf* old_;
 };
 
 // Assimp's OFF reader reserves what the header declares and then loops over it: a header claiming
@@ -267,17 +295,29 @@ void readCamera(const std::string& path, const aiScene* as, const NodeWorlds& wo
     scene.hasFileCamera = true;
 }
 
-// kiln's point and spot lights fall off with the square of the distance, as physics says; a file
-// stating another falloff (COLLADA/FBX constant or linear attenuation) is lit less far than meant.
-void warnAttenuation(const aiLight* al, Scene& scene) {
+// kiln's point and spot lights fall off with the square of the distance, as physics says. FBX
+// states its falloff (DecayType and DecayStart, which Assimp turns into these factors): kiln uses
+// it (huesitos.fbx's lamp: linear, 1 / (0.000667 d), rendered black as 1 / d^2). Other readers
+// fill the factors with their own defaults (Assimp's aiLight: linear 1), so they keep 1 / d^2 and
+// a stated falloff other than quadratic is a warning.
+void readAttenuation(const std::string& path, const aiLight* al, Light& l, Scene& scene) {
     if (al->mType != aiLightSource_POINT && al->mType != aiLightSource_SPOT) return;
+    bool stated =
+        al->mAttenuationConstant > 0 || al->mAttenuationLinear > 0 || al->mAttenuationQuadratic > 0;
+    if (lowerExtension(path) == ".fbx" && stated) {
+        l.attenuationStated = true;
+        l.attenuationConstant = al->mAttenuationConstant;
+        l.attenuationLinear = al->mAttenuationLinear;
+        l.attenuationQuadratic = al->mAttenuationQuadratic;
+        return;
+    }
     if (al->mAttenuationQuadratic > 0 ||
         !(al->mAttenuationConstant > 0 || al->mAttenuationLinear > 0))
         return;
     char msg[240];
     std::snprintf(msg, sizeof msg,
-                  "light '%s' states attenuation constant %g linear %g quadratic 0; kiln's lights "
-                  "fall off with the inverse square of the distance, so it lights less far",
+                  "light '%s': Assimp reports attenuation constant %g linear %g quadratic 0 (for "
+                  "this format possibly its own default); kiln keeps the physical 1 / d^2",
                   al->mName.C_Str(), al->mAttenuationConstant, al->mAttenuationLinear);
     scene.warnings.push_back(msg);
 }
@@ -297,7 +337,7 @@ void readLights(const std::string& path, const aiScene* as, const NodeWorlds& wo
                         ? toVec3d(al->mDirection) - toVec3d(al->mPosition)
                         : toVec3d(al->mDirection);
         Vec3 dir = Vec3(world.vector(aim));
-        warnAttenuation(al, scene);
+        readAttenuation(path, al, l, scene);
         if (length(dir) > 0) l.direction = normalize(dir);
         switch (al->mType) {
             case aiLightSource_POINT:
@@ -358,6 +398,7 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
     unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                      aiProcess_SortByPType | aiProcess_ValidateDataStructure;
     const aiScene* as = nullptr;
+    CerrCapture printed;
     if (extras && extras->patchedXml)
         as = importer.ReadFileFromMemory(extras->patchedXml->data(), extras->patchedXml->size(),
                                          flags, "dae");
@@ -365,12 +406,14 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
         if (lowerExtension(path) == ".off") checkOffHeader(path);
         as = importer.ReadFile(path, flags);
     }
+    printed.stop();
     if (log.said("out-of-range indices"))
         throw SceneError(path, "faces have vertex indices out of range");
     if (!as || !as->mRootNode)
         throw SceneError(path, std::string("cannot import: ") + importer.GetErrorString());
     if (as->mFlags & AI_SCENE_FLAGS_INCOMPLETE)
         throw SceneError(path, "cannot import: the file is incomplete");
+    printed.addWarnings(scene);
     if (lowerExtension(path) == ".amf") warnAmfLimits(path, scene);
 
     // Materials: through the CGL pass for COLLADA (matched by name or id), else Assimp's colours.
@@ -447,8 +490,8 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
         }
         if (am->HasVertexColors(0) && unsetColours(am)) {
             scene.warnings.push_back("mesh '" + mesh.name +
-                                     "': every vertex colour Assimp reports is (0, 0, 0, 0), not "
-                                     "a colour the file states; ignored");
+                                     "': the vertex colours Assimp reports are all (0, 0, 0, 0) "
+                                     "or negative, not colours the file states; ignored");
         } else if (am->HasVertexColors(0)) {  // glTF COLOR_0 and OBJ "v x y z r g b": linear
             mesh.colors.reserve(3 * am->mNumVertices);
             for (unsigned v = 0; v < am->mNumVertices; ++v)

@@ -279,6 +279,8 @@ void readCamera(const std::string& path, pugi::xml_node n, Scene& scene) {
     c.forward = Vec3(normalize(target - position));
     c.up = Vec3(normalize(up));
     c.hFovDeg = c.vFovDeg = float(fov);
+    c.orthoHalfWidth = c.orthoHalfHeight =
+        0;  // perspective, whatever an included file's camera was
     c.fromFile = true;
     scene.hasFileCamera = true;
 }

@@ -2,6 +2,7 @@
 // Geometry is stored flat and compact so Embree can share the buffers without a copy.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -45,6 +46,15 @@ struct Light {
                    0};  // area: emitting side; spot: axis; directional: direction light travels
     Vec3 dimX, dimY;    // area: full edge vectors of the rectangle
     float spotInnerDeg = 30.0f, spotOuterDeg = 45.0f;
+    // Point and spot lights fall off as 1 / d^2 unless the file states another attenuation
+    // 1 / (constant + linear d + quadratic d^2) (FBX through Assimp).
+    bool attenuationStated = false;
+    float attenuationConstant = 0, attenuationLinear = 0, attenuationQuadratic = 1;
+    float falloffDenominator(float dist2) const {
+        return attenuationStated ? attenuationConstant + attenuationLinear * std::sqrt(dist2) +
+                                       attenuationQuadratic * dist2
+                                 : dist2;
+    }
     uint32_t mesh = 0;            // mesh emitter, or an area light's geometry when hasMesh
     bool hasMesh = false;         // area light whose rectangle is an emissive mesh of the scene
     std::string environmentPath;  // lat-long EXR/HDR, as named

@@ -218,14 +218,13 @@ void warnBlackImage(Scene& scene) {
         Vec3 nearest = min(max(l.position, b.lo), b.hi);
         double d = length(l.position - nearest);
         if (!(d > 0)) return;  // inside the bounds: no bound on what it lights
-        most += maxComponent(l.radiance) / (d * d);
+        most += maxComponent(l.radiance) / l.falloffDenominator(float(d * d));
     }
     if (most < 1e-3) {
         char msg[240];
         std::snprintf(msg, sizeof msg,
                       "the lights give the scene an irradiance of at most %.3g (they are far away "
-                      "for their intensity, which falls off with the square of the distance): the "
-                      "image will look black",
+                      "for their intensity): the image will look black",
                       most);
         scene.warnings.push_back(msg);
     }

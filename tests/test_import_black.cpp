@@ -1,7 +1,10 @@
 // Files that rendered all black in the Assimp corpus (docs/robustness.md): each is either read
 // right now or loaded with a warning that says why its image is black.
 #include <filesystem>
+#include <iostream>
+#include <sstream>
 
+#include "scene/scene_error.h"
 #include "scene/scene_loader.h"
 #include "test_support.h"
 
@@ -69,6 +72,20 @@ TEST(ImportBlack, SibLightsPointAtTheirTargets) {
     EXPECT_LT(sun->direction.y, -0.5f);  // from (-1.34, 5.60, 0) towards (0, 3.60, 0)
 }
 
+// FBX states its lamp's falloff (linear: Assimp's factor 0.000667); as 1 / d^2 the lamp gave the
+// model 2.7e-6 at 600 units. Lights that state none keep exactly 1 / d^2.
+TEST(ImportBlack, FbxLightsFallOffAsTheFileStates) {
+    Scene s = loadScene(corpus("FBX/huesitos.fbx"));
+    const Light* lamp = test::findLight(s, LightKind::Point);
+    ASSERT_NE(lamp, nullptr);
+    EXPECT_TRUE(lamp->attenuationStated);
+    EXPECT_NEAR(lamp->attenuationLinear, 0.000666667f, 1e-8f);
+    EXPECT_NEAR(lamp->falloffDenominator(600.0f * 600.0f), 0.4f, 1e-5f);
+    EXPECT_FALSE(hasWarning(s, "irradiance of at most"));
+    Light physical;
+    EXPECT_EQ(physical.falloffDenominator(2.5f), 2.5f);
+}
+
 // MDL without skins: Assimp's colour (0, 0, 0, 0) is not the file's; Quick3D: Assimp's camera at
 // the origin and black light are not the file's; AMF: constellations and extra volumes are lost.
 TEST(ImportBlack, AssimpReaderLimitsAreWarnings) {
@@ -85,6 +102,18 @@ TEST(ImportBlack, AssimpReaderLimitsAreWarnings) {
     Scene zeros = loadScene(corpus("AMF/test1.amf"));  // no colours in the file: Assimp's zeros
     EXPECT_TRUE(zeros.meshes[0].colors.empty());
     EXPECT_TRUE(hasWarning(zeros, "(0, 0, 0, 0)"));
+    Scene blend = loadScene(corpus("BLEND/BlenderDefault_250.blend"));  // Assimp: (-1, -1, -1, -1)
+    EXPECT_TRUE(blend.meshes[0].colors.empty());
+}
+
+// OpenGEX's parser prints "nullptr returned by creating DDLNode." to std::cerr: kiln's error must
+// stay the only line.
+TEST(ImportBlack, AssimpPrintsNothingBesideKilnsError) {
+    std::ostringstream printed;
+    std::streambuf* old = std::cerr.rdbuf(printed.rdbuf());
+    EXPECT_THROW(loadScene(corpus("OpenGEX/empty_camera.ogex")), SceneError);
+    std::cerr.rdbuf(old);
+    EXPECT_EQ(printed.str(), "");
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "renderer/accel/accelerator.h"
+#include "renderer/exr_scene.h"
 #include "scene/scene_loader.h"
 #include "test_support.h"
 
@@ -91,6 +92,15 @@ TEST(ImportCameras, OrthographicViewOfAUnitQuadCoversItsPixelExtent) {
             wrong += hit[size_t(y)][size_t(x)] != expected;
         }
     EXPECT_EQ(wrong, 0);
+    // The EXR's worldToNDC (row vectors) maps the quad's corners to the same pixel edges.
+    std::array<float, 16> m = exrCamera(s, test::jobOptions(96, 64, 1).settings).worldToNDC;
+    for (auto [wx, wy, nx, ny] : {std::array<float, 4>{0, 0, 32.0f / 96, 48.0f / 64},
+                                  std::array<float, 4>{1, 1, 64.0f / 96, 16.0f / 64}}) {
+        float x = wx * m[0] + wy * m[4] + m[12], y = wx * m[1] + wy * m[5] + m[13],
+              w = wx * m[3] + wy * m[7] + m[15];
+        EXPECT_NEAR(x / w, nx, 1e-6f);
+        EXPECT_NEAR(y / w, ny, 1e-6f);
+    }
 }
 
 // xmag 2, ymag 1: Assimp reports mOrthographicWidth = xmag and mAspect = xmag / ymag.

@@ -2,8 +2,14 @@
 """Equal-error peer benchmark: time for kiln and for Blender's Cycles to reach the same relative MSE on
 the same scene, each against its own converged reference (a benchmark, not a test).
 
-  tools/peer_bench.py [--scene lucy_env] [--spp 16,32,64,128,256] [--ref-spp 2048] [--repeats 3]
-                      [--threads 2] [--out out/peer] [--samplers independent,sobol]
+  tools/peer_bench.py [--scene lucy_env|box_bunny|box_metal] [--spp 16,32,64,128,256] [--ref-spp 2048]
+                      [--repeats 3] [--threads 2] [--resolution W H] [--out out/peer]
+                      [--samplers independent,sobol] [--check]
+
+Scenes: lucy_env (an environment-lit mesh), box_bunny (a closed box lit by an emissive ceiling quad, a
+diffuse bunny inside), box_metal (the same box, the bunny in rough chrome). Before timing, the two
+converged references are put side by side (OUT/SCENE.refs.png) and their mean RGB printed: the scenes
+are identical when those agree (--check stops there).
 
 For every spp the renderers run interleaved (kiln per sampler, then Cycles), --repeats times; times are
 medians. Error: `kiln bench compare TEST REF --keep-reference-noise` (luminance relMSE, the same formula
@@ -155,6 +161,27 @@ def rel_mse(kiln, test, ref):
     return float(re.search(r"relmse ([0-9.eE+-]+)", out).group(1))
 
 
+def mean_rgb(exr):
+    out = subprocess.run(["oiiotool", exr, "--ch", "R,G,B", "--printstats"], capture_output=True,
+                         text=True, check=True).stdout
+    return [float(v) for v in re.search(r"Stats Avg: ([0-9.eE+-]+) ([0-9.eE+-]+) ([0-9.eE+-]+)",
+                                        out).groups()]
+
+
+def check_references(refs, base):
+    """The identical-scene check: both converged references side by side (kiln left, Cycles right,
+    sRGB) in BASE.refs.png, and their mean RGB, which must agree within the references' noise."""
+    kiln_ref = [v for k, v in refs.items() if k != "cycles"][0]
+    subprocess.run(["oiiotool", kiln_ref, "--ch", "R,G,B", refs["cycles"], "--ch", "R,G,B",
+                    "--mosaic", "2x1", "--colorconvert", "linear", "sRGB", "-d", "uint8", "-o",
+                    base + ".refs.png"], check=True)
+    lines = []
+    for k, v in refs.items():
+        lines.append("mean RGB %-18s %s" % (k, " ".join("%.5f" % c for c in mean_rgb(v))))
+        print(lines[-1], flush=True)
+    return lines
+
+
 def time_at(series, level):
     """Log-log interpolation of (time, error) points to the time at which error reaches `level`;
     extrapolated along the last two points below the smallest error (marked with '*')."""
@@ -182,6 +209,8 @@ def main():
     ap.add_argument("--out", default=os.path.join(ROOT, "out", "peer"))
     ap.add_argument("--kiln", default=os.path.join(ROOT, "build", "kiln"))
     ap.add_argument("--blender", default="blender")
+    ap.add_argument("--check", action="store_true",
+                    help="only make the references and compare them (side by side, mean RGB)")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
     spps = [int(v) for v in a.spp.split(",")]
@@ -198,6 +227,9 @@ def main():
     refs["cycles"] = base + ".ref.cycles.exr"
     if not os.path.exists(refs["cycles"]):
         run_cycles(a.blender, json_path, a.ref_spp, a.threads, refs["cycles"])
+    means = check_references(refs, base)
+    if a.check:
+        return
 
     rows = []  # (renderer, spp, median seconds, relMSE)
     for spp in spps:

@@ -95,7 +95,9 @@ def add_camera(cam, width, height):
 
 def add_environment(path, strength):
     # kiln's lat-long lookup, built from nodes so the orientation is kiln's by construction:
-    # u = 0.5 + atan2(d.x, -d.z) / 2 pi, v = acos(d.y) / pi (v = 0 the top row), nearest texel.
+    # u = 0.5 + atan2(d.x, -d.z) / 2 pi, v = acos(d.y) / pi (v = 0 the top row), bilinear between
+    # texel centres as kiln's TextureSystem lookup (checked: a 16-spp Cycles render is 0.0068 relMSE
+    # from kiln's 1024-spp reference with "Linear", 0.0108 with "Closest").
     world = bpy.data.worlds.new("world")
     bpy.context.scene.world = world
     world.use_nodes = True
@@ -127,7 +129,7 @@ def add_environment(path, strength):
     tex = nodes.new("ShaderNodeTexImage")
     tex.image = bpy.data.images.load(path)
     tex.image.colorspace_settings.name = "Linear"
-    tex.interpolation = "Closest"
+    tex.interpolation = "Linear"
     tex.extension = "EXTEND"
     links.new(uv.outputs["Vector"], tex.inputs["Vector"])
     background = nodes["Background"] if "Background" in nodes else nodes.new("ShaderNodeBackground")

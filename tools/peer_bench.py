@@ -262,8 +262,8 @@ def main():
     with open(base + ".csv", "w", newline="") as f:
         csv.writer(f).writerows([("renderer", "spp", "median_seconds", "relmse")] + rows)
     with open(base + ".md", "w") as f:
-        f.write("`tools/peer_bench.py --scene %s --spp %s --ref-spp %d --repeats %d --threads %d`\n\n%s\n"
-                % (a.scene, a.spp, a.ref_spp, a.repeats, a.threads, table))
+        f.write("`tools/peer_bench.py %s`\n\n%s\n\n%s\n"
+                % (" ".join(sys.argv[1:]), table, "\n".join(means)))
 
 
 if __name__ == "__main__":

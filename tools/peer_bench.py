@@ -218,13 +218,15 @@ def main():
     kiln_scene, json_path, s = describe(a.scene, a.out, a.resolution)
     base = os.path.join(a.out, a.scene)
 
+    # references are reused by a later run only when they were made at the same size and spp
+    ref_tag = ".ref%d.%dx%d" % (a.ref_spp, *s["resolution"])
     refs = {}
     for sampler in samplers:
-        ref = base + ".ref.kiln." + sampler
+        ref = base + ref_tag + ".kiln." + sampler
         if not os.path.exists(ref + ".exr"):
             run_kiln(a.kiln, kiln_scene, s, a.ref_spp, sampler, a.threads, ref)
         refs["kiln " + sampler] = ref + ".exr"
-    refs["cycles"] = base + ".ref.cycles.exr"
+    refs["cycles"] = base + ref_tag + ".cycles.exr"
     if not os.path.exists(refs["cycles"]):
         run_cycles(a.blender, json_path, a.ref_spp, a.threads, refs["cycles"])
     means = check_references(refs, base)

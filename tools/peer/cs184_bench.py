@@ -105,7 +105,10 @@ def main():
     course_spp = [int(v) for v in a.course_spp.split(",")]
     kiln_spp = [int(v) for v in a.kiln_spp.split(",")]
 
-    refs = {"course": os.path.join(a.out, "ref.course.png"), "kiln": os.path.join(a.out, "ref.kiln.png")}
+    # references are reused by a later run only when they were made at the same size and spp
+    size = "%dx%d" % tuple(a.size)
+    refs = {"course": os.path.join(a.out, "ref%d.%s.course.png" % (a.course_ref_spp, size)),
+            "kiln": os.path.join(a.out, "ref%d.%s.kiln.png" % (a.kiln_ref_spp, size))}
     if not os.path.exists(refs["course"]):
         run_course(course, scene, a.course_ref_spp, a, refs["course"])
     if not os.path.exists(refs["kiln"]):

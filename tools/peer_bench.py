@@ -2,8 +2,14 @@
 """Equal-error peer benchmark: time for kiln and for Blender's Cycles to reach the same relative MSE on
 the same scene, each against its own converged reference (a benchmark, not a test).
 
-  tools/peer_bench.py [--scene lucy_env] [--spp 16,32,64,128,256] [--ref-spp 2048] [--repeats 3]
-                      [--threads 2] [--out out/peer] [--samplers independent,sobol]
+  tools/peer_bench.py [--scene lucy_env|box_bunny|box_metal] [--spp 16,32,64,128,256] [--ref-spp 2048]
+                      [--repeats 3] [--threads 2] [--resolution W H] [--out out/peer]
+                      [--samplers independent,sobol] [--check]
+
+Scenes: lucy_env (an environment-lit mesh), box_bunny (a closed box lit by an emissive ceiling quad, a
+diffuse bunny inside), box_metal (the same box, the bunny in rough chrome). Before timing, the two
+converged references are put side by side (OUT/SCENE.refs.png) and their mean RGB printed: the scenes
+are identical when those agree (--check stops there).
 
 For every spp the renderers run interleaved (kiln per sampler, then Cycles), --repeats times; times are
 medians. Error: `kiln bench compare TEST REF --keep-reference-noise` (luminance relMSE, the same formula
@@ -24,6 +30,9 @@ import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SHARED = os.path.normpath(os.path.join(ROOT, "..", "shared"))
+sys.dont_write_bytecode = True  # no __pycache__ in the checkout
+sys.path.insert(0, os.path.join(ROOT, "tools", "peer"))
+from box import box_quads, write_dae  # noqa: E402
 
 
 def obj_bounds(path):
@@ -46,36 +55,78 @@ def fit_matrix(path, center, size):
     return [s, 0, 0, t[0], 0, s, 0, t[1], 0, 0, s, t[2], 0, 0, 0, 1]
 
 
+# A mesh's material: {"albedo": rgb} (Lambert) or {"alpha": a, "eta": rgb, "k": rgb} (kiln's Beckmann
+# conductor; Cycles: Glossy BSDF, Beckmann, roughness sqrt(alpha), colour 1, which equals kiln's only when
+# its Fresnel is 1 at every angle: eta 0 makes it exactly 1 for any k).
+CHROME = {"alpha": 0.15, "eta": [0.0, 0.0, 0.0], "k": [1.0, 1.0, 1.0]}
+
+# The closed box (tools/peer/box.py): 2 wide, 2 high, 3.2 deep, the camera inside near the front wall.
+BOX = {"lo": [-1.0, 0.0, -1.0], "hi": [1.0, 2.0, 2.2], "light_half": 0.3, "radiance": [12.0, 12.0, 12.0]}
+BOX_CAMERA = {"position": [0.0, 1.0, 2.1], "look_at": [0.0, 0.9, 0.0], "up": [0, 1, 0], "fov": 40.0}
+
 SCENES = {
     # An environment-lit mesh: Lucy, diffuse 0.6, lit only by the courtyard map (issue #21).
     "lucy_env": {
-        "mesh": "meshes/lucy.obj", "albedo": [0.6, 0.6, 0.6], "fit": ([0, 0, 0], 1.0),
+        "meshes": [{"mesh": "meshes/lucy.obj", "material": {"albedo": [0.6, 0.6, 0.6]},
+                    "fit": ([0, 0, 0], 1.0)}],
         "camera": {"position": [0.0, 0.55, 1.9], "look_at": [0.0, 0.5, 0.0], "up": [0, 1, 0],
                    "fov": 36.0},
         "environment": "envmaps/courtyard.exr", "resolution": [320, 240], "max_depth": 5,
     },
+    # A closed box lit only by an emissive quad in its ceiling, a diffuse bunny inside.
+    "box_bunny": {
+        "box": BOX, "camera": BOX_CAMERA, "resolution": [320, 240], "max_depth": 5,
+        "meshes": [{"mesh": "meshes/stanford-bunny.obj", "material": {"albedo": [0.73, 0.73, 0.73]},
+                    "fit": ([0.0, 0.0, -0.1], 1.0)}],
+    },
+    # Glossy metal: the same box, the bunny in rough chrome (Beckmann alpha 0.15, Fresnel 1).
+    "box_metal": {
+        "box": BOX, "camera": BOX_CAMERA, "resolution": [320, 240], "max_depth": 5,
+        "meshes": [{"mesh": "meshes/stanford-bunny.obj", "material": CHROME,
+                    "fit": ([0.0, 0.0, -0.1], 1.2)}],
+    },
 }
 
 
-def describe(name, out):
-    """The scene as kiln reads it (.kiln + --env) and as the Cycles script reads it (JSON)."""
-    s = SCENES[name]
-    mesh = os.path.join(SHARED, s["mesh"])
-    matrix = fit_matrix(mesh, *s["fit"])
+def kiln_material(name, m):
+    if "albedo" in m:
+        return '<material name="%s" albedo="%s"/>' % (name, " ".join(map(str, m["albedo"])))
+    return '<material name="%s" kind="microfacet" alpha="%g" eta="%s" k="%s"/>' % (
+        name, m["alpha"], " ".join(map(str, m["eta"])), " ".join(map(str, m["k"])))
+
+
+def describe(name, out, resolution=None):
+    """The scene as kiln reads it (.kiln [+ box .dae] + --env) and as the Cycles script reads it (JSON)."""
+    s = dict(SCENES[name])
+    if resolution:
+        s["resolution"] = resolution
     cam = s["camera"]
-    kiln_path = os.path.join(out, name + ".kiln")
-    with open(kiln_path, "w") as f:
-        f.write('<kiln-scene>\n  <material name="m" albedo="%s"/>\n' % " ".join(map(str, s["albedo"])))
-        f.write('  <mesh file="%s" material="m"><matrix values="%s"/></mesh>\n'
-                % (mesh, " ".join("%.9g" % v for v in matrix)))
-        f.write('  <camera position="%s" look-at="%s" up="%s" fov="%g"/>\n</kiln-scene>\n'
-                % (" ".join(map(str, cam["position"])), " ".join(map(str, cam["look_at"])),
-                   " ".join(map(str, cam["up"])), cam["fov"]))
-    desc = {"meshes": [{"file": mesh, "matrix": matrix, "albedo": s["albedo"]}], "camera": cam,
-            "environment": os.path.join(SHARED, s["environment"]), "resolution": s["resolution"],
+    desc = {"meshes": [], "camera": cam, "resolution": s["resolution"],
             # kiln's -m counts path vertices after the camera (1 = direct light); Cycles' bounces
             # count indirect bounces (0 = direct light).
             "max_bounces": s["max_depth"] - 1}
+    lines = ["<kiln-scene>"]
+    if "box" in s:
+        b = s["box"]
+        quads = box_quads(b["lo"], b["hi"], b["light_half"], b["radiance"])
+        write_dae(os.path.join(out, name + ".box.dae"), quads)
+        lines.append('  <include file="%s.box.dae"/>' % name)
+        desc["quads"] = [{"name": n, "material": m, "corners": c} for n, m, c in quads]
+    for i, m in enumerate(s["meshes"]):
+        mesh = os.path.join(SHARED, m["mesh"])
+        matrix = fit_matrix(mesh, *m["fit"])
+        lines.append("  " + kiln_material("m%d" % i, m["material"]))
+        lines.append('  <mesh file="%s" material="m%d"><matrix values="%s"/></mesh>'
+                     % (mesh, i, " ".join("%.9g" % v for v in matrix)))
+        desc["meshes"].append({"file": mesh, "matrix": matrix, "material": m["material"]})
+    lines.append('  <camera position="%s" look-at="%s" up="%s" fov="%g"/>\n</kiln-scene>\n'
+                 % (" ".join(map(str, cam["position"])), " ".join(map(str, cam["look_at"])),
+                    " ".join(map(str, cam["up"])), cam["fov"]))
+    kiln_path = os.path.join(out, name + ".kiln")
+    with open(kiln_path, "w") as f:
+        f.write("\n".join(lines))
+    if s.get("environment"):
+        desc["environment"] = os.path.join(SHARED, s["environment"])
     json_path = os.path.join(out, name + ".json")
     with open(json_path, "w") as f:
         json.dump(desc, f)
@@ -84,9 +135,10 @@ def describe(name, out):
 
 def run_kiln(kiln, scene_path, s, spp, sampler, threads, out_base):
     w, h = s["resolution"]
-    cmd = [kiln, "render", scene_path, "--env", os.path.join(SHARED, s["environment"]),
-           "-r", str(w), str(h), "-s", str(spp), "-m", str(s["max_depth"]), "-t", str(threads),
-           "--sampler", sampler, "--aov", "none", "-q", "-o", out_base]
+    env = ["--env", os.path.join(SHARED, s["environment"])] if s.get("environment") else []
+    cmd = [kiln, "render", scene_path] + env + [
+        "-r", str(w), str(h), "-s", str(spp), "-m", str(s["max_depth"]), "-t", str(threads),
+        "--sampler", sampler, "--aov", "none", "-q", "-o", out_base]
     err = subprocess.run(cmd, capture_output=True, text=True, check=True).stderr
     m = re.search(r"build ([0-9.]+)s, render ([0-9.]+)s", err)
     return float(m.group(1)) + float(m.group(2)), out_base + ".exr"
@@ -107,6 +159,27 @@ def rel_mse(kiln, test, ref):
     out = subprocess.run([kiln, "bench", "compare", test, ref, "--keep-reference-noise"],
                          capture_output=True, text=True, check=True).stdout
     return float(re.search(r"relmse ([0-9.eE+-]+)", out).group(1))
+
+
+def mean_rgb(exr):
+    out = subprocess.run(["oiiotool", exr, "--ch", "R,G,B", "--printstats"], capture_output=True,
+                         text=True, check=True).stdout
+    return [float(v) for v in re.search(r"Stats Avg: ([0-9.eE+-]+) ([0-9.eE+-]+) ([0-9.eE+-]+)",
+                                        out).groups()]
+
+
+def check_references(refs, base):
+    """The identical-scene check: both converged references side by side (kiln left, Cycles right,
+    sRGB) in BASE.refs.png, and their mean RGB, which must agree within the references' noise."""
+    kiln_ref = [v for k, v in refs.items() if k != "cycles"][0]
+    subprocess.run(["oiiotool", kiln_ref, "--ch", "R,G,B", refs["cycles"], "--ch", "R,G,B",
+                    "--mosaic", "2x1", "--colorconvert", "linear", "sRGB", "-d", "uint8", "-o",
+                    base + ".refs.png"], check=True)
+    lines = []
+    for k, v in refs.items():
+        lines.append("mean RGB %-18s %s" % (k, " ".join("%.5f" % c for c in mean_rgb(v))))
+        print(lines[-1], flush=True)
+    return lines
 
 
 def time_at(series, level):
@@ -131,26 +204,34 @@ def main():
     ap.add_argument("--ref-spp", type=int, default=2048)
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--resolution", type=int, nargs=2, help="override the scene's image size")
     ap.add_argument("--samplers", default="independent,sobol")
     ap.add_argument("--out", default=os.path.join(ROOT, "out", "peer"))
     ap.add_argument("--kiln", default=os.path.join(ROOT, "build", "kiln"))
     ap.add_argument("--blender", default="blender")
+    ap.add_argument("--check", action="store_true",
+                    help="only make the references and compare them (side by side, mean RGB)")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
     spps = [int(v) for v in a.spp.split(",")]
     samplers = a.samplers.split(",")
-    kiln_scene, json_path, s = describe(a.scene, a.out)
+    kiln_scene, json_path, s = describe(a.scene, a.out, a.resolution)
     base = os.path.join(a.out, a.scene)
 
+    # references are reused by a later run only when they were made at the same size and spp
+    ref_tag = ".ref%d.%dx%d" % (a.ref_spp, *s["resolution"])
     refs = {}
     for sampler in samplers:
-        ref = base + ".ref.kiln." + sampler
+        ref = base + ref_tag + ".kiln." + sampler
         if not os.path.exists(ref + ".exr"):
             run_kiln(a.kiln, kiln_scene, s, a.ref_spp, sampler, a.threads, ref)
         refs["kiln " + sampler] = ref + ".exr"
-    refs["cycles"] = base + ".ref.cycles.exr"
+    refs["cycles"] = base + ref_tag + ".cycles.exr"
     if not os.path.exists(refs["cycles"]):
         run_cycles(a.blender, json_path, a.ref_spp, a.threads, refs["cycles"])
+    means = check_references(refs, base)
+    if a.check:
+        return
 
     rows = []  # (renderer, spp, median seconds, relMSE)
     for spp in spps:
@@ -183,8 +264,8 @@ def main():
     with open(base + ".csv", "w", newline="") as f:
         csv.writer(f).writerows([("renderer", "spp", "median_seconds", "relmse")] + rows)
     with open(base + ".md", "w") as f:
-        f.write("`tools/peer_bench.py --scene %s --spp %s --ref-spp %d --repeats %d --threads %d`\n\n%s\n"
-                % (a.scene, a.spp, a.ref_spp, a.repeats, a.threads, table))
+        f.write("`tools/peer_bench.py %s`\n\n%s\n\n%s\n"
+                % (" ".join(sys.argv[1:]), table, "\n".join(means)))
 
 
 if __name__ == "__main__":

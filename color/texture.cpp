@@ -101,6 +101,7 @@ bool isMipMapped(OIIO::ImageInput& in) {
 struct TextureSet::Impl {
     OIIO::TextureSystem* system = nullptr;
     std::vector<OIIO::TextureSystem::TextureHandle*> handles;
+    std::vector<int> channels;  // per handle
     ~Impl() {
         if (system) OIIO::TextureSystem::destroy(system, true);
     }
@@ -147,6 +148,7 @@ int TextureSet::add(const TextureSource& source, std::string* note) {
         throw ImageReadError(source.name, "cannot read texture: " + impl_->system->geterror());
     }
     impl_->handles.push_back(handle);
+    impl_->channels.push_back(spec.nchannels);
     return int(impl_->handles.size()) - 1;
 }
 
@@ -158,6 +160,17 @@ Color TextureSet::lookup(int id, float s, float t, float width) const {
     impl_->system->texture(impl_->handles[size_t(id)], nullptr, opt, s, t, width, 0, 0, width, 3,
                            rgb);
     return Color(rgb[0], rgb[1], rgb[2]);
+}
+
+float TextureSet::lookupChannel(int id, int channel, float s, float t, float width) const {
+    if (channel >= impl_->channels[size_t(id)]) return 1.0f;
+    OIIO::TextureOpt opt;
+    opt.swrap = opt.twrap = OIIO::TextureOpt::WrapPeriodic;
+    opt.firstchannel = channel;
+    float value = 1.0f;
+    impl_->system->texture(impl_->handles[size_t(id)], nullptr, opt, s, t, width, 0, 0, width, 1,
+                           &value);
+    return value;
 }
 
 Color TextureSet::lookupLatLong(int id, float s, float t) const {

@@ -16,12 +16,19 @@ namespace {
 constexpr const char* kSourceAttribute = "kiln:source";
 
 // Opens the file, or the bytes in memory through a proxy that must outlive the input.
+// Colour stays unassociated (straight) as PNG and glTF store it: OIIO would otherwise premultiply
+// by alpha, and a cut-out texel's colour (or a half-transparent one's) would darken.
 std::unique_ptr<OIIO::ImageInput> openTextureSource(
     const TextureSource& source, std::unique_ptr<OIIO::Filesystem::IOMemReader>& proxy) {
-    if (!source.bytes) return OIIO::ImageInput::open(source.name);
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    if (!source.bytes) return OIIO::ImageInput::open(source.name, &config);
     proxy =
         std::make_unique<OIIO::Filesystem::IOMemReader>(source.bytes->data(), source.bytes->size());
-    return OIIO::ImageInput::open("embedded." + source.formatHint, nullptr, proxy.get());
+    // With a config, OIIO 2.4 takes the proxy from it, not from the argument.
+    OIIO::Filesystem::IOProxy* io = proxy.get();
+    config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &io);
+    return OIIO::ImageInput::open("embedded." + source.formatHint, &config, io);
 }
 
 // Presents an image (a file or bytes in memory) to the ImageCache as float scanlines in the

@@ -10,8 +10,7 @@ namespace {
 // Least cosine between the bent normal and the direction to the viewer.
 constexpr float kMinViewCosine = 0.01f;
 
-Vec3 interpolate3(const std::vector<float>& a, size_t stride, const uint32_t* idx,
-                  const Vec3& b) {
+Vec3 interpolate3(const std::vector<float>& a, size_t stride, const uint32_t* idx, const Vec3& b) {
     auto at = [&](uint32_t i) {
         const float* p = &a[stride * size_t(i)];
         return Vec3(p[0], p[1], p[2]);

@@ -19,8 +19,8 @@ bool isGltf(const std::string& path) {
 }
 
 void warn(Scene& scene, const Material& m, const std::string& what) {
-    scene.warnings.push_back((m.name.empty() ? "an unnamed material" : "material '" + m.name + "'") +
-                             ": " + what);
+    scene.warnings.push_back(
+        (m.name.empty() ? "an unnamed material" : "material '" + m.name + "'") + ": " + what);
 }
 
 // The slot's texture as a raw-data (or colour) source of the scene, with its UV transform; -1
@@ -51,8 +51,8 @@ void readNormalMap(const aiScene* as, const aiMaterial* am, const std::string& a
     MaterialMaps& maps = m.maps;
     for (aiTextureType slot : {aiTextureType_NORMALS, aiTextureType_NORMAL_CAMERA}) {
         if (am->GetTextureCount(slot) == 0) continue;
-        maps.normalTexture = mapSource(as, am, slot, assetPath, TextureEncoding::Data,
-                                       "normal map", maps.normalUv, m, scene);
+        maps.normalTexture = mapSource(as, am, slot, assetPath, TextureEncoding::Data, "normal map",
+                                       maps.normalUv, m, scene);
         float scale = 1.0f;
         if (am->Get(AI_MATKEY_GLTF_TEXTURE_SCALE(slot, 0), scale) == AI_SUCCESS &&
             std::isfinite(scale))
@@ -91,13 +91,12 @@ void readObjAlpha(const aiScene* as, const aiMaterial* am, const std::string& as
                   Material& m, Scene& scene) {
     MaterialMaps& maps = m.maps;
     float opacity = 1.0f;
-    if (am->Get(AI_MATKEY_OPACITY, opacity) == AI_SUCCESS && std::isfinite(opacity) &&
-        opacity < 1)
+    if (am->Get(AI_MATKEY_OPACITY, opacity) == AI_SUCCESS && std::isfinite(opacity) && opacity < 1)
         maps.opacity = std::clamp(opacity, 0.0f, 1.0f);
     if (am->GetTextureCount(aiTextureType_OPACITY) > 0) {
-        maps.opacityTexture = mapSource(as, am, aiTextureType_OPACITY, assetPath,
-                                        TextureEncoding::Data, "opacity map", maps.opacityUv,
-                                        m, scene);
+        maps.opacityTexture =
+            mapSource(as, am, aiTextureType_OPACITY, assetPath, TextureEncoding::Data,
+                      "opacity map", maps.opacityUv, m, scene);
         maps.opacityChannel = 0;
     }
     if (maps.opacity < 1 || maps.opacityTexture >= 0) maps.alphaMode = AlphaMode::Blend;

@@ -47,7 +47,7 @@ std::string number(float v) {
 
 // The source an Assimp texture path names, or a reason it cannot be used.
 bool assimpTextureSource(const aiScene* as, const std::string& assetPath, const std::string& ref,
-               TextureSource& source, std::string& reason) {
+                         TextureSource& source, std::string& reason) {
     if (const aiTexture* embedded = as->GetEmbeddedTexture(ref.c_str())) {
         if (embedded->mHeight != 0) {
             reason =

@@ -164,7 +164,8 @@ void merge(Scene& dst, Scene& src, const Mat4& xf, int override, bool asPrototyp
                 m.normals[v] = n.x, m.normals[v + 1] = n.y, m.normals[v + 2] = n.z;
             }
             for (size_t v = 0; v + 3 < m.tangents.size(); v += 4) {
-                Vec3 t = normalize(xf.vector(Vec3(m.tangents[v], m.tangents[v + 1], m.tangents[v + 2])));
+                Vec3 t =
+                    normalize(xf.vector(Vec3(m.tangents[v], m.tangents[v + 1], m.tangents[v + 2])));
                 m.tangents[v] = t.x, m.tangents[v + 1] = t.y, m.tangents[v + 2] = t.z;
                 if (flip) m.tangents[v + 3] = -m.tangents[v + 3];
             }
@@ -282,8 +283,9 @@ Camera::FovAxis fovAxis(const std::string& path, pugi::xml_node n) {
     if (axis == "horizontal") return Camera::FovAxis::Horizontal;
     if (axis == "vertical") return Camera::FovAxis::Vertical;
     if (axis == "diagonal") return Camera::FovAxis::Diagonal;
-    throw SceneError(path, "<camera> fov_axis must be horizontal, vertical, diagonal or narrow, not '" +
-                               axis + "'");
+    throw SceneError(
+        path,
+        "<camera> fov_axis must be horizontal, vertical, diagonal or narrow, not '" + axis + "'");
 }
 
 // <override material="NAME"/> (a material of this file) or <override spec="clay"/> (as

@@ -96,8 +96,8 @@ void addMissingTangents(Scene& scene) {
     for (TriangleMesh& mesh : scene.meshes) {
         bool mapped = false;
         for (uint32_t id : mesh.materialIds)
-            mapped = mapped || (id < scene.materials.size() &&
-                                scene.materials[id].maps.normalTexture >= 0);
+            mapped = mapped ||
+                     (id < scene.materials.size() && scene.materials[id].maps.normalTexture >= 0);
         if (!mapped || !mesh.tangents.empty()) continue;
         if (mesh.uvs.empty()) {
             scene.warnings.push_back("mesh '" + mesh.name +

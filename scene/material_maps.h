@@ -39,9 +39,9 @@ enum class AlphaMode { Opaque, Mask, Blend };
 const char* toString(AlphaMode mode);
 
 struct MaterialMaps {
-    UvTransform albedoUv;     // how Material::albedoTexture is read
-    int normalTexture = -1;   // Scene::textureSources index: tangent-space normals, raw data
-    float normalScale = 1.0f; // glTF normalTexture.scale: multiplies the map's x and y
+    UvTransform albedoUv;      // how Material::albedoTexture is read
+    int normalTexture = -1;    // Scene::textureSources index: tangent-space normals, raw data
+    float normalScale = 1.0f;  // glTF normalTexture.scale: multiplies the map's x and y
     UvTransform normalUv;
     AlphaMode alphaMode = AlphaMode::Opaque;
     float opacity = 1.0f;      // baseColorFactor alpha, OBJ d

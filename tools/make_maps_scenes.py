@@ -175,6 +175,8 @@ def main():
          ["maps_half_white.png"])
     gltf("maps_transform_rotate.gltf", [(floor, 0)],
          [transformed("rotated", {"rotation": math.pi / 2})], ["maps_half_white.png"])
+    for name in ("scale", "offset", "rotate"):
+        kiln("maps_transform_%s.kiln" % name, "maps_transform_%s.gltf" % name, "0 -1 0", "60")
 
 
 if __name__ == "__main__":

@@ -155,8 +155,7 @@ void watertightIntersect(const RTCIntersectFunctionNArguments* args) {
         float t, u, v;
         if (!watertightHit(args->geometryUserPtr, args->primID, lane(rays, args->N, i), t, u, v) ||
             passesAlpha(*static_cast<const WatertightMeshData*>(args->geometryUserPtr),
-                        args->primID, u, v, args->context->instID[0],
-                        RTCRayN_id(rays, args->N, i)))
+                        args->primID, u, v, args->context->instID[0], RTCRayN_id(rays, args->N, i)))
             continue;
         // A tie (duplicate triangles) goes to the lowest (geometry, triangle), as in the
         // reference BVH.

@@ -73,8 +73,8 @@ ReferenceAccelerator::ReferenceAccelerator(const Scene& scene, const ReferenceBv
         std::string("reference bvh ") + split + " leaf " + std::to_string(options.maxLeafSize);
 }
 
-bool ReferenceAccelerator::testTriangle(const TriangleMesh& mesh, uint32_t tri, Ray& ray,
-                                        Hit* hit, uint32_t instance, uint32_t seed) const {
+bool ReferenceAccelerator::testTriangle(const TriangleMesh& mesh, uint32_t tri, Ray& ray, Hit* hit,
+                                        uint32_t instance, uint32_t seed) const {
     const uint32_t* idx = &mesh.indices[3 * tri];
     float t, u, v;
     if (!intersectTriangle(ray, mesh.vertex(idx[0]), mesh.vertex(idx[1]), mesh.vertex(idx[2]), t, u,

@@ -21,15 +21,15 @@ bool sceneHasAlpha(const Scene& scene) {
 uint32_t raySeed(const Ray& r) {
     uint64_t h = mix64(std::bit_cast<uint32_t>(r.origin.x) |
                        uint64_t(std::bit_cast<uint32_t>(r.origin.y)) << 32);
-    h = mix64(h ^ (std::bit_cast<uint32_t>(r.origin.z) |
-                   uint64_t(std::bit_cast<uint32_t>(r.dir.x)) << 32));
-    h = mix64(h ^ (std::bit_cast<uint32_t>(r.dir.y) |
-                   uint64_t(std::bit_cast<uint32_t>(r.dir.z)) << 32));
+    h = mix64(h ^ (std::bit_cast<uint32_t>(r.origin.z) | uint64_t(std::bit_cast<uint32_t>(r.dir.x))
+                                                             << 32));
+    h = mix64(
+        h ^ (std::bit_cast<uint32_t>(r.dir.y) | uint64_t(std::bit_cast<uint32_t>(r.dir.z)) << 32));
     return uint32_t(h);
 }
 
-float alphaAt(const Scene& scene, const Material& material, const TriangleMesh& mesh,
-              uint32_t prim, float b1, float b2) {
+float alphaAt(const Scene& scene, const Material& material, const TriangleMesh& mesh, uint32_t prim,
+              float b1, float b2) {
     const MaterialMaps& maps = material.maps;
     float alpha = maps.opacity;
     if (maps.opacityTexture >= 0 && scene.textures && !mesh.uvs.empty()) {

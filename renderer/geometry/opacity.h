@@ -19,8 +19,8 @@ uint32_t raySeed(const Ray& worldRay);
 
 // Alpha at barycentrics (b1, b2) of triangle `prim`: the material's opacity times its opacity
 // texture, looked up at the finest MIP level (no footprint is known during traversal).
-float alphaAt(const Scene& scene, const Material& material, const TriangleMesh& mesh,
-              uint32_t prim, float b1, float b2);
+float alphaAt(const Scene& scene, const Material& material, const TriangleMesh& mesh, uint32_t prim,
+              float b1, float b2);
 
 // Whether a candidate hit on triangle `prim` of `mesh` (placed by `instance`, or kInvalidId)
 // stops the ray whose seed is `seed`.

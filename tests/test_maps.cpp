@@ -3,14 +3,17 @@
 // Every scene is lit by one directional light from straight above and seen from straight above
 // (-m 1: direct light only), so a Lambert surface's pixel is albedo * E * cos / pi exactly, and
 // the expected values below are that formula, not measured numbers.
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <set>
 
 #include "renderer/accel/accelerator.h"
 #include "renderer/geometry/camera.h"
 #include "renderer/validation/crosscheck.h"
 #include "scene/scene_loader.h"
+#include "tests/kiln_run.h"
 #include "tests/test_support.h"
 
 namespace kiln {
@@ -175,6 +178,39 @@ TEST(TextureTransform, ScaleOffsetAndRotationMoveTheLookup) {
     // quad's -z half reads s in (-0.5, 0), wrapped: white; its +z half black.
     EXPECT_NEAR(quadAt("maps_transform_rotate.kiln", 32, 24), lambert(1.0f), 1e-5f);
     EXPECT_NEAR(quadAt("maps_transform_rotate.kiln", 32, 40), 0.0f, 1e-6f);
+}
+
+// The pixel's (R, A) in an EXR kiln wrote.
+std::pair<float, float> exrPixel(const std::string& path, int x, int y) {
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) return {-1.0f, -1.0f};
+    const OIIO::ImageSpec& spec = in->spec();
+    std::vector<float> px(size_t(spec.width) * spec.height * spec.nchannels);
+    in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data());
+    size_t at = (size_t(y) * spec.width + x) * spec.nchannels;
+    return {px[at + spec.channelindex("R")], px[at + spec.channelindex("A")]};
+}
+
+TEST(Alpha, KilnRenderTransparentWritesAlphaZeroThroughTheCut) {
+    auto dir = test::scratchDir();
+    std::string out = (dir / "cut").string();
+    test::CliRun r = test::runKiln("render " + asset("maps_alpha_mask.kiln") +
+                                   " -r 64 64 -s 2 -m 1 -q --transparent --output " + out);
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(exrPixel(out + ".exr", kCutOverNothingX, kCutRow).second, 0.0f);
+    EXPECT_EQ(exrPixel(out + ".exr", kCutOverFloorX, kCutRow).second, 1.0f);
+    // The override makes the card opaque clay: covered, grey.
+    r = test::runKiln("render " + asset("maps_alpha_mask.kiln") +
+                      " -r 64 64 -s 2 -m 1 -q --transparent --material-override clay --output " +
+                      out);
+    ASSERT_EQ(r.code, 0) << r.err;
+    auto [red, alpha] = exrPixel(out + ".exr", kCutOverNothingX, kCutRow);
+    EXPECT_EQ(alpha, 1.0f);
+    EXPECT_NEAR(red, lambert(0.5f), 1e-5f);
+    test::CliRun bad =
+        test::runKiln("render " + asset("maps_alpha_mask.kiln") + " --material-override x:y");
+    EXPECT_EQ(bad.code, 2);
+    EXPECT_NE(bad.err.find("not a material override"), std::string::npos) << bad.err;
 }
 
 TEST(TextureTransform, GltfMatchesTheExtensionsFormula) {

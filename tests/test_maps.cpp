@@ -148,6 +148,14 @@ TEST_P(AlphaCrosscheck, EmbreeAgreesWithTheReferenceBvh) {
         EXPECT_FALSE(reference->intersect(down, b));
         EXPECT_FALSE(embree->occluded(down));
         EXPECT_FALSE(reference->occluded(down));
+        // The opaque half blocks both kinds of query in both.
+        Ray opaque{Vec3(0.5f, 2.0f, 0.5f), 0.0f, Vec3(0, -1, 0), kInfinity};
+        EXPECT_TRUE(embree->occluded(opaque));
+        EXPECT_TRUE(reference->occluded(opaque));
+        ASSERT_TRUE(embree->intersect(opaque, a));
+        ASSERT_TRUE(reference->intersect(opaque, b));
+        EXPECT_EQ(a.shape, b.shape);
+        EXPECT_NEAR(a.t, 1.5f, 1e-5f);
     }
 }
 

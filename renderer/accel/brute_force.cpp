@@ -13,8 +13,10 @@ class BruteForceAccelerator final : public Accelerator {
     explicit BruteForceAccelerator(const Scene& scene) : scene_(scene) {
         auto start = std::chrono::steady_clock::now();
         std::vector<bool> proto = scene.prototypeMask();
-        for (uint32_t m = 0; m < scene.meshes.size(); ++m)
+        for (uint32_t m = 0; m < scene.meshes.size(); ++m) {
             if (!proto[m]) worldMeshes_.push_back(m);
+            alphaMesh_.push_back(meshHasAlpha(scene, m));
+        }
         stats_.description = "brute force (every ray against every primitive)";
         stats_.buildSeconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -28,7 +30,7 @@ class BruteForceAccelerator final : public Accelerator {
     // and the reference BVH do. Returns whether any was hit (ray.tMax shortened to it).
     template <bool AnyHit>
     bool testMesh(uint32_t mesh, Ray& ray, Hit* hit, uint32_t instance, uint32_t seed) const {
-        bool alpha = meshHasAlpha(scene_, mesh);
+        bool alpha = alphaMesh_[mesh];
         const TriangleMesh& m = scene_.meshes[mesh];
         bool found = false, earlier = hit->valid();
         for (uint32_t tri = 0; tri < m.triangleCount(); ++tri) {
@@ -83,6 +85,7 @@ class BruteForceAccelerator final : public Accelerator {
 
     const Scene& scene_;
     std::vector<uint32_t> worldMeshes_;
+    std::vector<bool> alphaMesh_;  // per mesh: its materials have alpha (opacity.h)
     AcceleratorStats stats_;
 };
 

@@ -54,6 +54,42 @@ TEST(NormalMap, TiltedMapDarkensByTheCosineOfItsTilt) {
     }
 }
 
+TEST(NormalMap, GltfScaleShortensTheTilt) {
+    Scene s = loadScene(asset("maps_normal_scale.kiln"));
+    EXPECT_EQ(s.materials[0].maps.normalScale, 0.5f);
+    // The 45-degree texel (t, 0, t), t = sqrt(1/2), with x halved: cos = t / |(t/2, 0, t)|.
+    float t = std::sqrt(0.5f), cosine = t / std::sqrt(0.25f * t * t + t * t);
+    EXPECT_NEAR(render(s).pixel(kLeftHalf, kMiddleRow).x, lambert(0.8f, cosine), 1e-4f);
+}
+
+TEST(Alpha, ObjDissolveAndMapDAreCoverage) {
+    auto dir = test::scratchDir();
+    test::writeFile(dir / "veil.mtl",
+                    "newmtl veil\nKd 1 1 1\nd 0.4\nnewmtl cut\nKd 1 1 1\n"
+                    "map_d " +
+                        asset("maps_card_rgba.png") + "\n");
+    std::string obj =
+        test::writeFile(dir / "veil.obj",
+                        "mtllib veil.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\n"
+                        "usemtl veil\nf 1/1 2/2 3/3\nusemtl cut\nf 1/1 3/3 2/2\n");
+    Scene s = loadScene(obj);
+    int blends = 0;
+    for (const Material& m : s.materials) {
+        if (m.name == "veil") {
+            EXPECT_EQ(m.maps.alphaMode, AlphaMode::Blend);
+            EXPECT_NEAR(m.maps.opacity, 0.4f, 1e-6f);
+            ++blends;
+        }
+        if (m.name == "cut") {
+            EXPECT_EQ(m.maps.alphaMode, AlphaMode::Blend);
+            EXPECT_GE(m.maps.opacityTexture, 0);
+            EXPECT_EQ(m.maps.opacityChannel, 0);
+            ++blends;
+        }
+    }
+    EXPECT_EQ(blends, 2);
+}
+
 TEST(NormalMap, FileTangentsAndComputedTangentsAgree) {
     Scene computed = loadScene(asset("maps_normal.kiln"));
     Scene file = loadScene(asset("maps_normal_tangents.kiln"));

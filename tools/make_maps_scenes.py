@@ -117,7 +117,7 @@ def textures():
     png(os.path.join(OUT, "maps_tilted_normals.png"), 16, 16, 3,
         lambda x, y: (0.5 + 0.5 * (t if x < 8 else -t), 0.5, 0.5 + 0.5 * t))
     # A flat map stored exactly: (0.5, 0.5, 1) in half floats.
-    subprocess.run(["oiiotool", "--pattern", "constant:color=0.5,0.5,1", "8x8", "3", "-d", "half",
+    subprocess.run(["oiiotool", "--nosoftwareattrib", "--pattern", "constant:color=0.5,0.5,1", "8x8", "3", "-d", "half",
                     "-o", os.path.join(OUT, "maps_flat_normals.exr")], check=True)
     # Card: red, alpha 0 on the image's top half (v < 0.5: the -z half of the card), 1 below.
     png(os.path.join(OUT, "maps_card_rgba.png"), 16, 16, 4,
@@ -140,6 +140,9 @@ def main():
     gltf("maps_normal_tangents.gltf", [(floor, 0)], [normal_mapped], ["maps_tilted_normals.png"],
          with_tangents=True)
     gltf("maps_normal_flat.gltf", [(floor, 0)], [flat_mapped], ["maps_flat_normals.exr"])
+    half_strength = dict(white, name="half_strength", normalTexture={"index": 0, "scale": 0.5})
+    gltf("maps_normal_scale.gltf", [(floor, 0)], [half_strength], ["maps_tilted_normals.png"])
+    kiln("maps_normal_scale.kiln", "maps_normal_scale.gltf", "0 -1 0", "60")
     # Light from straight above; the normal map's tilt is about the tangent (+x).
     for name in ("none", "", "_tangents", "_flat"):
         suffix = "_" + name if name not in ("", "_tangents", "_flat") else name

@@ -8,12 +8,12 @@ namespace kiln {
 
 UvTransform UvTransform::gltf(float offsetU, float offsetV, float rotation, float scaleU,
                               float scaleV) {
-    // glTF UV g = (u, 1 - v); g' = T R S g with R = [cos -sin; sin cos] (the extension's GLSL);
-    // the lookup reads (s, t) = g'.
+    // glTF UV g = (u, 1 - v); g' = T R S g with R = [cos sin; -sin cos] (the direction the
+    // Khronos TextureTransformTest asset checks, and three.js applies); the lookup reads g'.
     float c = std::cos(rotation), s = std::sin(rotation);
     UvTransform x;
-    x.a = c * scaleU, x.b = s * scaleV, x.c = offsetU - s * scaleV;
-    x.d = s * scaleU, x.e = -c * scaleV, x.f = offsetV + c * scaleV;
+    x.a = c * scaleU, x.b = -s * scaleV, x.c = offsetU + s * scaleV;
+    x.d = -s * scaleU, x.e = -c * scaleV, x.f = offsetV + c * scaleV;
     return x;
 }
 

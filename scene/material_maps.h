@@ -24,7 +24,7 @@ struct UvTransform {
     // axes' stretch, sqrt of the determinant).
     float areaScale() const { return std::sqrt(std::abs(a * e - b * d)); }
     // glTF KHR_texture_transform (offset, rotation in radians, scale) applied in glTF's UV space
-    // (v down): uv' = T * R * S * uv.
+    // (v down): uv' = T * R * S * uv, R = [cos sin; -sin cos].
     static UvTransform gltf(float offsetU, float offsetV, float rotation, float scaleU,
                             float scaleV);
     // Assimp's aiUVTransform as its own TransformUVCoords step applies it (other formats).

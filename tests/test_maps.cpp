@@ -218,10 +218,10 @@ TEST(TextureTransform, ScaleOffsetAndRotationMoveTheLookup) {
     EXPECT_NEAR(quadAt("maps_transform_scale.kiln", kRightHalf, kMiddleRow), 0.0f, 1e-6f);
     // Offset 0.5 as well: u in [0.75, 1]: white.
     EXPECT_NEAR(quadAt("maps_transform_offset.kiln", kRightHalf, kMiddleRow), lambert(1.0f), 1e-5f);
-    // Rotation 90 degrees: s = -v (glTF v, 0 at the image's top row, the quad's -z edge), so the
-    // quad's -z half reads s in (-0.5, 0), wrapped: white; its +z half black.
-    EXPECT_NEAR(quadAt("maps_transform_rotate.kiln", 32, 24), lambert(1.0f), 1e-5f);
-    EXPECT_NEAR(quadAt("maps_transform_rotate.kiln", 32, 40), 0.0f, 1e-6f);
+    // Rotation 90 degrees: s = v (glTF's v, 0 at the image's top row, the quad's -z edge), so the
+    // quad's -z half reads s in (0, 0.5): black; its +z half white.
+    EXPECT_NEAR(quadAt("maps_transform_rotate.kiln", 32, 24), 0.0f, 1e-6f);
+    EXPECT_NEAR(quadAt("maps_transform_rotate.kiln", 32, 40), lambert(1.0f), 1e-5f);
 }
 
 // The pixel's (R, A) in an EXR kiln wrote.
@@ -258,11 +258,12 @@ TEST(Alpha, KilnRenderTransparentWritesAlphaZeroThroughTheCut) {
 }
 
 TEST(TextureTransform, GltfMatchesTheExtensionsFormula) {
-    // uv' = T R S uv, R = [cos -sin; sin cos]: rotation by 90 degrees sends (u, v) to (-v, u).
+    // uv' = T R S uv, R = [cos sin; -sin cos] (checked against Khronos' TextureTransformTest
+    // asset, whose markers show which direction is right): 90 degrees sends (x, y) to (y, -x).
     UvTransform x = UvTransform::gltf(0.1f, 0.2f, kPi / 2, 2.0f, 3.0f);
     float u = 0.3f, vUp = 0.4f, g = 1 - vUp;  // kiln's v is up, glTF's down
-    EXPECT_NEAR(x.s(u, vUp), 0.1f - 3.0f * g, 1e-6f);
-    EXPECT_NEAR(x.t(u, vUp), 0.2f + 2.0f * u, 1e-6f);
+    EXPECT_NEAR(x.s(u, vUp), 0.1f + 3.0f * g, 1e-6f);
+    EXPECT_NEAR(x.t(u, vUp), 0.2f - 2.0f * u, 1e-6f);
     UvTransform id;
     EXPECT_EQ(id.s(u, vUp), u);
     EXPECT_EQ(id.t(u, vUp), 1 - vUp);

@@ -54,6 +54,18 @@ TEST(NormalMap, TiltedMapDarkensByTheCosineOfItsTilt) {
     }
 }
 
+TEST(NormalMap, TangentAndBitangentPointAlongIncreasingUAndV) {
+    // Light from the -x side at 45 degrees: the left half's normal (tilted to +x, away from it)
+    // is edge-on, the right half's (tilted to -x) faces it; unmapped, cos 45.
+    Film side = render(loadScene(asset("maps_normal_side.kiln")));
+    EXPECT_NEAR(side.pixel(kLeftHalf, kMiddleRow).x, 0.0f, 1e-4f);
+    EXPECT_NEAR(side.pixel(kRightHalf, kMiddleRow).x, lambert(0.8f), 1e-4f);
+    // +y in the map is the bitangent: glTF's v decreasing (up the image), the quad's -z side here,
+    // where the light comes from.
+    Film up = render(loadScene(asset("maps_normal_up.kiln")));
+    EXPECT_NEAR(up.pixel(32, 32).x, lambert(0.8f), 1e-4f);
+}
+
 TEST(NormalMap, GltfScaleShortensTheTilt) {
     Scene s = loadScene(asset("maps_normal_scale.kiln"));
     EXPECT_EQ(s.materials[0].maps.normalScale, 0.5f);

@@ -116,6 +116,8 @@ def textures():
     t = math.sqrt(0.5)
     png(os.path.join(OUT, "maps_tilted_normals.png"), 16, 16, 3,
         lambda x, y: (0.5 + 0.5 * (t if x < 8 else -t), 0.5, 0.5 + 0.5 * t))
+    # Every texel tilted 45 degrees towards +y (the bitangent: increasing v, up the image).
+    png(os.path.join(OUT, "maps_tilted_up.png"), 4, 4, 3, lambda x, y: (0.5, 0.5 + 0.5 * t, 0.5 + 0.5 * t))
     # A flat map stored exactly: (0.5, 0.5, 1) in half floats.
     subprocess.run(["oiiotool", "--nosoftwareattrib", "--pattern", "constant:color=0.5,0.5,1", "8x8", "3", "-d", "half",
                     "-o", os.path.join(OUT, "maps_flat_normals.exr")], check=True)
@@ -140,6 +142,12 @@ def main():
     gltf("maps_normal_tangents.gltf", [(floor, 0)], [normal_mapped], ["maps_tilted_normals.png"],
          with_tangents=True)
     gltf("maps_normal_flat.gltf", [(floor, 0)], [flat_mapped], ["maps_flat_normals.exr"])
+    # Side light (travelling towards +x, from the -x side) shows the tangent's sign; light from the
+    # -z side (where glTF v = 0, the image's top) the bitangent's.
+    kiln("maps_normal_side.kiln", "maps_normal.gltf", "1 -1 0", "60")
+    up_mapped = dict(white, name="tilted_up", normalTexture={"index": 0})
+    gltf("maps_normal_up.gltf", [(floor, 0)], [up_mapped], ["maps_tilted_up.png"])
+    kiln("maps_normal_up.kiln", "maps_normal_up.gltf", "0 -1 1", "60")
     half_strength = dict(white, name="half_strength", normalTexture={"index": 0, "scale": 0.5})
     gltf("maps_normal_scale.gltf", [(floor, 0)], [half_strength], ["maps_tilted_normals.png"])
     kiln("maps_normal_scale.kiln", "maps_normal_scale.gltf", "0 -1 0", "60")

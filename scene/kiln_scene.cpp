@@ -299,7 +299,11 @@ void applyOverride(const std::string& path, pugi::xml_node n,
     if (bool(o.attribute("material")) == bool(o.attribute("spec")))
         throw SceneError(path, "<override> needs one of material=\"NAME\" or spec=\"...\"");
     if (o.attribute("spec")) {
-        overrideMaterials(part, parseMaterialOverride(o.attribute("spec").as_string()));
+        // A file named by the spec is relative to this .kiln, as every path in it.
+        std::string spec = o.attribute("spec").as_string();
+        if (spec != "clay" && spec.rfind("lambertian:", 0) != 0 && fs::path(spec).is_relative())
+            spec = (fs::path(path).parent_path() / spec).string();
+        overrideMaterials(part, parseMaterialOverride(spec));
         return;
     }
     auto it = materials.find(o.attribute("material").as_string());

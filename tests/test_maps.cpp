@@ -333,6 +333,15 @@ TEST(MaterialOverride, KilnOverrideElementReplacesAnIncludedAssetsMaterials) {
     for (const TriangleMesh& m : s.meshes)
         for (uint32_t id : m.materialIds) names.insert(s.materials[id].name);
     EXPECT_EQ(names, (std::set<std::string>{"grey", "clay"}));
+    // A spec's file is relative to the .kiln that names it.
+    test::writeFile(dir / "override_mats.kiln",
+                    "<kiln-scene><material name=\"chrome\" kind=\"mirror\"/></kiln-scene>");
+    std::string relative = test::writeFile(
+        dir / "override_relative.kiln",
+        "<kiln-scene><include file=\"" + asset("maps_normal.gltf") +
+            "\"><override spec=\"override_mats.kiln:chrome\"/></include></kiln-scene>");
+    Scene chrome = loadScene(relative);
+    EXPECT_EQ(chrome.materials[chrome.meshes[0].materialOf(0)].kind, MaterialKind::Mirror);
     std::string bad = test::writeFile(
         dir / "override_bad.kiln", "<kiln-scene><include file=\"" + asset("maps_normal.gltf") +
                                        "\"><override material=\"nope\"/></include></kiln-scene>");

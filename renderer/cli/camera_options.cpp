@@ -54,7 +54,10 @@ void CameraOptions::apply(Scene& scene) const {
         if (position || lookAt || up)
             pointCamera(cam, position ? stored(scene, *position) : cam.position,
                         lookAt ? stored(scene, *lookAt) : centre, up ? *up : cam.up);
-        if (fovDeg > 0) cam.hFovDeg = cam.vFovDeg = fovDeg;
+        if (fovDeg > 0) {  // the shorter side, whatever axis the file's fov named
+            cam.hFovDeg = cam.vFovDeg = fovDeg;
+            cam.fovAxis = Camera::FovAxis::Fit;
+        }
         if (turntable > 0)
             cam = orbitCamera(cam, orbitCentre ? stored(scene, *orbitCentre) : centre,
                               orbitAxis ? *orbitAxis : cam.up, turntable, frame);

@@ -16,12 +16,19 @@ namespace {
 constexpr const char* kSourceAttribute = "kiln:source";
 
 // Opens the file, or the bytes in memory through a proxy that must outlive the input.
+// Colour stays unassociated (straight) as PNG and glTF store it: OIIO would otherwise premultiply
+// by alpha, and a cut-out texel's colour (or a half-transparent one's) would darken.
 std::unique_ptr<OIIO::ImageInput> openTextureSource(
     const TextureSource& source, std::unique_ptr<OIIO::Filesystem::IOMemReader>& proxy) {
-    if (!source.bytes) return OIIO::ImageInput::open(source.name);
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    if (!source.bytes) return OIIO::ImageInput::open(source.name, &config);
     proxy =
         std::make_unique<OIIO::Filesystem::IOMemReader>(source.bytes->data(), source.bytes->size());
-    return OIIO::ImageInput::open("embedded." + source.formatHint, nullptr, proxy.get());
+    // With a config, OIIO 2.4 takes the proxy from it, not from the argument.
+    OIIO::Filesystem::IOProxy* io = proxy.get();
+    config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &io);
+    return OIIO::ImageInput::open("embedded." + source.formatHint, &config, io);
 }
 
 // Presents an image (a file or bytes in memory) to the ImageCache as float scanlines in the
@@ -101,6 +108,7 @@ bool isMipMapped(OIIO::ImageInput& in) {
 struct TextureSet::Impl {
     OIIO::TextureSystem* system = nullptr;
     std::vector<OIIO::TextureSystem::TextureHandle*> handles;
+    std::vector<int> channels;  // per handle
     ~Impl() {
         if (system) OIIO::TextureSystem::destroy(system, true);
     }
@@ -147,6 +155,7 @@ int TextureSet::add(const TextureSource& source, std::string* note) {
         throw ImageReadError(source.name, "cannot read texture: " + impl_->system->geterror());
     }
     impl_->handles.push_back(handle);
+    impl_->channels.push_back(spec.nchannels);
     return int(impl_->handles.size()) - 1;
 }
 
@@ -158,6 +167,17 @@ Color TextureSet::lookup(int id, float s, float t, float width) const {
     impl_->system->texture(impl_->handles[size_t(id)], nullptr, opt, s, t, width, 0, 0, width, 3,
                            rgb);
     return Color(rgb[0], rgb[1], rgb[2]);
+}
+
+float TextureSet::lookupChannel(int id, int channel, float s, float t, float width) const {
+    if (channel >= impl_->channels[size_t(id)]) return 1.0f;
+    OIIO::TextureOpt opt;
+    opt.swrap = opt.twrap = OIIO::TextureOpt::WrapPeriodic;
+    opt.firstchannel = channel;
+    float value = 1.0f;
+    impl_->system->texture(impl_->handles[size_t(id)], nullptr, opt, s, t, width, 0, 0, width, 1,
+                           &value);
+    return value;
 }
 
 Color TextureSet::lookupLatLong(int id, float s, float t) const {

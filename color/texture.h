@@ -44,6 +44,9 @@ class TextureSet {
     // The filtered RGB at (s, t) (s right, t down, 1 = the image width/height, wrapping), over a
     // square footprint `width` wide in the same units (0: the finest level, bilinear).
     Color lookup(int id, float s, float t, float width) const;
+    // One channel, filtered the same way (alpha: channel 3); a channel the image lacks reads as 1
+    // (an RGB texture is opaque).
+    float lookupChannel(int id, int channel, float s, float t, float width) const;
     // Bilinear between texel centres of the finest level, s wrapping and t clamped: a lat-long
     // environment map (s = longitude, t = polar angle, both in [0, 1]).
     Color lookupLatLong(int id, float s, float t) const;

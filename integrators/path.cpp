@@ -2,6 +2,7 @@
 
 #include <type_traits>
 
+#include "integrators/normal_map.h"
 #include "integrators/surface_albedo.h"
 #include "renderer/geometry/interaction.h"
 
@@ -281,6 +282,8 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
             if (colourVaries_) {
                 st.travelled += hit.t * length(ray.dir);
                 albedo = albedoAt(scene_, mat, hit, st.travelled, opt_.pixelSpread);
+                applyNormalMap(scene_, mat, hit, -normalize(ray.dir),
+                               st.travelled * opt_.pixelSpread, si);
             }
             std::conditional_t<DiffuseOnly, LambertBsdf, Bsdf> bsdf(mat, opt_.microfacet, albedo);
             if (bsdf.isBlack()) continue;

@@ -18,13 +18,15 @@ Color colourAt(const TriangleMesh& mesh, const uint32_t* idx, const Barycentric&
     return at(idx[0]) * b.b0 + at(idx[1]) * b.b1 + at(idx[2]) * b.b2;
 }
 
-// The texture lookup: (u, v) with v up, as OBJ and Assimp store it; OIIO's t runs down the image.
-Color textureAt(const Scene& scene, int texture, const Hit& hit, const TriangleMesh& mesh,
-                const uint32_t* idx, const Barycentric& b, float worldWidth) {
+}  // namespace
+
+float textureWidth(const Scene& scene, const Hit& hit, const UvTransform& uvTransform,
+                   float worldWidth) {
+    const TriangleMesh& mesh = scene.meshes[hit.shape];
+    const uint32_t* idx = &mesh.indices[3 * size_t(hit.prim)];
     const float* uv = mesh.uvs.data();
     float u0 = uv[2 * idx[0]], v0 = uv[2 * idx[0] + 1], u1 = uv[2 * idx[1]],
           v1 = uv[2 * idx[1] + 1], u2 = uv[2 * idx[2]], v2 = uv[2 * idx[2] + 1];
-    float u = u0 * b.b0 + u1 * b.b1 + u2 * b.b2, v = v0 * b.b0 + v1 * b.b1 + v2 * b.b2;
     float uvArea = std::abs((u1 - u0) * (v2 - v0) - (u2 - u0) * (v1 - v0));
     Vec3 p0 = mesh.vertex(idx[0]);
     float area = length(cross(mesh.vertex(idx[1]) - p0, mesh.vertex(idx[2]) - p0));
@@ -32,15 +34,28 @@ Color textureAt(const Scene& scene, int texture, const Hit& hit, const TriangleM
         area *=
             std::pow(std::abs(float(scene.instances[hit.instance].objectToWorld.determinant3())),
                      2.0f / 3.0f);
-    float width = area > 0 ? worldWidth * std::sqrt(uvArea / area) : 0.0f;
-    return scene.textures->lookup(texture, u, 1.0f - v, width);
+    return area > 0 ? worldWidth * std::sqrt(uvArea / area) * uvTransform.areaScale() : 0.0f;
+}
+
+namespace {
+
+// The texture lookup: (u, v) with v up, as OBJ and Assimp store it, through the texture's UV
+// transform to OIIO's (s, t), t running down the image.
+Color textureAt(const Scene& scene, int texture, const UvTransform& uvTransform, const Hit& hit,
+                const TriangleMesh& mesh, float worldWidth) {
+    float u, v;
+    uvAt(mesh, hit.prim, hit.u, hit.v, u, v);
+    float width = textureWidth(scene, hit, uvTransform, worldWidth);
+    return scene.textures->lookup(texture, uvTransform.s(u, v), uvTransform.t(u, v), width);
 }
 
 }  // namespace
 
 bool hasSurfaceColourVariation(const Scene& scene) {
     return std::any_of(scene.materials.begin(), scene.materials.end(),
-                       [](const Material& m) { return m.albedoTexture >= 0; }) ||
+                       [](const Material& m) {
+                           return m.albedoTexture >= 0 || m.maps.normalTexture >= 0;
+                       }) ||
            std::any_of(scene.meshes.begin(), scene.meshes.end(),
                        [](const TriangleMesh& m) { return !m.colors.empty(); });
 }
@@ -55,8 +70,8 @@ Color albedoAt(const Scene& scene, const Material& material, const Hit& hit, flo
     Barycentric b{1 - hit.u - hit.v, hit.u, hit.v};
     Color albedo = material.albedo;
     if (textured)
-        albedo = albedo * textureAt(scene, material.albedoTexture, hit, mesh, idx, b,
-                                    travelled * pixelSpread);
+        albedo = albedo * textureAt(scene, material.albedoTexture, material.maps.albedoUv, hit,
+                                    mesh, travelled * pixelSpread);
     if (!mesh.colors.empty()) albedo = albedo * colourAt(mesh, idx, b);
     return albedo;
 }

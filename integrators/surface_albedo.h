@@ -8,12 +8,18 @@
 
 namespace kiln {
 
-// Whether any material has a texture or any mesh vertex colours (else albedoAt is plain albedo).
+// Whether any material has a texture (colour or normal map) or any mesh vertex colours (else
+// albedoAt is plain albedo and no normal is mapped).
 bool hasSurfaceColourVariation(const Scene& scene);
 
 // Footprint rule (docs/import.md): without ray differentials, a lookup covers the width a pixel
 // spans at the distance the path has travelled (travelled * pixelSpread, in scene units), mapped to
 // texture space by the triangle's UV-to-surface scale, sqrt(UV area / area).
+// The footprint's width in texture (s, t) units for a hit on a triangle: the world width mapped by
+// the triangle's UV-to-surface scale and the texture transform's scale.
+float textureWidth(const Scene& scene, const Hit& hit, const UvTransform& uvTransform,
+                   float worldWidth);
+
 Color albedoAt(const Scene& scene, const Material& material, const Hit& hit, float travelled,
                float pixelSpread);
 

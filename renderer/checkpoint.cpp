@@ -210,6 +210,7 @@ Fingerprint checkpointFingerprint(const RenderJob& job, const std::string& scene
          load.environmentMap.empty() ? "none" : fileIdentity(load.environmentMap)},
         {"environment_scale", number(load.environmentScale)},
         {"environment_rotation", number(load.environmentRotationDeg)},
+        {"material_override", load.materialOverride.empty() ? "none" : load.materialOverride},
         {"camera", vec(c.position) + " / " + vec(c.forward) + " / " + vec(c.up) + " / fov " +
                        number(c.hFovDeg) + " " + number(c.vFovDeg) + " / lens " +
                        number(c.apertureRadius) + " " + number(c.focalDistance) +

@@ -29,6 +29,23 @@ Mat4 toMat4(const aiMatrix4x4& a) {
 
 Vec3d toVec3d(const aiVector3D& v) { return {v.x, v.y, v.z}; }
 
+// The file's tangents (glTF TANGENT; Assimp gives the bitangent cross(n, t) * w): xyz and the
+// handedness sign, placed by `xf` when the mesh is baked (a mirror flips the sign).
+void readFileTangents(const aiMesh* am, const Mat4* xf, TriangleMesh& mesh) {
+    bool mirror = xf && xf->determinant3() < 0;
+    mesh.tangents.reserve(4 * am->mNumVertices);
+    for (unsigned v = 0; v < am->mNumVertices; ++v) {
+        Vec3 t(am->mTangents[v].x, am->mTangents[v].y, am->mTangents[v].z);
+        Vec3 b(am->mBitangents[v].x, am->mBitangents[v].y, am->mBitangents[v].z);
+        Vec3 n(am->mNormals[v].x, am->mNormals[v].y, am->mNormals[v].z);
+        float sign = dot(cross(n, t), b) < 0 ? -1.0f : 1.0f;
+        if (xf) t = xf->vector(t);
+        float len = length(t);
+        if (len > 0) t = t / len;
+        mesh.tangents.insert(mesh.tangents.end(), {t.x, t.y, t.z, mirror ? -sign : sign});
+    }
+}
+
 Material materialFromAssimp(const aiMaterial* am) {
     Material m;  // albedo keeps the default grey unless the file states a diffuse colour
     aiString name;
@@ -488,6 +505,8 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
                 mesh.uvs.insert(mesh.uvs.end(),
                                 {am->mTextureCoords[0][v].x, am->mTextureCoords[0][v].y});
         }
+        if (am->HasTangentsAndBitangents() && am->HasNormals() && am->HasTextureCoords(0))
+            readFileTangents(am, bake ? &xf : nullptr, mesh);
         if (am->HasVertexColors(0) && unsetColours(am)) {
             scene.warnings.push_back("mesh '" + mesh.name +
                                      "': the vertex colours Assimp reports are all (0, 0, 0, 0) "

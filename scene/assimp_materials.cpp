@@ -15,15 +15,12 @@ namespace {
 
 // Slots whose textures kiln does not apply (yet), with the words a warning uses.
 constexpr std::pair<aiTextureType, const char*> kIgnoredSlots[] = {
-    {aiTextureType_NORMALS, "normal map"},
-    {aiTextureType_NORMAL_CAMERA, "normal map"},
     {aiTextureType_HEIGHT, "height/bump map"},
     {aiTextureType_DISPLACEMENT, "displacement map"},
     {aiTextureType_METALNESS, "metallic map"},
     {aiTextureType_DIFFUSE_ROUGHNESS, "roughness map"},
     {aiTextureType_EMISSIVE, "emissive map"},
     {aiTextureType_EMISSION_COLOR, "emissive map"},
-    {aiTextureType_OPACITY, "opacity map"},
     {aiTextureType_SPECULAR, "specular map"},
     {aiTextureType_SHININESS, "shininess map"},
     {aiTextureType_AMBIENT, "ambient map"},
@@ -46,9 +43,11 @@ std::string number(float v) {
     return os.str();
 }
 
+}  // namespace
+
 // The source an Assimp texture path names, or a reason it cannot be used.
-bool sourceFor(const aiScene* as, const std::string& assetPath, const std::string& ref,
-               TextureSource& source, std::string& reason) {
+bool assimpTextureSource(const aiScene* as, const std::string& assetPath, const std::string& ref,
+                         TextureSource& source, std::string& reason) {
     if (const aiTexture* embedded = as->GetEmbeddedTexture(ref.c_str())) {
         if (embedded->mHeight != 0) {
             reason =
@@ -79,7 +78,7 @@ bool sourceFor(const aiScene* as, const std::string& assetPath, const std::strin
 }
 
 // The index of the source in the scene, adding it once per file (materials often share one).
-int addSource(Scene& scene, TextureSource&& source) {
+int addTextureSource(Scene& scene, TextureSource&& source) {
     for (size_t i = 0; i < scene.textureSources.size(); ++i) {
         const TextureSource& s = scene.textureSources[i];
         if (!s.bytes && !source.bytes && s.name == source.name && s.encoding == source.encoding)
@@ -88,6 +87,8 @@ int addSource(Scene& scene, TextureSource&& source) {
     scene.textureSources.push_back(std::move(source));
     return int(scene.textureSources.size()) - 1;
 }
+
+namespace {
 
 void readBaseColour(const aiScene* as, const aiMaterial* am, const std::string& assetPath,
                     bool statesColour, Material& m, Scene& scene) {
@@ -99,7 +100,7 @@ void readBaseColour(const aiScene* as, const aiMaterial* am, const std::string& 
     if (am->GetTexture(slot, 0, &ref, nullptr, &uvIndex) != AI_SUCCESS) return;
     TextureSource source;
     std::string reason;
-    if (!sourceFor(as, assetPath, ref.C_Str(), source, reason)) {
+    if (!assimpTextureSource(as, assetPath, ref.C_Str(), source, reason)) {
         scene.warnings.push_back(materialLabel(m) + ": " + reason +
                                  "; it renders with its plain colour");
         return;
@@ -107,11 +108,8 @@ void readBaseColour(const aiScene* as, const aiMaterial* am, const std::string& 
     if (uvIndex != 0)
         scene.warnings.push_back(materialLabel(m) + ": base-colour texture uses UV set " +
                                  std::to_string(uvIndex) + "; kiln reads UV set 0");
-    aiUVTransform transform;
-    if (am->Get(AI_MATKEY_UVTRANSFORM(slot, 0), transform) == AI_SUCCESS)
-        scene.warnings.push_back(materialLabel(m) +
-                                 ": texture transform (KHR_texture_transform) ignored");
-    m.albedoTexture = addSource(scene, std::move(source));
+    readUvTransform(am, slot, assetPath, m.maps.albedoUv);
+    m.albedoTexture = addTextureSource(scene, std::move(source));
     if (!statesColour) m.albedo = Color(1.0f);  // the texture alone, not the default grey
 }
 
@@ -129,7 +127,7 @@ void warnDroppedMaterialFeatures(const aiMaterial* am, const Material& m, Scene&
         warn("metallic " + number(metallic) + " rendered as a diffuse (Lambert) surface");
     if (factor(AI_MATKEY_ROUGHNESS_FACTOR, roughness) && roughness < 1)
         warn("roughness " + number(roughness) + ": its glossy reflection is dropped");
-    if (factor(AI_MATKEY_OPACITY, opacity) && opacity < 1)
+    if (factor(AI_MATKEY_OPACITY, opacity) && opacity < 1 && !m.maps.hasAlpha())
         warn("opacity " + number(opacity) + " ignored: rendered opaque");
     if (factor(AI_MATKEY_TRANSMISSION_FACTOR, transmission) && transmission > 0)
         warn("transmission ignored: rendered opaque");
@@ -146,6 +144,7 @@ void warnDroppedMaterialFeatures(const aiMaterial* am, const Material& m, Scene&
 void readAssimpTextures(const aiScene* as, const aiMaterial* am, const std::string& assetPath,
                         bool statesColour, Material& m, Scene& scene) {
     readBaseColour(as, am, assetPath, statesColour, m, scene);
+    readAssimpMaps(as, am, assetPath, m, scene);
     for (const auto& [slot, what] : kIgnoredSlots)
         if (am->GetTextureCount(slot) > 0) {
             aiString ref;

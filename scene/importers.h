@@ -23,6 +23,19 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
 void readAssimpTextures(const aiScene* as, const aiMaterial* am, const std::string& assetPath,
                         bool statesColour, Material& m, Scene& scene);
 
+// Maps of an Assimp material (scene/assimp_maps.cpp): the normal map and its scale, alpha (glTF
+// alphaMode and cutoff, base-colour alpha; OBJ d and map_d) into Material::maps.
+void readAssimpMaps(const aiScene* as, const aiMaterial* am, const std::string& assetPath,
+                    Material& m, Scene& scene);
+// The slot's UV transform (KHR_texture_transform through Assimp), if the material states one.
+bool readUvTransform(const aiMaterial* am, unsigned slot, const std::string& assetPath,
+                     UvTransform& uv);
+// The texture source an Assimp texture reference names (a file relative to the asset, or bytes
+// embedded in it), or false and the reason; and its index in Scene::textureSources (once per file).
+bool assimpTextureSource(const aiScene* as, const std::string& assetPath, const std::string& ref,
+                         TextureSource& source, std::string& reason);
+int addTextureSource(Scene& scene, TextureSource&& source);
+
 // A warning for each feature of an Assimp material that kiln's rendering of it drops (metal, gloss,
 // opacity, transmission, clearcoat, specular colour, an emissive colour turning it into a light).
 void warnDroppedMaterialFeatures(const aiMaterial* am, const Material& m, Scene& scene);

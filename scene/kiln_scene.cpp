@@ -12,6 +12,7 @@
 #include "renderer/core/memory.h"
 #include "scene/importers.h"
 #include "scene/scene_error.h"
+#include "scene/scene_loader.h"
 
 namespace kiln {
 namespace {
@@ -126,6 +127,13 @@ Mat4 fromStored(const Mat4& xf, const Vec3d& origin) {
 void merge(Scene& dst, Scene& src, const Mat4& xf, int override, bool asPrototype,
            const std::vector<Mat4>& placements) {
     uint32_t base = uint32_t(dst.materials.size());
+    // The part's textures come along, their indices moved past dst's.
+    int textureBase = int(dst.textureSources.size());
+    dst.textureSources.insert(dst.textureSources.end(), src.textureSources.begin(),
+                              src.textureSources.end());
+    for (Material& m : src.materials)
+        for (int* id : {&m.albedoTexture, &m.maps.normalTexture, &m.maps.opacityTexture})
+            if (*id >= 0) *id += textureBase;
     dst.materials.insert(dst.materials.end(), src.materials.begin(), src.materials.end());
     std::vector<bool> proto = src.prototypeMask();
     uint32_t meshBase = uint32_t(dst.meshes.size());
@@ -156,6 +164,12 @@ void merge(Scene& dst, Scene& src, const Mat4& xf, int override, bool asPrototyp
                 Vec3 n = normalize(transformNormal(
                     inverse, Vec3(m.normals[v], m.normals[v + 1], m.normals[v + 2])));
                 m.normals[v] = n.x, m.normals[v + 1] = n.y, m.normals[v + 2] = n.z;
+            }
+            for (size_t v = 0; v + 3 < m.tangents.size(); v += 4) {
+                Vec3 t =
+                    normalize(xf.vector(Vec3(m.tangents[v], m.tangents[v + 1], m.tangents[v + 2])));
+                m.tangents[v] = t.x, m.tangents[v + 1] = t.y, m.tangents[v + 2] = t.z;
+                if (flip) m.tangents[v + 3] = -m.tangents[v + 3];
             }
             if (flip)
                 for (size_t t = 0; t < m.triangleCount(); ++t)
@@ -262,8 +276,46 @@ std::array<int, 3> gridCounts(const std::string& file, pugi::xml_node n) {
     return counts;
 }
 
+// fov_axis: which image axis the fov spans. "narrow" (the default, as before the attribute) is the
+// shorter side: the fov is given as both angles and the wider one fitted to the image.
+Camera::FovAxis fovAxis(const std::string& path, pugi::xml_node n) {
+    std::string axis = n.attribute("fov_axis").as_string("narrow");
+    if (axis == "narrow") return Camera::FovAxis::Fit;
+    if (axis == "horizontal") return Camera::FovAxis::Horizontal;
+    if (axis == "vertical") return Camera::FovAxis::Vertical;
+    if (axis == "diagonal") return Camera::FovAxis::Diagonal;
+    throw SceneError(
+        path,
+        "<camera> fov_axis must be horizontal, vertical, diagonal or narrow, not '" + axis + "'");
+}
+
+// <override material="NAME"/> (a material of this file) or <override spec="clay"/> (as
+// --material-override): replaces every material of the part that does not emit.
+void applyOverride(const std::string& path, pugi::xml_node n,
+                   const std::map<std::string, uint32_t>& materials, const Scene& scene,
+                   Scene& part) {
+    pugi::xml_node o = n.child("override");
+    if (!o) return;
+    checkKnown(path, o, {"material", "spec"});
+    if (bool(o.attribute("material")) == bool(o.attribute("spec")))
+        throw SceneError(path, "<override> needs one of material=\"NAME\" or spec=\"...\"");
+    if (o.attribute("spec")) {
+        // A file named by the spec is relative to this .kiln, as every path in it.
+        std::string spec = o.attribute("spec").as_string();
+        if (spec != "clay" && spec.rfind("lambertian:", 0) != 0 && fs::path(spec).is_relative())
+            spec = (fs::path(path).parent_path() / spec).string();
+        overrideMaterials(part, parseMaterialOverride(spec));
+        return;
+    }
+    auto it = materials.find(o.attribute("material").as_string());
+    if (it == materials.end())
+        throw SceneError(path, std::string("<override> names unknown material '") +
+                                   o.attribute("material").as_string() + "'");
+    overrideMaterials(part, scene.materials[it->second]);
+}
+
 void readCamera(const std::string& path, pugi::xml_node n, Scene& scene) {
-    checkKnown(path, n, {"position", "look-at", "up", "fov"});
+    checkKnown(path, n, {"position", "look-at", "up", "fov", "fov_axis"});
     Camera& c = scene.camera;
     Vec3d position = vec3(path, n, "position"), target = vec3(path, n, "look-at");
     Vec3d up = n.attribute("up") ? vec3(path, n, "up") : Vec3d(0, 1, 0);
@@ -279,8 +331,8 @@ void readCamera(const std::string& path, pugi::xml_node n, Scene& scene) {
     c.forward = Vec3(normalize(target - position));
     c.up = Vec3(normalize(up));
     c.hFovDeg = c.vFovDeg = float(fov);
-    c.orthoHalfWidth = c.orthoHalfHeight =
-        0;  // perspective, whatever an included file's camera was
+    c.orthoHalfWidth = c.orthoHalfHeight = 0;  // perspective, whatever an included camera was
+    c.fovAxis = fovAxis(path, n);
     c.fromFile = true;
     scene.hasFileCamera = true;
 }
@@ -312,12 +364,13 @@ void readPart(const std::string& path, pugi::xml_node n,
               const std::map<std::string, uint32_t>& materials, Scene& scene) {
     std::string tag = n.name();
     if (tag == "include")
-        checkKnown(path, n, {"file"});
+        checkKnown(path, n, {"file"}, {"override"});
     else if (tag == "mesh")
-        checkKnown(path, n, {"file", "material", "scale", "translate"}, {"fit", "matrix"});
+        checkKnown(path, n, {"file", "material", "scale", "translate"},
+                   {"fit", "matrix", "override"});
     else
         checkKnown(path, n, {"file", "material", "grid", "spacing", "scale", "translate"},
-                   {"fit", "matrix"});
+                   {"fit", "matrix", "override"});
     std::string file = n.attribute("file").as_string();
     if (file.empty()) throw SceneError(path, "<" + tag + "> needs a file attribute");
     int override = -1;
@@ -342,6 +395,7 @@ void readPart(const std::string& path, pugi::xml_node n,
         // Name the .kiln that asked for the file: the user edits that one.
         throw SceneError(path, "<" + tag + " file=\"" + file + "\">: " + e.what());
     }
+    applyOverride(path, n, materials, scene, part);
     if (tag == "instances") {
         Mat4 fit = placement(path, n, meshBounds(part));
         std::vector<Mat4> placements;

@@ -11,6 +11,7 @@
 #include "color/image_input.h"
 #include "color/texture.h"
 #include "renderer/core/math.h"
+#include "scene/material_maps.h"
 
 namespace kiln {
 
@@ -31,6 +32,8 @@ struct Material {
     float shininess = 50.0f;    // glossy (Phong exponent)
     Color emission{0.0f};       // radiance emitted (Emission materials)
     int albedoTexture = -1;     // Scene::textureSources index: multiplies albedo (Lambertian)
+    // Maps: normal map, alpha cutout/blend, texture transforms (scene/material_maps.h).
+    MaterialMaps maps{};
 };
 
 enum class LightKind { Area, MeshEmitter, Point, Spot, Directional, Ambient, Environment };
@@ -72,6 +75,10 @@ struct Camera {
         50.0f;  // full angles, as the file states them; aspect fit happens at render time
     float vFovDeg = 35.0f;
     float nearClip = 0.001f, farClip = 1e30f;
+    // Which image axis a single stated fov spans (.kiln fov_axis). Fit: the file's hFov and vFov,
+    // the narrower one widened to the image's aspect (today's rule; a single fov given as both is
+    // then the narrow axis). Otherwise hFovDeg holds the angle and the other axis follows.
+    enum class FovAxis { Fit, Horizontal, Vertical, Diagonal } fovAxis = FovAxis::Fit;
     float apertureRadius = 0.0f;  // thin lens when > 0
     float focalDistance = 1.0f;
     // Orthographic when > 0: half the view's width and height in scene units (glTF xmag/ymag,
@@ -90,10 +97,13 @@ struct TriangleMesh {
     std::string name;
     // xyz per vertex; one extra padding float at the end because Embree reads vertices as 16 bytes.
     std::vector<float> positions;
-    std::vector<uint32_t> indices;      // 3 per triangle
-    std::vector<float> normals;         // optional, xyz per vertex
-    std::vector<float> uvs;             // optional, uv per vertex
-    std::vector<float> colors;          // optional, linear rgb per vertex: multiplies the albedo
+    std::vector<uint32_t> indices;  // 3 per triangle
+    std::vector<float> normals;     // optional, xyz per vertex
+    std::vector<float> uvs;         // optional, uv per vertex
+    std::vector<float> colors;      // optional, linear rgb per vertex: multiplies the albedo
+    // Optional, xyz + handedness sign per vertex (4 floats): the direction of increasing u, and
+    // whether the bitangent (increasing v) is +cross(n, t) or -cross(n, t). Normal maps only.
+    std::vector<float> tangents;
     std::vector<uint32_t> materialIds;  // one per triangle, or one for the whole mesh
 
     size_t vertexCount() const { return positions.size() / 3; }

@@ -106,6 +106,12 @@ std::string sceneInfoText(const Scene& scene) {
                 os << " radiance " << vec(m.emission);
                 break;
         }
+        // Maps (scene/material_maps.h).
+        if (m.maps.normalTexture >= 0) os << " normal-map scale " << num(m.maps.normalScale);
+        if (m.maps.hasAlpha())
+            os << " alpha " << toString(m.maps.alphaMode) << " opacity " << num(m.maps.opacity)
+               << (m.maps.alphaMode == AlphaMode::Mask ? " cutoff " + num(m.maps.alphaCutoff) : "")
+               << (m.maps.opacityTexture >= 0 ? " textured" : "");
         os << "\n";
     }
     os << "lights\n";

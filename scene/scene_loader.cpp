@@ -9,6 +9,7 @@
 #include <array>
 #include <bit>
 #include <chrono>
+#include <optional>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -256,9 +257,15 @@ Scene loadScene(const std::string& path, const LoadOptions& options) {
     auto start = std::chrono::steady_clock::now();
     Scene scene;
     scene.sourcePath = path;
+    // Checked before the (maybe long) import: a bad spec is a quick one-line error.
+    std::optional<Material> override;
+    if (!options.materialOverride.empty())
+        override = parseMaterialOverride(options.materialOverride);
     importOrRefuse(path, scene);
     std::string ext = lowerExtension(path);
+    if (override) overrideMaterials(scene, *override);
     validateScene(scene);
+    addMissingTangents(scene);
     recenterScene(scene);
     warnFloatResolution(scene);
     // The check costs about 0.1 s per million triangles (random vertex reads and a sort): above 20M

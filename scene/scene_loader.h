@@ -20,6 +20,9 @@ struct LoadOptions {
     float environmentScale = 1.0f;                       // --env-strength
     float environmentRotationDeg = 0.0f;                 // --env-rotate, about the up axis
     float textureCacheMb = TextureSet::kDefaultCacheMb;  // --texture-cache-mb
+    // --material-override: replaces every material that does not emit (spec or file, see
+    // parseMaterialOverride); empty: the file's materials.
+    std::string materialOverride;
 };
 
 // --camera's names (Auto is the default, not a name to give).
@@ -28,6 +31,14 @@ struct EnumNames<LoadOptions::CameraRule> {
     static constexpr std::pair<LoadOptions::CameraRule, const char*> table[] = {
         {LoadOptions::CameraRule::File, "file"}, {LoadOptions::CameraRule::Framed, "framed"}};
 };
+
+// The material a --material-override names: "clay" (Lambert grey 0.5), "lambertian:G" or
+// "lambertian:R,G,B", or a .kiln file with a <material> (FILE, or FILE:NAME for one of several).
+// Throws SceneError naming the spec or file.
+Material parseMaterialOverride(const std::string& spec);
+
+// Replaces every material of the scene that does not emit by `m` (emitters keep lighting it).
+void overrideMaterials(Scene& scene, const Material& m);
 
 // Throws SceneError (one line: file and problem) on anything it cannot load.
 Scene loadScene(const std::string& path, const LoadOptions& options = {});

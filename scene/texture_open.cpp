@@ -19,8 +19,14 @@ void openTextures(Scene& scene, float cacheMb) {
         }
         if (!note.empty()) scene.warnings.push_back("texture " + source.name + ": " + note);
     }
-    for (Material& m : scene.materials)
-        if (m.albedoTexture >= 0) m.albedoTexture = idOf[size_t(m.albedoTexture)];
+    auto remap = [&](int& id) {
+        if (id >= 0) id = idOf[size_t(id)];
+    };
+    for (Material& m : scene.materials) {
+        remap(m.albedoTexture);
+        remap(m.maps.normalTexture);
+        remap(m.maps.opacityTexture);
+    }
     for (Light& l : scene.lights)
         if (l.environmentTexture >= 0) l.environmentTexture = idOf[size_t(l.environmentTexture)];
     scene.textures = std::move(set);

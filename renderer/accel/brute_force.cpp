@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "renderer/geometry/opacity.h"
 #include "renderer/geometry/shapes.h"
 
 namespace kiln {
@@ -12,8 +13,10 @@ class BruteForceAccelerator final : public Accelerator {
     explicit BruteForceAccelerator(const Scene& scene) : scene_(scene) {
         auto start = std::chrono::steady_clock::now();
         std::vector<bool> proto = scene.prototypeMask();
-        for (uint32_t m = 0; m < scene.meshes.size(); ++m)
+        for (uint32_t m = 0; m < scene.meshes.size(); ++m) {
             if (!proto[m]) worldMeshes_.push_back(m);
+            alphaMesh_.push_back(meshHasAlpha(scene, m));
+        }
         stats_.description = "brute force (every ray against every primitive)";
         stats_.buildSeconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -26,7 +29,8 @@ class BruteForceAccelerator final : public Accelerator {
     // Every triangle of mesh in order; a tie in t keeps the earlier (lower) triangle, as Embree
     // and the reference BVH do. Returns whether any was hit (ray.tMax shortened to it).
     template <bool AnyHit>
-    bool testMesh(uint32_t mesh, Ray& ray, Hit* hit, uint32_t instance) const {
+    bool testMesh(uint32_t mesh, Ray& ray, Hit* hit, uint32_t instance, uint32_t seed) const {
+        bool alpha = alphaMesh_[mesh];
         const TriangleMesh& m = scene_.meshes[mesh];
         bool found = false, earlier = hit->valid();
         for (uint32_t tri = 0; tri < m.triangleCount(); ++tri) {
@@ -34,7 +38,8 @@ class BruteForceAccelerator final : public Accelerator {
             float t, u, v;
             if (!intersectTriangle(ray, m.vertex(idx[0]), m.vertex(idx[1]), m.vertex(idx[2]), t, u,
                                    v) ||
-                ((found || earlier) && !(t < ray.tMax)))
+                ((found || earlier) && !(t < ray.tMax)) ||
+                (alpha && !surfaceStopsRay(scene_, mesh, tri, u, v, instance, seed)))
                 continue;
             if constexpr (AnyHit) return true;
             found = true;
@@ -48,9 +53,10 @@ class BruteForceAccelerator final : public Accelerator {
     bool trace(const Ray& original, Hit* out) const {
         Ray ray = original;
         Hit hit;
+        uint32_t seed = raySeed(original);
         bool found = false;
         for (uint32_t m : worldMeshes_)
-            if (testMesh<AnyHit>(m, ray, &hit, kInvalidId)) {
+            if (testMesh<AnyHit>(m, ray, &hit, kInvalidId, seed)) {
                 if constexpr (AnyHit) return true;
                 found = true;
             }
@@ -68,7 +74,7 @@ class BruteForceAccelerator final : public Accelerator {
             const Instance& inst = scene_.instances[j];
             Ray local{inst.worldToObject.point(ray.origin), ray.tMin,
                       inst.worldToObject.vector(ray.dir), ray.tMax};
-            if (!testMesh<AnyHit>(inst.mesh, local, &hit, j)) continue;
+            if (!testMesh<AnyHit>(inst.mesh, local, &hit, j, seed)) continue;
             if constexpr (AnyHit) return true;
             found = true;
             ray.tMax = local.tMax;
@@ -79,6 +85,7 @@ class BruteForceAccelerator final : public Accelerator {
 
     const Scene& scene_;
     std::vector<uint32_t> worldMeshes_;
+    std::vector<bool> alphaMesh_;  // per mesh: its materials have alpha (opacity.h)
     AcceleratorStats stats_;
 };
 

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "renderer/accel/accelerator.h"
+#include "renderer/geometry/opacity.h"
 #include "renderer/geometry/shapes.h"
 
 namespace kiln {
@@ -107,7 +108,18 @@ void sphereOccluded(const RTCOccludedFunctionNArguments* args) {
 struct WatertightMeshData {
     const TriangleMesh* mesh;
     float pad = 0;
+    const Scene* scene = nullptr;
+    uint32_t index = 0;  // the mesh's index in the scene
+    bool alpha = false;  // its materials have alpha: candidates pass the alpha test (opacity.h)
 };
+
+// A candidate the alpha test lets through (the ray's seed travels in its id, set from the
+// world-space ray, so instanced geometry sees the same coin).
+bool passesAlpha(const WatertightMeshData& d, unsigned prim, float u, float v, unsigned inst,
+                 unsigned seed) {
+    return d.alpha && !surfaceStopsRay(*d.scene, d.index, prim, u, v,
+                                       inst == RTC_INVALID_GEOMETRY_ID ? kInvalidId : inst, seed);
+}
 
 void triangleCorners(const void* userPtr, unsigned prim, Vec3& a, Vec3& b, Vec3& c) {
     const TriangleMesh& m = *static_cast<const WatertightMeshData*>(userPtr)->mesh;
@@ -141,7 +153,9 @@ void watertightIntersect(const RTCIntersectFunctionNArguments* args) {
     for (unsigned i = 0; i < args->N; ++i) {
         if (!args->valid[i]) continue;
         float t, u, v;
-        if (!watertightHit(args->geometryUserPtr, args->primID, lane(rays, args->N, i), t, u, v))
+        if (!watertightHit(args->geometryUserPtr, args->primID, lane(rays, args->N, i), t, u, v) ||
+            passesAlpha(*static_cast<const WatertightMeshData*>(args->geometryUserPtr),
+                        args->primID, u, v, args->context->instID[0], RTCRayN_id(rays, args->N, i)))
             continue;
         // A tie (duplicate triangles) goes to the lowest (geometry, triangle), as in the
         // reference BVH.
@@ -162,8 +176,12 @@ void watertightIntersect(const RTCIntersectFunctionNArguments* args) {
 void watertightOccluded(const RTCOccludedFunctionNArguments* args) {
     for (unsigned i = 0; i < args->N; ++i) {
         float t, u, v;
-        if (args->valid[i] && watertightHit(args->geometryUserPtr, args->primID,
-                                            lane(args->ray, args->N, i), t, u, v))
+        if (args->valid[i] &&
+            watertightHit(args->geometryUserPtr, args->primID, lane(args->ray, args->N, i), t, u,
+                          v) &&
+            !passesAlpha(*static_cast<const WatertightMeshData*>(args->geometryUserPtr),
+                         args->primID, u, v, args->context->instID[0],
+                         RTCRayN_id(args->ray, args->N, i)))
             RTCRayN_tfar(args->ray, args->N, i) = -kInfinity;
     }
 }
@@ -173,9 +191,6 @@ void watertightOccluded(const RTCOccludedFunctionNArguments* args) {
 // first. Embree gives the filter the candidate and, in the RayHitN layout, the hit it would
 // replace. Only installed on scenes that have duplicates (Scene::duplicateTriangles): it costs a
 // callback per candidate hit.
-struct DuplicateFilterData {
-    const Scene* scene;
-};
 
 bool sameTriangle(const Scene& scene, unsigned geomA, unsigned primA, unsigned geomB,
                   unsigned primB) {
@@ -190,8 +205,22 @@ bool sameTriangle(const Scene& scene, unsigned geomA, unsigned primA, unsigned g
     return true;
 }
 
+// Candidates on a mesh with alpha that the alpha test lets through are rejected (valid = 0), for
+// closest hits and occlusion alike.
+void alphaFilter(const RTCFilterFunctionNArguments* args) {
+    const auto& d = *static_cast<const WatertightMeshData*>(args->geometryUserPtr);
+    for (unsigned i = 0; i < args->N; ++i)
+        if (args->valid[i] &&
+            passesAlpha(d, RTCHitN_primID(args->hit, args->N, i), RTCHitN_u(args->hit, args->N, i),
+                        RTCHitN_v(args->hit, args->N, i), RTCHitN_instID(args->hit, args->N, i, 0),
+                        RTCRayN_id(args->ray, args->N, i)))
+            args->valid[i] = 0;
+}
+
 void lowestIdWinsFilter(const RTCFilterFunctionNArguments* args) {
-    const Scene& scene = *static_cast<const DuplicateFilterData*>(args->geometryUserPtr)->scene;
+    const auto& d = *static_cast<const WatertightMeshData*>(args->geometryUserPtr);
+    const Scene& scene = *d.scene;
+    if (d.alpha) alphaFilter(args);
     RTCHitN* current = RTCRayHitN_HitN(reinterpret_cast<RTCRayHitN*>(args->ray), args->N);
     for (unsigned i = 0; i < args->N; ++i) {
         if (!args->valid[i]) continue;
@@ -241,18 +270,17 @@ class EmbreeAccelerator final : public Accelerator {
         numMeshes_ = uint32_t(scene.meshes.size());
         watertight_ = options.watertight;
         float pad = userBoundsPad(scene);
-        for (const TriangleMesh& mesh : scene.meshes) watertightData_.push_back({&mesh, pad});
+        hasAlpha_ = sceneHasAlpha(scene);
+        for (uint32_t m = 0; m < numMeshes_; ++m)
+            watertightData_.push_back(
+                {&scene.meshes[m], pad, &scene, m, hasAlpha_ && meshHasAlpha(scene, m)});
         std::vector<bool> proto = scene.prototypeMask();
         std::vector<RTCScene> protoScenes(scene.meshes.size(), nullptr);
         for (uint32_t m = 0; m < numMeshes_; ++m) {
             if (scene.meshes[m].triangleCount() == 0) continue;
             RTCGeometry g = options.watertight ? watertightGeometry(m, options.quality)
                                                : meshGeometry(scene.meshes[m], options.quality);
-            if (scene.duplicateTriangles > 0 && !proto[m] && !options.watertight) {
-                rtcSetGeometryUserData(g, &filterData_);
-                rtcSetGeometryIntersectFilterFunction(g, lowestIdWinsFilter);
-                rtcCommitGeometry(g);
-            }
+            if (!options.watertight) installFilters(g, m, proto[m]);
             if (proto[m]) {
                 protoScenes[m] = newScene(flags, options.quality);
                 rtcAttachGeometryByID(protoScenes[m], g, 0);
@@ -388,7 +416,7 @@ class EmbreeAccelerator final : public Accelerator {
 
     // Rays [base, base + 16) into a packet; lanes past the end repeat the last ray and are masked
     // off.
-    static size_t fillPacket(std::span<const Ray> rays, size_t base, int* valid, RTCRay16& r) {
+    size_t fillPacket(std::span<const Ray> rays, size_t base, int* valid, RTCRay16& r) const {
         size_t n = std::min<size_t>(16, rays.size() - base);
         for (size_t i = 0; i < 16; ++i) {
             valid[i] = i < n ? -1 : 0;
@@ -397,21 +425,22 @@ class EmbreeAccelerator final : public Accelerator {
         return n;
     }
 
-    static void setLane(RTCRay16& r, size_t i, const Ray& ray) {
+    void setLane(RTCRay16& r, size_t i, const Ray& ray) const {
         r.org_x[i] = ray.origin.x, r.org_y[i] = ray.origin.y, r.org_z[i] = ray.origin.z;
         r.dir_x[i] = ray.dir.x, r.dir_y[i] = ray.dir.y, r.dir_z[i] = ray.dir.z;
         r.tnear[i] = ray.tMin, r.tfar[i] = ray.tMax;
-        r.time[i] = 0, r.mask[i] = 0xffffffffu, r.id[i] = unsigned(i), r.flags[i] = 0;
+        r.time[i] = 0, r.mask[i] = 0xffffffffu, r.flags[i] = 0;
+        r.id[i] = hasAlpha_ ? raySeed(ray) : unsigned(i);
     }
 
-    static void setRay(RTCRay& r, const Ray& ray) {
+    void setRay(RTCRay& r, const Ray& ray) const {
         r.org_x = ray.origin.x, r.org_y = ray.origin.y, r.org_z = ray.origin.z;
         r.dir_x = ray.dir.x, r.dir_y = ray.dir.y, r.dir_z = ray.dir.z;
         r.tnear = ray.tMin;
         r.tfar = ray.tMax;
         r.time = 0;
         r.mask = 0xffffffffu;
-        r.id = 0;
+        r.id = hasAlpha_ ? raySeed(ray) : 0;
         r.flags = 0;
     }
 
@@ -434,6 +463,18 @@ class EmbreeAccelerator final : public Accelerator {
         return g;
     }
 
+    // Duplicates (world-space meshes) and alpha are decided in filter functions, installed only
+    // where needed: each costs a callback per candidate hit.
+    void installFilters(RTCGeometry g, uint32_t m, bool prototype) {
+        bool duplicates = scene_.duplicateTriangles > 0 && !prototype;
+        bool alpha = watertightData_[m].alpha;
+        if (!duplicates && !alpha) return;
+        rtcSetGeometryUserData(g, &watertightData_[m]);
+        rtcSetGeometryIntersectFilterFunction(g, duplicates ? lowestIdWinsFilter : alphaFilter);
+        if (alpha) rtcSetGeometryOccludedFilterFunction(g, alphaFilter);
+        rtcCommitGeometry(g);
+    }
+
     RTCGeometry watertightGeometry(uint32_t m, EmbreeOptions::Quality q) {
         RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_USER);
         rtcSetGeometryUserPrimitiveCount(g, unsigned(scene_.meshes[m].triangleCount()));
@@ -453,9 +494,9 @@ class EmbreeAccelerator final : public Accelerator {
     std::vector<RTCScene> prototypes_;
     SphereData sphereData_{};
     std::vector<WatertightMeshData> watertightData_;
-    DuplicateFilterData filterData_{&scene_};
     uint32_t numMeshes_ = 0;
     bool watertight_ = false;
+    bool hasAlpha_ = false;  // rays carry their alpha coin's seed in their id
     AcceleratorStats stats_;
 };
 

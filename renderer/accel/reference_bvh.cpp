@@ -1,8 +1,10 @@
 #include "renderer/accel/reference_bvh.h"
 
+#include <algorithm>
 #include <chrono>
 #include <utility>
 
+#include "renderer/geometry/opacity.h"
 #include "renderer/geometry/shapes.h"
 
 namespace kiln {
@@ -22,6 +24,8 @@ ReferenceAccelerator::ReferenceAccelerator(const Scene& scene, const ReferenceBv
     std::vector<bool> proto = scene.prototypeMask();
     std::vector<Bounds3> boxes;
     prototypeBvh_.resize(scene.meshes.size());
+    for (uint32_t m = 0; m < scene.meshes.size(); ++m) alphaMesh_.push_back(meshHasAlpha(scene, m));
+    hasAlpha_ = std::find(alphaMesh_.begin(), alphaMesh_.end(), true) != alphaMesh_.end();
     for (uint32_t m = 0; m < scene.meshes.size(); ++m) {
         const TriangleMesh& mesh = scene.meshes[m];
         uint32_t n = uint32_t(mesh.triangleCount());
@@ -65,16 +69,18 @@ ReferenceAccelerator::ReferenceAccelerator(const Scene& scene, const ReferenceBv
     stats_.description = std::string("reference bvh ") + toString(options.split) + " leaf " + std::to_string(options.maxLeafSize);
 }
 
-bool ReferenceAccelerator::testTriangle(const TriangleMesh& mesh, uint32_t tri, Ray& ray,
-                                        Hit* hit) const {
+bool ReferenceAccelerator::testTriangle(const TriangleMesh& mesh, uint32_t tri, Ray& ray, Hit* hit,
+                                        uint32_t instance, uint32_t seed) const {
     const uint32_t* idx = &mesh.indices[3 * tri];
     float t, u, v;
     if (!intersectTriangle(ray, mesh.vertex(idx[0]), mesh.vertex(idx[1]), mesh.vertex(idx[2]), t, u,
                            v))
         return false;
+    uint32_t shape = uint32_t(&mesh - scene_.meshes.data());
+    if (alphaMesh_[shape] && !surfaceStopsRay(scene_, shape, tri, u, v, instance, seed))
+        return false;
     // A tie with the current hit (duplicate surfaces): the lowest (mesh, triangle) wins, as in
     // Embree.
-    uint32_t shape = uint32_t(&mesh - scene_.meshes.data());
     if (hit && t == ray.tMax && hit->shape != kInvalidId && hit->instance == kInvalidId &&
         std::make_pair(shape, tri) > std::make_pair(hit->shape, hit->prim))
         return false;
@@ -85,13 +91,15 @@ bool ReferenceAccelerator::testTriangle(const TriangleMesh& mesh, uint32_t tri, 
 
 template <bool AnyHit>
 bool ReferenceAccelerator::trace(Ray& ray, Hit* hit, TraversalCounters* counters) const {
+    uint32_t seed = hasAlpha_ ? raySeed(ray) : 0;
     return top_.traverse<AnyHit>(
         ray,
         [&](uint32_t itemIndex, Ray& r) {
             const Item& item = items_[itemIndex];
             switch (item.kind) {
                 case ItemKind::Triangle:
-                    if (!testTriangle(scene_.meshes[item.a], item.b, r, hit)) return false;
+                    if (!testTriangle(scene_.meshes[item.a], item.b, r, hit, kInvalidId, seed))
+                        return false;
                     if (hit) hit->shape = item.a, hit->instance = kInvalidId;
                     return true;
                 case ItemKind::Sphere: {
@@ -110,7 +118,7 @@ bool ReferenceAccelerator::trace(Ray& ray, Hit* hit, TraversalCounters* counters
                     bool any = prototypeBvh_[mesh].traverse<AnyHit>(
                         local,
                         [&](uint32_t tri, Ray& lr) {
-                            return testTriangle(scene_.meshes[mesh], tri, lr, hit);
+                            return testTriangle(scene_.meshes[mesh], tri, lr, hit, item.a, seed);
                         },
                         counters);
                     if (!any) return false;

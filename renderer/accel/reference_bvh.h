@@ -27,12 +27,16 @@ class ReferenceAccelerator final : public Accelerator {
     };
     template <bool AnyHit>
     bool trace(Ray& ray, Hit* hit, TraversalCounters* counters) const;
-    bool testTriangle(const TriangleMesh& mesh, uint32_t tri, Ray& ray, Hit* hit) const;
+    // `instance` and `seed` (the world ray's, opacity.h) decide alpha on meshes that have it.
+    bool testTriangle(const TriangleMesh& mesh, uint32_t tri, Ray& ray, Hit* hit,
+                      uint32_t instance, uint32_t seed) const;
 
     const Scene& scene_;
     std::vector<Item> items_;
     Bvh top_;
     std::vector<Bvh> prototypeBvh_;  // per mesh; empty unless the mesh is instanced
+    std::vector<bool> alphaMesh_;    // per mesh: its materials have alpha
+    bool hasAlpha_ = false;
     AcceleratorStats stats_;
 };
 

@@ -55,8 +55,11 @@ void CameraOptions::apply(Scene& scene) const {
         if (position || lookAt || up)
             pointCamera(cam, position ? stored(scene, *position) : cam.position,
                         lookAt ? stored(scene, *lookAt) : centre, up ? *up : cam.up);
-        if (fovDeg > 0)  // a perspective view, whatever the file's camera was
-            cam.hFovDeg = cam.vFovDeg = fovDeg, cam.orthoHalfWidth = cam.orthoHalfHeight = 0;
+        if (fovDeg > 0) {  // a perspective view on the shorter side, whatever the file's was
+            cam.hFovDeg = cam.vFovDeg = fovDeg;
+            cam.fovAxis = Camera::FovAxis::Fit;
+            cam.orthoHalfWidth = cam.orthoHalfHeight = 0;
+        }
         if (turntable > 0)
             cam = orbitCamera(cam, orbitCentre ? stored(scene, *orbitCentre) : centre,
                               orbitAxis ? *orbitAxis : cam.up, turntable, frame);

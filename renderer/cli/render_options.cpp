@@ -57,6 +57,14 @@ void addLoadOptions(ArgParser& parser, LoadOptions& load) {
                       load.cameraRule);
     parser.option("env", "e", 1, "MAP.exr", "add a lat-long environment light (CS184's -e)",
                   [&load](const std::vector<std::string>& v) { load.environmentMap = v[0]; });
+    parser.option("material-override", "", 1, "FILE_OR_SPEC",
+                  "replace every material that does not emit: clay (Lambert grey 0.5), "
+                  "lambertian:G or lambertian:R,G,B, or a .kiln file's <material> (FILE or "
+                  "FILE:NAME)",
+                  [&load](const std::vector<std::string>& v) {
+                      parseMaterialOverride(v[0]);  // a bad spec fails here, before loading
+                      load.materialOverride = v[0];
+                  });
     addTextureCacheOption(parser, load);
     addEnvironmentOptions(parser, load);
 }

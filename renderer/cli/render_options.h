@@ -10,7 +10,8 @@
 
 namespace kiln {
 
-// --camera file|framed, -e/--env MAP.
+// --camera file|framed, -e/--env MAP, --material-override, --texture-cache-mb,
+// --env-rotate/strength.
 void addLoadOptions(ArgParser& parser, LoadOptions& load);
 
 // --output OUT, and -o: CS184's accumulate-bounces switch for a lone 0 or 1, else the output name.

@@ -15,12 +15,11 @@ CameraModel::CameraModel(const Camera& camera, int width, int height)
     if (width <= 0 || height <= 0)
         throw SceneError("camera", "image size must be positive, not " + std::to_string(width) +
                                        " x " + std::to_string(height));
-    float aspect = float(width) / float(height);
     if (camera.orthographic()) {
         tanX_ = camera.orthoHalfWidth, tanY_ = camera.orthoHalfHeight;
-        fitOrthoToAspect(tanX_, tanY_, aspect);
+        fitOrthoToAspect(tanX_, tanY_, float(width) / float(height));
     } else {
-        fitFovToAspect(hFov_, vFov_, aspect);
+        fitFov(camera.fovAxis, float(width), float(height));
         tanX_ = std::tan(radians(hFov_) / 2);
         tanY_ = std::tan(radians(vFov_) / 2);
     }
@@ -33,6 +32,30 @@ CameraModel::CameraModel(const Camera& camera, int width, int height)
     }
     right_ = normalize(right_);
     up_ = cross(right_, forward_);
+}
+
+void CameraModel::fitFov(Camera::FovAxis axis, float width, float height) {
+    float aspect = width / height;
+    // One stated angle (in hFovDeg) spans the named axis; the other follows from the aspect.
+    float tanStated = std::tan(radians(hFov_) / 2), tanX = 0, tanY = 0;
+    switch (axis) {
+        case Camera::FovAxis::Fit:
+            fitFovToAspect(hFov_, vFov_, aspect);
+            return;
+        case Camera::FovAxis::Horizontal:
+            tanX = tanStated, tanY = tanStated / aspect;
+            break;
+        case Camera::FovAxis::Vertical:
+            tanY = tanStated, tanX = tanStated * aspect;
+            break;
+        case Camera::FovAxis::Diagonal: {
+            float diagonal = std::hypot(width, height);
+            tanX = tanStated * width / diagonal, tanY = tanStated * height / diagonal;
+            break;
+        }
+    }
+    hFov_ = 2 * degrees(std::atan(tanX));
+    vFov_ = 2 * degrees(std::atan(tanY));
 }
 
 Ray CameraModel::generateRay(float px, float py, float lensU, float lensV) const {

@@ -23,6 +23,9 @@ class CameraModel {
     float orthoHalfHeight() const { return tanY_; }
 
   private:
+    // The field of view for this image size: the file's two angles fitted (Camera::FovAxis::Fit),
+    // or the one stated angle on its axis.
+    void fitFov(Camera::FovAxis axis, float width, float height);
     Camera cam_;
     int width_, height_;
     float hFov_, vFov_;

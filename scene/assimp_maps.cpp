@@ -1,0 +1,136 @@
+// What an Assimp material says about maps beyond its colour: the tangent-space normal map (glTF
+// normalTexture with its scale, OBJ norm), alpha (glTF alphaMode MASK/BLEND with alphaCutoff,
+// baseColorFactor alpha times the base-colour texture's alpha; OBJ d and map_d as coverage) and
+// each texture's UV transform (KHR_texture_transform).
+#include <assimp/GltfMaterial.h>
+#include <assimp/material.h>
+#include <assimp/scene.h>
+
+#include <cmath>
+
+#include "scene/importers.h"
+
+namespace kiln {
+namespace {
+
+bool isGltf(const std::string& path) {
+    std::string ext = lowerExtension(path);
+    return ext == ".gltf" || ext == ".glb";
+}
+
+void warn(Scene& scene, const Material& m, const std::string& what) {
+    scene.warnings.push_back(
+        (m.name.empty() ? "an unnamed material" : "material '" + m.name + "'") + ": " + what);
+}
+
+// The slot's texture as a raw-data (or colour) source of the scene, with its UV transform; -1
+// (and a warning) when it cannot be used.
+int mapSource(const aiScene* as, const aiMaterial* am, aiTextureType slot,
+              const std::string& assetPath, TextureEncoding encoding, const char* what,
+              UvTransform& uv, Material& m, Scene& scene) {
+    aiString ref;
+    unsigned uvIndex = 0;
+    if (am->GetTexture(slot, 0, &ref, nullptr, &uvIndex) != AI_SUCCESS) return -1;
+    TextureSource source;
+    source.encoding = encoding;
+    std::string reason;
+    if (!assimpTextureSource(as, assetPath, ref.C_Str(), source, reason)) {
+        warn(scene, m, reason + "; its " + what + " is dropped");
+        return -1;
+    }
+    if (uvIndex != 0)
+        warn(scene, m,
+             std::string(what) + " uses UV set " + std::to_string(uvIndex) +
+                 "; kiln reads UV set 0");
+    readUvTransform(am, slot, assetPath, uv);
+    return addTextureSource(scene, std::move(source));
+}
+
+void readNormalMap(const aiScene* as, const aiMaterial* am, const std::string& assetPath,
+                   Material& m, Scene& scene) {
+    MaterialMaps& maps = m.maps;
+    for (aiTextureType slot : {aiTextureType_NORMALS, aiTextureType_NORMAL_CAMERA}) {
+        if (am->GetTextureCount(slot) == 0) continue;
+        maps.normalTexture = mapSource(as, am, slot, assetPath, TextureEncoding::Data, "normal map",
+                                       maps.normalUv, m, scene);
+        float scale = 1.0f;
+        if (am->Get(AI_MATKEY_GLTF_TEXTURE_SCALE(slot, 0), scale) == AI_SUCCESS &&
+            std::isfinite(scale))
+            maps.normalScale = scale;
+        return;
+    }
+}
+
+// glTF: alphaMode decides; OPAQUE ignores alpha altogether (the specification's rule).
+void readGltfAlpha(const aiMaterial* am, Material& m, Scene& scene) {
+    MaterialMaps& maps = m.maps;
+    aiString mode;
+    if (am->Get(AI_MATKEY_GLTF_ALPHAMODE, mode) != AI_SUCCESS) return;
+    std::string name = mode.C_Str();
+    if (name == "MASK")
+        maps.alphaMode = AlphaMode::Mask;
+    else if (name == "BLEND")
+        maps.alphaMode = AlphaMode::Blend;
+    else if (name != "OPAQUE")
+        warn(scene, m, "unknown alphaMode '" + name + "' rendered opaque");
+    if (!maps.hasAlpha()) return;
+    float opacity = 1.0f, cutoff = 0.5f;
+    if (am->Get(AI_MATKEY_OPACITY, opacity) == AI_SUCCESS && std::isfinite(opacity))
+        maps.opacity = std::clamp(opacity, 0.0f, 1.0f);
+    if (am->Get(AI_MATKEY_GLTF_ALPHACUTOFF, cutoff) == AI_SUCCESS && std::isfinite(cutoff))
+        maps.alphaCutoff = cutoff;
+    if (m.albedoTexture >= 0) {
+        maps.opacityTexture = m.albedoTexture;
+        maps.opacityChannel = 3;
+        maps.opacityUv = maps.albedoUv;
+    }
+}
+
+// OBJ: d (dissolve) and map_d are coverage: the surface stops that fraction of rays.
+void readObjAlpha(const aiScene* as, const aiMaterial* am, const std::string& assetPath,
+                  Material& m, Scene& scene) {
+    MaterialMaps& maps = m.maps;
+    float opacity = 1.0f;
+    if (am->Get(AI_MATKEY_OPACITY, opacity) == AI_SUCCESS && std::isfinite(opacity) && opacity < 1)
+        maps.opacity = std::clamp(opacity, 0.0f, 1.0f);
+    if (am->GetTextureCount(aiTextureType_OPACITY) > 0) {
+        maps.opacityTexture =
+            mapSource(as, am, aiTextureType_OPACITY, assetPath, TextureEncoding::Data,
+                      "opacity map", maps.opacityUv, m, scene);
+        maps.opacityChannel = 0;
+    }
+    if (maps.opacity < 1 || maps.opacityTexture >= 0) maps.alphaMode = AlphaMode::Blend;
+}
+
+}  // namespace
+
+bool readUvTransform(const aiMaterial* am, unsigned slot, const std::string& assetPath,
+                     UvTransform& uv) {
+    aiUVTransform x;
+    if (am->Get(AI_MATKEY_UVTRANSFORM(slot, 0), x) != AI_SUCCESS) return false;
+    if (!isGltf(assetPath)) {
+        uv = UvTransform::assimp(x.mTranslation.x, x.mTranslation.y, x.mRotation, x.mScaling.x,
+                                 x.mScaling.y);
+        return true;
+    }
+    // Assimp's glTF importer re-expresses KHR_texture_transform for its own UV-transform rule
+    // (rotation negated, the offset moved); undone here, so the extension's exact formula
+    // applies (Assimp's rule scales after rotating, which differs for unequal scales).
+    float rotation = -x.mRotation, su = x.mScaling.x, sv = x.mScaling.y;
+    float c = std::cos(rotation), s = std::sin(rotation);
+    float offsetU = x.mTranslation.x - 0.5f * su * (-c + s + 1);
+    float offsetV = -(x.mTranslation.y - 0.5f * sv * (s + c - 1) - 1 + sv);
+    uv = UvTransform::gltf(offsetU, offsetV, rotation, su, sv);
+    return true;
+}
+
+void readAssimpMaps(const aiScene* as, const aiMaterial* am, const std::string& assetPath,
+                    Material& m, Scene& scene) {
+    readNormalMap(as, am, assetPath, m, scene);
+    if (isGltf(assetPath))
+        readGltfAlpha(am, m, scene);
+    else if (lowerExtension(assetPath) == ".obj")
+        readObjAlpha(as, am, assetPath, m, scene);
+}
+
+}  // namespace kiln

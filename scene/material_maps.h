@@ -1,0 +1,67 @@
+// What a material takes from maps beyond its colour: a tangent-space normal map, alpha (cutout
+// and blend coverage) and the texture transform (KHR_texture_transform) each texture is read
+// through. Plain data that importers fill; the formulas that read it at a hit live here too, so
+// the accelerators (alpha) and the integrators (normal map, colour) read textures alike.
+#pragma once
+
+#include <cstdint>
+
+#include "renderer/core/math.h"
+
+namespace kiln {
+
+struct TriangleMesh;
+struct Scene;
+
+// Mesh UVs (v up, as OBJ and Assimp store them) to the texture lookup's (s, t) (t down the image):
+// s = a*u + b*v + c, t = d*u + e*v + f. The identity transform is s = u, t = 1 - v.
+struct UvTransform {
+    float a = 1, b = 0, c = 0;
+    float d = 0, e = -1, f = 1;
+    float s(float u, float v) const { return a * u + b * v + c; }
+    float t(float u, float v) const { return d * u + e * v + f; }
+    // How far one unit of mesh UV goes in (s, t): the footprint rule's scale (the mean of the two
+    // axes' stretch, sqrt of the determinant).
+    float areaScale() const { return std::sqrt(std::abs(a * e - b * d)); }
+    // glTF KHR_texture_transform (offset, rotation in radians, scale) applied in glTF's UV space
+    // (v down): uv' = T * R * S * uv, R = [cos sin; -sin cos].
+    static UvTransform gltf(float offsetU, float offsetV, float rotation, float scaleU,
+                            float scaleV);
+    // Assimp's aiUVTransform as its own TransformUVCoords step applies it (other formats).
+    static UvTransform assimp(float translateU, float translateV, float rotation, float scaleU,
+                              float scaleV);
+};
+
+// glTF alphaMode: Opaque ignores alpha, Mask cuts out where alpha < alphaCutoff, Blend is
+// coverage (a ray passes with probability 1 - alpha, decided by a hash of the ray: the same ray
+// always gets the same answer, so images stay bit-identical for any threads or tiles).
+enum class AlphaMode { Opaque, Mask, Blend };
+const char* toString(AlphaMode mode);
+
+struct MaterialMaps {
+    UvTransform albedoUv;      // how Material::albedoTexture is read
+    int normalTexture = -1;    // Scene::textureSources index: tangent-space normals, raw data
+    float normalScale = 1.0f;  // glTF normalTexture.scale: multiplies the map's x and y
+    UvTransform normalUv;
+    AlphaMode alphaMode = AlphaMode::Opaque;
+    float opacity = 1.0f;      // baseColorFactor alpha, OBJ d
+    float alphaCutoff = 0.5f;  // Mask
+    int opacityTexture = -1;   // multiplies opacity: channel opacityChannel of this texture
+    int opacityChannel = 3;    // 3: the base-colour texture's alpha; 0: a grey map (OBJ map_d)
+    UvTransform opacityUv;
+    bool hasAlpha() const { return alphaMode != AlphaMode::Opaque; }
+};
+
+// Barycentric interpolation of the mesh's UVs at triangle `prim` (b1, b2: weights of its vertices
+// 1 and 2). The mesh must have UVs.
+void uvAt(const TriangleMesh& mesh, uint32_t prim, float b1, float b2, float& u, float& v);
+
+// Per-vertex tangents from the UVs (the one place for the formula): the direction of increasing
+// u, summed over a vertex's triangles and made perpendicular to its normal, with the handedness
+// of increasing v. Files that state tangents (glTF TANGENT) keep theirs.
+void computeTangents(TriangleMesh& mesh);
+// Tangents for every mesh with a normal-mapped material that lacks them (a warning for a mesh
+// without UVs, whose normal map then does nothing).
+void addMissingTangents(Scene& scene);
+
+}  // namespace kiln

@@ -1,0 +1,76 @@
+// --material-override and the .kiln <override> element: one material in place of every material
+// of a scene (or of an included asset) that does not emit, so lights keep lighting it.
+#include <charconv>
+#include <filesystem>
+
+#include "scene/importers.h"
+#include "scene/scene_error.h"
+#include "scene/scene_loader.h"
+
+namespace kiln {
+namespace {
+
+// "G" or "R,G,B", each in [0, 1].
+bool parseAlbedo(const std::string& text, Color& albedo) {
+    float v[3];
+    int n = 0;
+    const char* p = text.data();
+    const char* end = text.data() + text.size();
+    while (n < 3) {
+        auto [next, ec] = std::from_chars(p, end, v[n]);
+        if (ec != std::errc() || !(v[n] >= 0 && v[n] <= 1)) return false;
+        ++n;
+        p = next;
+        if (p == end) break;
+        if (*p++ != ',') return false;
+    }
+    if (p != end || (n != 1 && n != 3)) return false;
+    albedo = n == 1 ? Color(v[0]) : Color(v[0], v[1], v[2]);
+    return true;
+}
+
+// The material named `name` (or the first) of a .kiln file, read with every check a scene gets.
+Material materialFromFile(const std::string& path, const std::string& name) {
+    Scene holder;
+    readKilnScene(path, holder);
+    for (const Material& m : holder.materials)
+        if (name.empty() || m.name == name) return m;
+    throw SceneError(path, name.empty() ? "has no <material> for --material-override"
+                                        : "has no material named '" + name + "'");
+}
+
+}  // namespace
+
+Material parseMaterialOverride(const std::string& spec) {
+    Material m;
+    m.name = "override";
+    if (spec == "clay") {
+        m.name = "clay";
+        m.albedo = Color(0.5f);
+        return m;
+    }
+    if (spec.rfind("lambertian:", 0) == 0) {
+        if (!parseAlbedo(spec.substr(11), m.albedo))
+            throw SceneError(spec, "lambertian albedo must be G or R,G,B in [0, 1]");
+        return m;
+    }
+    std::string path = spec, name;
+    if (!std::filesystem::exists(path)) {
+        size_t colon = spec.rfind(':');
+        if (colon != std::string::npos) path = spec.substr(0, colon), name = spec.substr(colon + 1);
+    }
+    if (!std::filesystem::exists(path))
+        throw SceneError(spec,
+                         "not a material override: use clay, lambertian:G, lambertian:R,G,B, "
+                         "or a .kiln file with a <material> (FILE or FILE:NAME)");
+    if (lowerExtension(path) != ".kiln")
+        throw SceneError(path, "a material override file must be a .kiln scene with <material>");
+    return materialFromFile(path, name);
+}
+
+void overrideMaterials(Scene& scene, const Material& m) {
+    for (Material& old : scene.materials)
+        if (old.kind != MaterialKind::Emission && !(maxComponent(old.emission) > 0)) old = m;
+}
+
+}  // namespace kiln

@@ -1,5 +1,6 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <assimp/DefaultLogger.hpp>
@@ -180,7 +181,31 @@ void readCamera(const std::string& path, const aiScene* as, const NodeWorlds& wo
     scene.hasFileCamera = true;
 }
 
-void readLights(const aiScene* as, const NodeWorlds& worlds, Scene& scene) {
+// Assimp states a point or spot light's falloff as colour / (c + l d + q d^2): glTF sets q = 1
+// (colour x intensity in candela), FBX q = 2 / DecayStart^2 (quadratic decay), l = 2 / DecayStart
+// (linear) or c = 1 (none). kiln's lights fall off as intensity / d^2, so the intensity is
+// colour / q where only q is stated; any other falloff is matched at the scene's centre and named
+// in a warning (without this, an FBX lamp 7 m away was 1 / 700^2 bright: black images).
+float inverseSquareScale(const aiLight* al, const Light& l, Scene& scene) {
+    double c = al->mAttenuationConstant, lin = al->mAttenuationLinear,
+           q = al->mAttenuationQuadratic;
+    if (q > 0 && c == 0 && lin == 0) return float(1 / q);
+    if (!(c > 0 || lin > 0 || q > 0)) return 1;  // nothing stated: inverse square as it is
+    Bounds3 b = scene.storedBounds();
+    double d = b.empty() ? 1 : std::max(double(length(b.centroid() - l.position)), 1e-6);
+    double scale = d * d / (c + lin * d + q * d * d);
+    scene.warnings.push_back(fmt::format(
+        "light '{}': falloff 1/({:g} + {:g} d + {:g} d^2) rendered as inverse square, matched "
+        "at the scene's centre ({:g} units away)",
+        l.name, c, lin, q, d));
+    return float(scale);
+}
+
+// FBX states a spot's cone as its full angle (Blender's spot size, Maya's cone angle), Assimp
+// passes it on; glTF and kiln measure from the axis.
+void readLights(const std::string& path, const aiScene* as, const NodeWorlds& worlds,
+                Scene& scene) {
+    float coneScale = lowerExtension(path) == ".fbx" ? 0.5f : 1.0f;
     for (unsigned i = 0; i < as->mNumLights; ++i) {
         const aiLight* al = as->mLights[i];
         Mat4 world = worldOf(as, worlds, al->mName);
@@ -196,8 +221,8 @@ void readLights(const aiScene* as, const NodeWorlds& worlds, Scene& scene) {
                 break;
             case aiLightSource_SPOT:
                 l.kind = LightKind::Spot;
-                l.spotInnerDeg = degrees(al->mAngleInnerCone);
-                l.spotOuterDeg = degrees(al->mAngleOuterCone);
+                l.spotInnerDeg = coneScale * degrees(al->mAngleInnerCone);
+                l.spotOuterDeg = coneScale * degrees(al->mAngleOuterCone);
                 break;
             case aiLightSource_DIRECTIONAL:
                 l.kind = LightKind::Directional;
@@ -218,6 +243,8 @@ void readLights(const aiScene* as, const NodeWorlds& worlds, Scene& scene) {
                 scene.warnings.push_back("light '" + l.name + "' is of a type kiln ignores");
                 continue;
         }
+        if (l.kind == LightKind::Point || l.kind == LightKind::Spot)
+            l.radiance = l.radiance * inverseSquareScale(al, l, scene);
         scene.lights.push_back(l);
     }
 }
@@ -238,6 +265,25 @@ Vec3d placedOrigin(const aiScene* as, const std::vector<std::vector<Mat4>>& plac
     return originFor(b);
 }
 
+// Assimp 5.2's JoinIdenticalVertices merges vertices that differ only in colour (a glTF quad's
+// COLOR_0 bled into its neighbour's shared corner), so a scene with colours keeps the vertices
+// as the file indexes them.
+const aiScene* joinVerticesUnlessColoured(Assimp::Importer& importer, const aiScene* as) {
+    for (unsigned i = 0; i < as->mNumMeshes; ++i)
+        if (as->mMeshes[i]->HasVertexColors(0)) return as;
+    return importer.ApplyPostProcessing(aiProcess_JoinIdenticalVertices);
+}
+
+// Materials some mesh uses: the glTF reader adds a default one that nothing may reference, whose
+// features are no one's to warn about.
+std::vector<bool> usedMaterials(const aiScene* as) {
+    std::vector<bool> used(as->mNumMaterials, false);
+    for (unsigned i = 0; i < as->mNumMeshes; ++i)
+        if (as->mMeshes[i]->mMaterialIndex < as->mNumMaterials)
+            used[as->mMeshes[i]->mMaterialIndex] = true;
+    return used;
+}
+
 }  // namespace
 
 void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scene& scene) {
@@ -246,8 +292,8 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
     importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
     importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
                                 aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-    unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                     aiProcess_SortByPType | aiProcess_ValidateDataStructure;
+    unsigned flags =
+        aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_ValidateDataStructure;
     const aiScene* as = nullptr;
     if (extras && extras->patchedXml)
         as = importer.ReadFileFromMemory(extras->patchedXml->data(), extras->patchedXml->size(),
@@ -262,6 +308,8 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
         throw SceneError(path, std::string("cannot import: ") + importer.GetErrorString());
     if (as->mFlags & AI_SCENE_FLAGS_INCOMPLETE)
         throw SceneError(path, "cannot import: the file is incomplete");
+    as = joinVerticesUnlessColoured(importer, as);
+    std::vector<bool> used = usedMaterials(as);
 
     // Materials: through the CGL pass for COLLADA (matched by name or id), else Assimp's colours.
     uint32_t materialBase = uint32_t(scene.materials.size());
@@ -280,7 +328,7 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
         }
         readAssimpTextures(as, as->mMaterials[i], path, statesColour, m, scene);
         // COLLADA materials follow the CGL rules (docs/import.md), which say what they keep.
-        if (!extras) warnDroppedMaterialFeatures(as->mMaterials[i], m, scene);
+        if (!extras && used[i]) warnDroppedMaterialFeatures(as->mMaterials[i], m, scene);
         scene.materials.push_back(m);
     }
     if (scene.materials.size() == materialBase) scene.materials.push_back(Material{"default"});
@@ -356,7 +404,7 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
     }
 
     if (extras) return;  // COLLADA lights and camera come from the CGL pass
-    readLights(as, worlds, scene);
+    readLights(path, as, worlds, scene);
     if (as->mNumCameras > 0) readCamera(path, as, worlds, scene);
 }
 

@@ -309,6 +309,8 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
     if (as->mFlags & AI_SCENE_FLAGS_INCOMPLETE)
         throw SceneError(path, "cannot import: the file is incomplete");
     as = joinVerticesUnlessColoured(importer, as);
+    if (std::string ext = lowerExtension(path); ext == ".gltf" || ext == ".glb")
+        warnUnreadGltfExtensions(path, scene);
     std::vector<bool> used = usedMaterials(as);
 
     // Materials: through the CGL pass for COLLADA (matched by name or id), else Assimp's colours.

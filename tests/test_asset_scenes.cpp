@@ -165,5 +165,21 @@ TEST(AssetWarnings, NoneIsACountOfZero) {
     EXPECT_EQ(in->spec().get_string_attribute("kiln:warnings", "absent"), "absent");
 }
 
+// An extension neither Assimp nor kiln reads is named (KHR_technique_webgl: the textured box
+// rendered plain white without a word); the ones read or warned about elsewhere are not.
+TEST(AssetWarnings, UnreadGltfExtensionsAreNamed) {
+    const std::string dir = "/usr/share/assimp/models/glTF2/";
+    auto naming = [](const Scene& s, const std::string& what) {
+        return std::count_if(s.warnings.begin(), s.warnings.end(),
+                             [&](const std::string& w) { return w.find(what) != w.npos; });
+    };
+    Scene webgl = loadScene(dir + "BoxTextured-glTF-techniqueWebGL/BoxTextured.gltf");
+    EXPECT_EQ(naming(webgl, "glTF extension KHR_technique_webgl is not read"), 1);
+    for (const char* read : {"BoxTextured-glTF-Binary/BoxTextured.glb",
+                             "BoxTextured-glTF-pbrSpecularGlossiness/BoxTextured.gltf",
+                             "ClearCoat-glTF/ClearCoatTest.gltf"})
+        EXPECT_EQ(naming(loadScene(dir + read), "glTF extension"), 0) << read;
+}
+
 }  // namespace
 }  // namespace kiln

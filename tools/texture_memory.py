@@ -10,13 +10,14 @@ untextured. --untiled writes plain scanline float EXRs instead, which kiln MIP-m
 kiln process) and the textured peak minus the untextured one, which the cache bounds.
 
     tools/texture_memory.py build/kiln [--count 22] [--size 4096] [--cache-mb 64] [--untiled]
-                            [--dir DIR]
+                            [--image 2048] [--dir DIR]
 
 tests/test_texture_memory.cpp runs the same check on 240 MiB of tiled textures.
 """
 
 import argparse
 import json
+import math
 import os
 import subprocess
 import tempfile
@@ -44,9 +45,10 @@ def write_scene(directory, name, count, textured, untiled=False):
     mtl, obj = [], ["mtllib %s.mtl" % name, "vt 0 0", "vt 1 0", "vt 1 1", "vt 0 1"]
     for i in range(count):
         mtl += ["newmtl m%d" % i, "Kd 1 1 1"] + (["map_Kd " + texture_name(i, untiled)] if textured else [])
-        x0, x1 = i * 1.1, i * 1.1 + 1
+        cols = math.ceil(math.sqrt(count))  # a square grid: the image covers every quad
+        x0, y0 = (i % cols) * 1.1, (i // cols) * 1.1
         obj += ["usemtl m%d" % i] + ["v %g %g 0" % p for p in
-                                     [(x0, 0), (x1, 0), (x1, 1), (x0, 1)]]
+                                     [(x0, y0), (x0 + 1, y0), (x0 + 1, y0 + 1), (x0, y0 + 1)]]
         v = 4 * i + 1
         obj += ["f %d/1 %d/2 %d/3" % (v, v + 1, v + 2), "f %d/1 %d/3 %d/4" % (v, v + 2, v + 3)]
     with open(os.path.join(directory, name + ".mtl"), "w") as f:
@@ -57,9 +59,11 @@ def write_scene(directory, name, count, textured, untiled=False):
     return path
 
 
-def render(kiln, scene, directory, cache_mb, width):
+def render(kiln, scene, directory, cache_mb, side):
+    # Beauty only, 1 spp: the film stays small while side^2 pixels look up fine MIP levels (a
+    # 2048^2 image reads well over 64 MiB of texels from 22 textures).
     out = subprocess.run([kiln, "render", scene, "-o", os.path.join(directory, "out.exr"),
-                          "-r", str(width), "96", "-s", "4", "-q", "--json",
+                          "-r", str(side), str(side), "-s", "1", "-q", "--json", "--aov", "none",
                           "--texture-cache-mb", str(cache_mb)],
                          check=True, capture_output=True, text=True)
     result = json.loads(out.stdout)
@@ -72,6 +76,7 @@ def main():
     parser.add_argument("--count", type=int, default=22)
     parser.add_argument("--size", type=int, default=4096)
     parser.add_argument("--cache-mb", type=int, default=64)
+    parser.add_argument("--image", type=int, default=2048, help="square image side in pixels")
     parser.add_argument("--untiled", action="store_true")
     parser.add_argument("--dir", help="scratch directory (kept; default: a new temporary one)")
     args = parser.parse_args()
@@ -79,7 +84,7 @@ def main():
     os.makedirs(directory, exist_ok=True)
     write_textures(directory, args.count, args.size, args.untiled)
     texels = args.count * args.size * args.size * 3 * (4 if args.untiled else 2) / 2**20
-    width = 64 * args.count
+    width = args.image
     plain, plain_s = render(args.kiln, write_scene(directory, "plain", args.count, False),
                             directory, args.cache_mb, width)
     textured, textured_s = render(args.kiln, write_scene(directory, "textured", args.count, True, args.untiled),

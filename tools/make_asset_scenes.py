@@ -244,7 +244,8 @@ def vertex_colored():
 def main():
     here = os.path.dirname(os.path.abspath(__file__))
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("out_dir", nargs="?", default=os.path.join(here, "..", "scenes", "assets"))
+    parser.add_argument("out_dir", nargs="?",
+                        default=os.path.normpath(os.path.join(here, "..", "scenes", "assets")))
     parser.add_argument("--only", choices=sorted(SCENES), action="append")
     args = parser.parse_args()
     os.makedirs(args.out_dir, exist_ok=True)

@@ -21,6 +21,14 @@ PathOptions withPixelSpread(const Scene& scene, const RenderJobOptions& options)
     return path;
 }
 
+// Every import warning (the list kiln info and stderr show), one per line: never only on a
+// terminal nobody kept.
+std::string joinedWarnings(const std::vector<std::string>& warnings) {
+    std::string text;
+    for (const std::string& w : warnings) text += (text.empty() ? "" : "\n") + w;
+    return text;
+}
+
 }  // namespace
 
 RenderJob::RenderJob(const Scene& scene, const Accelerator& accel, const RenderJobOptions& options)
@@ -92,7 +100,9 @@ Metadata RenderJob::metadata(const RenderStats& stats, const Film& film) const {
         {"working_space", "lin_rec709 (linear Rec.709 primaries, D65)"},
         {"plan", plan_.compact()},
         {"plan_decisions", plan_.text()},
-        {"nonfinite_samples", text(stats.nonFiniteSamples)}};
+        {"nonfinite_samples", text(stats.nonFiniteSamples)},
+        {"warning_count", text(scene_.warnings.size())}};
+    if (!scene_.warnings.empty()) meta["warnings"] = joinedWarnings(scene_.warnings);
     if (camera.orthographic())
         meta["orthographic_half_size"] =
             text(camera.orthoHalfWidth()) + " " + text(camera.orthoHalfHeight());

@@ -1,5 +1,6 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <assimp/DefaultLogger.hpp>
@@ -328,6 +329,12 @@ void readAttenuation(const std::string& path, const aiLight* al, Light& l, Scene
         l.attenuationQuadratic = al->mAttenuationQuadratic;
         return;
     }
+    // Only a quadratic term (glTF: 1, the colour in candela): intensity = colour / q, exact.
+    if (al->mAttenuationQuadratic > 0 && al->mAttenuationConstant == 0 &&
+        al->mAttenuationLinear == 0) {
+        l.radiance = l.radiance * float(1.0 / al->mAttenuationQuadratic);
+        return;
+    }
     if (al->mAttenuationQuadratic > 0 ||
         !(al->mAttenuationConstant > 0 || al->mAttenuationLinear > 0))
         return;
@@ -339,8 +346,11 @@ void readAttenuation(const std::string& path, const aiLight* al, Light& l, Scene
     scene.warnings.push_back(msg);
 }
 
+// FBX states a spot's cone as its full angle (Blender's spot size, Maya's cone angle), Assimp
+// passes it on; glTF and kiln measure from the axis.
 void readLights(const std::string& path, const aiScene* as, const NodeWorlds& worlds,
                 Scene& scene) {
+    float coneScale = lowerExtension(path) == ".fbx" ? 0.5f : 1.0f;
     for (unsigned i = 0; i < as->mNumLights; ++i) {
         const aiLight* al = as->mLights[i];
         Mat4 world = worldOf(as, worlds, al->mName);
@@ -362,8 +372,8 @@ void readLights(const std::string& path, const aiScene* as, const NodeWorlds& wo
                 break;
             case aiLightSource_SPOT:
                 l.kind = LightKind::Spot;
-                l.spotInnerDeg = degrees(al->mAngleInnerCone);
-                l.spotOuterDeg = degrees(al->mAngleOuterCone);
+                l.spotInnerDeg = coneScale * degrees(al->mAngleInnerCone);
+                l.spotOuterDeg = coneScale * degrees(al->mAngleOuterCone);
                 break;
             case aiLightSource_DIRECTIONAL:
                 l.kind = LightKind::Directional;
@@ -404,6 +414,25 @@ Vec3d placedOrigin(const aiScene* as, const std::vector<std::vector<Mat4>>& plac
     return originFor(b);
 }
 
+// Assimp 5.2's JoinIdenticalVertices merges vertices that differ only in colour (a glTF quad's
+// COLOR_0 bled into its neighbour's shared corner), so a scene with colours keeps the vertices
+// as the file indexes them.
+const aiScene* joinVerticesUnlessColoured(Assimp::Importer& importer, const aiScene* as) {
+    for (unsigned i = 0; i < as->mNumMeshes; ++i)
+        if (as->mMeshes[i]->HasVertexColors(0)) return as;
+    return importer.ApplyPostProcessing(aiProcess_JoinIdenticalVertices);
+}
+
+// Materials some mesh uses: the glTF reader adds a default one that nothing may reference, whose
+// features are no one's to warn about.
+std::vector<bool> usedMaterials(const aiScene* as) {
+    std::vector<bool> used(as->mNumMaterials, false);
+    for (unsigned i = 0; i < as->mNumMeshes; ++i)
+        if (as->mMeshes[i]->mMaterialIndex < as->mNumMaterials)
+            used[as->mMeshes[i]->mMaterialIndex] = true;
+    return used;
+}
+
 }  // namespace
 
 void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scene& scene) {
@@ -412,8 +441,8 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
     importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
     importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
                                 aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-    unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                     aiProcess_SortByPType | aiProcess_ValidateDataStructure;
+    unsigned flags =
+        aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_ValidateDataStructure;
     const aiScene* as = nullptr;
     CerrCapture printed;
     if (extras && extras->patchedXml)
@@ -432,6 +461,10 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
         throw SceneError(path, "cannot import: the file is incomplete");
     printed.addWarnings(scene);
     if (lowerExtension(path) == ".amf") warnAmfLimits(path, scene);
+    as = joinVerticesUnlessColoured(importer, as);
+    if (std::string ext = lowerExtension(path); ext == ".gltf" || ext == ".glb")
+        warnUnreadGltfExtensions(path, scene);
+    std::vector<bool> used = usedMaterials(as);
 
     // Materials: through the CGL pass for COLLADA (matched by name or id), else Assimp's colours.
     uint32_t materialBase = uint32_t(scene.materials.size());
@@ -456,7 +489,7 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
         }
         readAssimpTextures(as, as->mMaterials[i], path, statesColour, m, scene);
         // COLLADA materials follow the CGL rules (docs/import.md), which say what they keep.
-        if (!extras) warnDroppedMaterialFeatures(as->mMaterials[i], m, scene);
+        if (!extras && used[i]) warnDroppedMaterialFeatures(as->mMaterials[i], m, scene);
         scene.materials.push_back(m);
     }
     if (scene.materials.size() == materialBase) scene.materials.push_back(Material{"default"});

@@ -17,6 +17,9 @@ namespace kiln {
 // from the CGL pass and the course's up-axis convention replaces Assimp's.
 void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scene& scene);
 
+// A warning for each glTF extension the file uses that neither Assimp nor kiln reads.
+void warnUnreadGltfExtensions(const std::string& path, Scene& scene);
+
 // An Assimp material's base-colour texture as a source of the scene (Material::albedoTexture; the
 // albedo becomes 1 unless the file states a colour, which then multiplies it), and a warning for
 // every texture slot kiln ignores.

@@ -169,6 +169,7 @@ std::string sceneInfoJson(const Scene& scene) {
                   {"from_file", scene.hasFileCamera}}},
                 {"bbox", {{"min", jsonVec(b.lo)}, {"max", jsonVec(b.hi)}}},
                 {"geometry_bytes", s.geometryBytes},
+                {"textures", scene.textureSources.size()},
                 {"load_seconds", scene.loadSeconds},
                 {"warnings", scene.warnings}};
     return jsonText(doc) + "\n";

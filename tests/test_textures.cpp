@@ -247,7 +247,9 @@ TEST(MaterialWarnings, FeaturesKilnDropsAreNamed) {
     EXPECT_EQ(warningsNaming(s, "specular colour dropped"), 1);
     EXPECT_EQ(warningsNaming(s, "emissive colour makes the whole material a light"), 1);
     Scene box = loadScene("/usr/share/assimp/models/glTF2/BoxTextured-glTF-Binary/BoxTextured.glb");
-    EXPECT_EQ(warningsNaming(box, "metallic 1 rendered as a diffuse"), 1);
+    // Its material states metallic 0; the metallic 1 of the default material Assimp's glTF
+    // reader adds and no mesh uses is no one's to warn about.
+    EXPECT_EQ(warningsNaming(box, "metallic"), 0);
 }
 
 // The CS184 files follow the CGL rules: no material warnings there.

@@ -199,7 +199,8 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
     }
     const float nLight = float(opt_.lightSamples);
     const bool hemisphere = opt_.sampling == DirectSampling::Hemisphere;
-    const bool useNee = !hemisphere && lights_.size() > 0;
+    // Without next-event estimation (bsdf) emission found by the path counts in full (weight 1).
+    const bool useNee = !hemisphere && opt_.sampling != DirectSampling::Bsdf && lights_.size() > 0;
 
     for (int bounce = 0; !w.active.empty(); ++bounce) {
         w.hits.resize(w.rays.size());

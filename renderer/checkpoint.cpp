@@ -229,9 +229,7 @@ Fingerprint checkpointFingerprint(const RenderJob& job, const std::string& scene
         {"aovs", std::to_string(o.aovs.mask) + " bounces " + std::to_string(o.aovs.bounceLayers) +
                      " depth " + toString(o.aovs.depth) +
                      (o.aovs.transparent ? " transparent" : "")},
-        {"adaptive", s.adaptiveBatch > 0
-                         ? std::to_string(s.adaptiveBatch) + " " + number(s.adaptiveTolerance)
-                         : "off"},
+        {"adaptive", s.adaptiveText()},
     };
     return f;
 }

@@ -133,6 +133,19 @@ void addImageOptions(ArgParser& parser, RenderJobArgs& a) {
                       s.adaptiveTolerance = float(ArgParser::toDouble("-a", v[1]));
                       if (!(s.adaptiveTolerance > 0)) throw UsageError("-a tolerance must be > 0");
                   });
+    parser.option("noise-threshold", "", 1, "T",
+                  "adaptive sampling by a noise threshold (as Cycles' adaptive threshold): a "
+                  "pixel stops once the relative standard error of its mean is <= T, tested "
+                  "every --adaptive-min-spp samples (-s is the maximum)",
+                  [&s](const std::vector<std::string>& v) {
+                      s.noiseThreshold = float(ArgParser::toDouble("--noise-threshold", v[0]));
+                      if (!(s.noiseThreshold > 0 && s.noiseThreshold < 1e6f))
+                          throw UsageError("--noise-threshold must be in (0, 1e6)");
+                  });
+    parser.intOption("adaptive-min-spp", "",
+                     "samples before the noise threshold is first tested, and between tests "
+                     "(default 16)",
+                     s.adaptiveMinSpp, 2, 1 << 20);
 }
 
 void addTransportOptions(ArgParser& parser, RenderJobArgs& a) {
@@ -211,6 +224,8 @@ RenderJobOptions RenderJobArgs::finish() const {
             throw UsageError("--crop window holds no pixel at " + std::to_string(s.width) + "x" +
                              std::to_string(s.height));
     }
+    if (s.adaptiveBatch > 0 && s.noiseThreshold > 0)
+        throw UsageError("-a and --noise-threshold are two adaptive sampling rules: give one");
     try {
         out.aovs = AovRequest::parse(aovList, out.path.maxDepth);
     } catch (const std::invalid_argument& e) {

@@ -78,6 +78,13 @@ TEST(Mis, LightBsdfAndMisAgreeOnAGlossyEnvironmentLitMesh) {
     expectStrategiesAgree(loadScene(test::cs184("sky/bunny_microfacet_cu_unlit.dae"), load), 2, 64);
 }
 
+TEST(Mis, LightBsdfAndMisAgreeOnADiffuseEnvironmentLitMesh) {
+    // Where the BSDF and the map's pdf overlap most (a diffuse surface): the weights matter most.
+    LoadOptions load;
+    load.environmentMap = test::shared("envmaps/courtyard.exr");
+    expectStrategiesAgree(loadScene(test::cs184("sky/bunny_unlit.dae"), load), 2, 64);
+}
+
 TEST(Mis, LightBsdfAndMisAgreeAtEveryBounceAmongGlossySpheresInABox) {
     // Glossy metal spheres in a closed box under an area light: light after every bounce.
     expectStrategiesAgree(loadScene(test::cs184("sky/CBspheres_microfacet_al_ag.dae")), 4, 64);

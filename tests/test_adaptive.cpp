@@ -4,6 +4,7 @@
 // stays that of a fixed-spp render within the estimators' standard errors.
 #include <cmath>
 
+#include "kiln_run.h"
 #include "long_render_support.h"
 #include "renderer/adaptive.h"
 #include "renderer/long_render.h"
@@ -122,6 +123,20 @@ TEST(NoiseThreshold, TheImageMeanAgreesWithAFixedSppRender) {
     auto [fm, fe] = imageMean(test::renderJob(l.scene, *l.accel, test::jobOptions(kW, kH, 64)));
     EXPECT_GT(ae, 0.0);
     EXPECT_NEAR(am, fm, 5.0 * std::sqrt(ae * ae + fe * fe));
+}
+
+TEST(NoiseThreshold, TheCommandLineRefusesItWithDashAOrAShardedSampleRange) {
+    std::string out = (test::scratchDir() / "n").string();
+    std::string base = "render " + test::cs184("sky/CBspheres_lambertian.dae") +
+                       " -r 8 8 -s 32 -q -o " + out + " --noise-threshold 0.1";
+    test::CliRun both = test::runKiln(base + " -a 8 0.1");
+    EXPECT_EQ(both.code, 2);
+    EXPECT_NE(both.err.find("-a and --noise-threshold"), std::string::npos) << both.err;
+    test::CliRun shard = test::runKiln(base + " --sample-range 16 32");
+    EXPECT_EQ(shard.code, 2);
+    EXPECT_NE(shard.err.find("--sample-range must start at 0"), std::string::npos) << shard.err;
+    test::CliRun bad = test::runKiln(base + " --adaptive-min-spp 1");
+    EXPECT_EQ(bad.code, 2);
 }
 
 }  // namespace

@@ -7,8 +7,8 @@ adaptive sampling) reach a given relative MSE soonest on a scene (a benchmark, n
       --variant "independent=--sampler independent" --variant "sobol=--sampler sobol" \\
       --variant "noise=--sampler sobol -s 1024 --noise-threshold {p}@0.2,0.1,0.05"
 
-A variant is LABEL=ARGS or LABEL=ARGS@P1,P2,...: its renders are SCENE ARGS with {p} replaced by each
-point (default points: --spp, with "-s {p}" added when ARGS has no {p}). All renders of a round run
+A variant is LABEL=[KILN::]ARGS[@P1,P2,...]: its renders are SCENE ARGS (by the binary KILN, default
+--kiln, e.g. an older build to compare against) with {p} replaced by each point (default points: --spp, with "-s {p}" added when ARGS has no {p}). All renders of a round run
 interleaved (every variant at every point), --repeats rounds; times are medians of kiln's
 "build + render" seconds (load and write excluded). Error: `kiln bench compare TEST REF`, the
 luminance relMSE against the reference rendered once with SCENE REF (its variance channel removes its
@@ -45,15 +45,17 @@ def rel_mse(kiln, test, ref):
     return float(re.search(r"relmse ([0-9.eE+-]+)", out).group(1))
 
 
-def parse_variant(text, default_points):
+def parse_variant(text, default_points, kiln):
     label, sep, rest = text.partition("=")
     if not sep:
-        sys.exit("--variant takes LABEL=ARGS[@P1,P2,...], got " + repr(text))
+        sys.exit("--variant takes LABEL=[KILN::]ARGS[@P1,P2,...], got " + repr(text))
+    if "::" in rest:
+        kiln, rest = rest.split("::", 1)
     args, at, points = rest.partition("@")
     points = points.split(",") if at else list(default_points)
     if "{p}" not in args:
         args += " -s {p}"
-    return label, args, points
+    return label, kiln, args, points
 
 
 def main():
@@ -69,22 +71,22 @@ def main():
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
     scene = shlex.split(a.scene)
-    variants = [parse_variant(v, a.spp.split(",")) for v in a.variant]
+    variants = [parse_variant(v, a.spp.split(","), a.kiln) for v in a.variant]
     ref = os.path.join(a.out, "reference")
     if not os.path.exists(ref + ".exr"):
         print("reference: %.1f s" % render(a.kiln, scene, shlex.split(a.ref) + ["--aov", "variance"],
                                            ref), flush=True)
     times = {}
     for r in range(a.repeats):
-        for label, args, points in variants:
+        for label, kiln, args, points in variants:
             for p in points:
                 base = os.path.join(a.out, "%s.%s" % (label, p))
-                t = render(a.kiln, scene, shlex.split(args.replace("{p}", p)) + ["--aov", "none"], base)
+                t = render(kiln, scene, shlex.split(args.replace("{p}", p)) + ["--aov", "none"], base)
                 times.setdefault((label, p), []).append(t)
         print("round %d done" % (r + 1), flush=True)
     series = {}
     print("%-16s %8s %10s %12s" % ("variant", "point", "median s", "relMSE"))
-    for label, _, points in variants:
+    for label, _, _, points in variants:
         for p in points:
             t = statistics.median(times[(label, p)])
             e = rel_mse(a.kiln, os.path.join(a.out, "%s.%s.exr" % (label, p)), ref + ".exr")
@@ -92,12 +94,12 @@ def main():
             print("%-16s %8s %10.3f %12.6g" % (label, p, t, e))
     first = variants[0][0]
     errors = [e for _, e in series[first]]
-    levels = [errors[len(errors) // 2], errors[-1]]
+    levels = [errors[(len(errors) - 1) // 2], errors[-1]]
     print("\ntime to reach the error of %s at its middle and last points (ratio to %s):" % (first, first))
     for level in levels:
         base, _ = time_at(series[first], level)
         cells = []
-        for label, _, _ in variants:
+        for label, _, _, _ in variants:
             t, mark = time_at(series[label], level)
             cells.append("%s %.2fs%s (%.2f)" % (label, t, mark, t / base))
         print("relMSE %.3g: %s" % (level, "  ".join(cells)))

@@ -188,6 +188,9 @@ void addTransportOptions(ArgParser& parser, RenderJobArgs& a) {
                       if (!(p.fixedContinuation > 0 && p.fixedContinuation <= 1))
                           throw UsageError("--rr-continue must be in (0, 1]");
                   });
+    parser.intOption("rr-start", "",
+                     "--rr throughput plays roulette once a path has bounced N times (default 3)",
+                     p.rouletteMinBounces, 1, 100000);
     parser.option("bounce-only", "", 0, "",
                   "keep only light that bounced exactly -m times (accumulate bounces off)",
                   [&p](const std::vector<std::string>&) { p.accumulateBounces = false; });

@@ -33,7 +33,7 @@ struct RenderSettings {
     int threads = 0;  // 0 = all cores
     int tileSize = 32;
     uint64_t seed = 0;
-    SamplerKind sampler = SamplerKind::Independent;
+    SamplerKind sampler = SamplerKind::Sobol;  // measured: docs/performance.md, "Estimators"
     bool progress = true;
     // Adaptive sampling as CS184 defines it: every adaptiveBatch samples a pixel stops once
     // 1.96 sigma / sqrt(n) <= adaptiveTolerance * mu on sample illuminance. 0 = off.

@@ -19,7 +19,11 @@ struct Estimate {
 };
 
 Estimate render(const Scene& s, const Accelerator& accel, const PathOptions& path, int spp) {
-    Film f = test::renderJob(s, accel, test::jobOptions(32, 24, spp, path));
+    RenderJobOptions o = test::jobOptions(32, 24, spp, path);
+    // Independent samples: the pixels' sample variances then give the means' true standard errors
+    // (with stratified samples they only bound them).
+    o.settings.sampler = SamplerKind::Independent;
+    Film f = test::renderJob(s, accel, o);
     Estimate e;
     double var = 0, n = double(f.pixelCount());
     for (int y = 0; y < f.height(); ++y)

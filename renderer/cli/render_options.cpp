@@ -118,8 +118,8 @@ void addImageOptions(ArgParser& parser, RenderJobArgs& a) {
     parser.intOption("threads", "t", "worker threads (default: all cores)", s.threads, 1, 4096);
     parser.intOption("tile", "", "tile size in pixels (default 32)", s.tileSize, 1, 4096);
     parser.enumOption("sampler",
-                      "sample values: independent random numbers (default) or shuffled, "
-                      "Owen-scrambled Sobol points (stratified over each pixel's samples)",
+                      "sample values: shuffled, Owen-scrambled Sobol points (default; "
+                      "stratified over each pixel's samples) or independent random numbers",
                       s.sampler);
     parser.option("seed", "", 1, "N", "random seed (default 0)",
                   [&s](const std::vector<std::string>& v) {

@@ -200,7 +200,8 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
     }
     const float nLight = float(opt_.lightSamples);
     const bool hemisphere = opt_.sampling == DirectSampling::Hemisphere;
-    const bool useNee = !hemisphere && lights_.size() > 0;
+    // Without next-event estimation (bsdf) emission found by the path counts in full (weight 1).
+    const bool useNee = !hemisphere && opt_.sampling != DirectSampling::Bsdf && lights_.size() > 0;
 
     for (int bounce = 0; !w.active.empty(); ++bounce) {
         w.hits.resize(w.rays.size());
@@ -308,7 +309,8 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
                     size_t li = size_t(k);
                     if (!eachDeltaLightOnce_) {
                         li = lights_.select(sampler.next1D(), pmf);
-                        u1 = sampler.next1D(), u2 = sampler.next1D();
+                        auto [a, b] = sampler.next2D();
+                        u1 = a, u2 = b;
                     }
                     LightSample ls;
                     if (!lights_.sample(li, si.p, u1, u2, ls) || pmf == 0) continue;
@@ -356,7 +358,8 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
             if constexpr (DeltaLightsOnly)
                 if (bounce + 1 >= opt_.maxDepth) continue;
             BsdfSample bs;
-            float uc = sampler.next1D(), u1 = sampler.next1D(), u2 = sampler.next1D();
+            float uc = sampler.next1D();
+            auto [u1, u2] = sampler.next2D();
             if (!bsdf.sample(wo, uc, u1, u2, bs)) continue;
             if (bs.pdf <= 0 || maxComponent(bs.f) <= 0) continue;
             // With -H, what a non-delta bounce's ray finds at the last depth the probes counted.

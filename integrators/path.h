@@ -12,7 +12,10 @@
 
 namespace kiln {
 
-enum class DirectSampling { Hemisphere, Light, Mis };
+// Direct light at a vertex: uniform hemisphere probes (CS184's -H), light sampling only, MIS of
+// light and BSDF sampling (power or balance heuristic), or BSDF sampling only (no shadow rays:
+// light is found where the continuing path hits it; blind to point, spot and directional lights).
+enum class DirectSampling { Hemisphere, Light, Mis, Bsdf };
 enum class Roulette { Off, Throughput, Fixed };
 enum class IntegratorKind { Path, Normals };
 enum class MisHeuristic { Power, Balance };
@@ -22,7 +25,8 @@ struct EnumNames<DirectSampling> {
     static constexpr std::pair<DirectSampling, const char*> table[] = {
         {DirectSampling::Mis, "mis"},
         {DirectSampling::Light, "light"},
-        {DirectSampling::Hemisphere, "hemisphere"}};
+        {DirectSampling::Hemisphere, "hemisphere"},
+        {DirectSampling::Bsdf, "bsdf"}};
 };
 template <>
 struct EnumNames<Roulette> {

@@ -234,9 +234,7 @@ Fingerprint checkpointFingerprint(const RenderJob& job, const std::string& scene
                      " depth " + toString(o.aovs.depth) +
                      (o.aovs.transparent ? " transparent" : "")},
         {"film_scale", "2^" + std::to_string(job.filmScaleExponent())},
-        {"adaptive", s.adaptiveBatch > 0
-                         ? std::to_string(s.adaptiveBatch) + " " + number(s.adaptiveTolerance)
-                         : "off"},
+        {"adaptive", s.adaptiveText()},
     };
     return f;
 }

@@ -88,8 +88,7 @@ Metadata RenderJob::metadata(const RenderStats& stats, const Film& film) const {
         {"sampling", toString(p.sampling)},
         {"roulette", toString(p.roulette)},
         {"accumulate_bounces", p.accumulateBounces ? "yes" : "no"},
-        {"adaptive",
-         s.adaptiveBatch > 0 ? text(s.adaptiveBatch) + " " + text(s.adaptiveTolerance) : "off"},
+        {"adaptive", s.adaptiveText()},
         {"mis_heuristic", toString(p.heuristic)},
         {"microfacet", toString(p.microfacet)},
         {"camera", scene_.framedByCourseRule ? "cs184-framing"

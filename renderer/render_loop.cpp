@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "renderer/adaptive.h"
 #include "renderer/geometry/camera.h"
 #include "renderer/progress.h"
 
@@ -60,28 +61,22 @@ SampleRecord traceSample(const Scene& scene, const Integrator& integrator,
 namespace {
 
 // The sample indices where waves end. Waves of 1, 1, 2, 4, ... samples (at most kMaxWave): an
-// interrupted render has nearly even counts everywhere. Adaptive renders go in waves of one batch,
-// the granularity of the convergence test. The sums do not depend on the waves (they are exact);
-// only the adaptive test points do, and those are fixed multiples of the batch.
+// interrupted render has nearly even counts everywhere. Adaptive renders go in waves of one step
+// (-a's batch, or the noise threshold's minimum samples), the granularity of the convergence test.
+// The sums do not depend on the waves (they are exact); only the adaptive test points do, and those
+// are fixed multiples of the step.
 constexpr int kMaxWave = 64;
 
 std::vector<int> waveEnds(const RenderSettings& s) {
     std::vector<int> ends;
-    int done = s.sampleStart, wave = s.adaptiveBatch > 0 ? s.adaptiveBatch : 1;
+    const int step = s.adaptiveStep();
+    int done = s.sampleStart, wave = step > 0 ? step : 1;
     while (done < s.spp) {
-        done = std::min(s.spp, s.adaptiveBatch > 0 ? (done / wave + 1) * wave : done + wave);
+        done = std::min(s.spp, step > 0 ? (done / wave + 1) * wave : done + wave);
         ends.push_back(done);
-        if (s.adaptiveBatch <= 0 && done > s.sampleStart + 1) wave = std::min(2 * wave, kMaxWave);
+        if (step <= 0 && done > s.sampleStart + 1) wave = std::min(2 * wave, kMaxWave);
     }
     return ends;
-}
-
-bool adaptiveConverges(const Film& film, const RenderSettings& settings, int x, int y) {
-    double n = film.samples(x, y);
-    if (n < 2) return false;
-    double s1 = film.luminanceSum(x, y), s2 = film.luminanceSquareSum(x, y);
-    double mu = s1 / n, var = std::max(0.0, (s2 - s1 * s1 / n) / (n - 1));
-    return 1.96 * std::sqrt(var / n) <= settings.adaptiveTolerance * mu;
 }
 
 // The samples pixel (x, y) of the film still lacks.
@@ -136,6 +131,7 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator,
         return stop;
     };
 
+    const int adaptiveStep = settings.adaptiveStep();
     auto renderTile = [&](int tileIndex, int waveStart, int waveEnd) {
         int x0 = (tileIndex % tilesX) * tile, y0 = (tileIndex / tilesX) * tile;
         int x1 = std::min(x0 + tile, fw), y1 = std::min(y0 + tile, fh);
@@ -161,8 +157,7 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator,
                     bad.push_back({x + ox, y + oy, s});
                 }
                 // The convergence test at fixed sample counts, so resumed renders test alike.
-                if (settings.adaptiveBatch > 0 &&
-                    film.samples(x, y) % settings.adaptiveBatch == 0 &&
+                if (adaptiveStep > 0 && film.samples(x, y) % adaptiveStep == 0 &&
                     adaptiveConverges(film, settings, x, y))
                     film.setConverged(x, y);
             }

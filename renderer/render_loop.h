@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "integrators/integrator.h"
@@ -32,12 +33,24 @@ struct RenderSettings {
     int threads = 0;  // 0 = all cores
     int tileSize = 32;
     uint64_t seed = 0;
-    SamplerKind sampler = SamplerKind::Independent;
+    SamplerKind sampler = SamplerKind::Sobol;  // measured: docs/performance.md, "Estimators"
     bool progress = true;
     // Adaptive sampling as CS184 defines it: every adaptiveBatch samples a pixel stops once
     // 1.96 sigma / sqrt(n) <= adaptiveTolerance * mu on sample illuminance. 0 = off.
     int adaptiveBatch = 0;
     float adaptiveTolerance = 0.05f;
+    // Adaptive sampling by a noise threshold (Cycles' adaptive_threshold): after
+    // adaptiveMinSpp samples and every adaptiveMinSpp after, a pixel stops once the relative
+    // standard error of its luminance mean is <= noiseThreshold (renderer/adaptive.h). 0 = off.
+    float noiseThreshold = 0;
+    int adaptiveMinSpp = 16;
+    // The sample counts where adaptive sampling tests a pixel are the multiples of this; 0: off.
+    int adaptiveStep() const {
+        return adaptiveBatch > 0 ? adaptiveBatch : noiseThreshold > 0 ? adaptiveMinSpp : 0;
+    }
+    // "off", "BATCH TOL" (CS184) or "noise T min N": the metadata's and the checkpoint
+    // fingerprint's name of the rule.
+    std::string adaptiveText() const;
 };
 
 // A sample that produced NaN or Inf: enough to replay it with --pixel X Y --sample N.

@@ -64,6 +64,35 @@ TEST(Sampler, SobolPairsAreNetsOverEveryAlignedPowerOfTwoBlock) {
                 }
 }
 
+TEST(Sampler, Next2DIsANetWhateverCameBeforeAndIndependentIsUnchanged) {
+    // A 2D sample after an odd number of 1D draws (a light choice, a lobe choice) still comes from
+    // one pair: 2^m samples of it form a (0,m,2)-net. The independent sampler's next2D is two
+    // next1D values, so its images do not change.
+    for (int before : {0, 1, 4, 5}) {
+        constexpr int m = 6;
+        constexpr uint32_t n = 1u << m;
+        std::vector<std::pair<float, float>> pts;
+        for (uint32_t i = 0; i < n; ++i) {
+            Sampler s(11, 99, i, SamplerKind::Sobol);
+            for (int k = 0; k < before; ++k) s.next1D();
+            auto [u, v] = s.next2D();
+            pts.emplace_back(u, v);
+            Sampler a(11, 99, i), b(11, 99, i);
+            for (int k = 0; k < before; ++k) a.next1D(), b.next1D();
+            auto [x, y] = a.next2D();
+            float bx = b.next1D(), by = b.next1D();
+            ASSERT_EQ(x, bx);
+            ASSERT_EQ(y, by);
+        }
+        for (int k = 0; k <= m; ++k) {
+            std::vector<int> cells(n, 0);
+            for (auto [x, y] : pts)
+                ++cells[(uint32_t(y * float(1u << (m - k))) << k) | uint32_t(x * float(1u << k))];
+            for (int c : cells) ASSERT_EQ(c, 1) << "after " << before << " shape " << k;
+        }
+    }
+}
+
 TEST(Sampler, SobolEveryDimensionIsUniform) {
     // One sample per pixel across many pixels: the scrambles are independent per pixel, so the
     // values are iid uniform; chi-square over 64 bins for each of the first 8 dimensions.

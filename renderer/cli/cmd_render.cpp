@@ -366,12 +366,13 @@ void printTraversalFloor(const Accelerator& accel, const RenderJob& job, const R
 
 void warnHemisphereBlind(const RenderJob& job, const std::string& scenePath) {
     const RenderJobOptions& o = job.options();
-    if (job.plan().deltaLightsOnly && o.path.sampling == DirectSampling::Hemisphere &&
-        o.integrator == IntegratorKind::Path)
+    const bool blind =
+        o.path.sampling == DirectSampling::Hemisphere || o.path.sampling == DirectSampling::Bsdf;
+    if (job.plan().deltaLightsOnly && blind && o.integrator == IntegratorKind::Path)
         logWarning(
-            "{}: hemisphere sampling cannot see point, spot or directional lights, the only "
-            "lights here: the image will be black but for emitters",
-            scenePath);
+            "{}: {} sampling cannot see point, spot or directional lights, the only lights here: "
+            "the image will be black but for emitters",
+            scenePath, toString(o.path.sampling));
 }
 
 // SIGINT and SIGTERM stop the render at a pixel boundary, SIGUSR1 asks for a checkpoint; the
@@ -425,10 +426,10 @@ constexpr const char* kExitCodes =
 void applyLongRenderOptions(const RenderCommand& c, RenderJobOptions& o) {
     RenderSettings& s = o.settings;
     if (c.rangeStart >= 0) s.sampleStart = c.rangeStart, s.spp = c.rangeEnd;
-    if (s.sampleStart > 0 && s.adaptiveBatch > 0)
+    if (s.sampleStart > 0 && s.adaptiveStep() > 0)
         throw UsageError(
-            "--sample-range must start at 0 with -a: adaptive sampling decides from "
-            "the samples before");
+            "--sample-range must start at 0 with -a or --noise-threshold: adaptive sampling "
+            "decides from the samples before");
 }
 
 // Before any expensive work: the directory takes files, the outputs fit its free space, and the
@@ -466,7 +467,7 @@ int writeOutputs(const RenderCommand& c, const OutputPaths& out, const Film& fil
     };
     attempt([&] { writeExr(out.exr, film, meta, c.exr); });
     attempt([&] { writePreview(out.preview, film, c.display, c.view, c.exposure); });
-    if (c.heatMap || c.job.job.settings.adaptiveBatch > 0) {
+    if (c.heatMap || c.job.job.settings.adaptiveStep() > 0) {
         heatPath = fs::path(out.exr).replace_extension(".samples.png").string();
         attempt([&] { writeSampleHeatMap(heatPath, film); });
     }

@@ -136,8 +136,8 @@ void addImageOptions(ArgParser& parser, RenderJobArgs& a) {
     parser.intOption("threads", "t", "worker threads (default: all cores)", s.threads, 1, 4096);
     parser.intOption("tile", "", "tile size in pixels (default 32)", s.tileSize, 1, 4096);
     parser.enumOption("sampler",
-                      "sample values: independent random numbers (default) or shuffled, "
-                      "Owen-scrambled Sobol points (stratified over each pixel's samples)",
+                      "sample values: shuffled, Owen-scrambled Sobol points (default; "
+                      "stratified over each pixel's samples) or independent random numbers",
                       s.sampler);
     parser.option("seed", "", 1, "N", "random seed (default 0)",
                   [&s](const std::vector<std::string>& v) {
@@ -151,6 +151,19 @@ void addImageOptions(ArgParser& parser, RenderJobArgs& a) {
                       s.adaptiveTolerance = float(ArgParser::toDouble("-a", v[1]));
                       if (!(s.adaptiveTolerance > 0)) throw UsageError("-a tolerance must be > 0");
                   });
+    parser.option("noise-threshold", "", 1, "T",
+                  "adaptive sampling by a noise threshold (as Cycles' adaptive threshold): a "
+                  "pixel stops once the relative standard error of its mean is <= T, tested "
+                  "every --adaptive-min-spp samples (-s is the maximum)",
+                  [&s](const std::vector<std::string>& v) {
+                      s.noiseThreshold = float(ArgParser::toDouble("--noise-threshold", v[0]));
+                      if (!(s.noiseThreshold > 0 && s.noiseThreshold < 1e6f))
+                          throw UsageError("--noise-threshold must be in (0, 1e6)");
+                  });
+    parser.intOption("adaptive-min-spp", "",
+                     "samples before the noise threshold is first tested, and between tests "
+                     "(default 16)",
+                     s.adaptiveMinSpp, 2, 1 << 20);
 }
 
 void addTransportOptions(ArgParser& parser, RenderJobArgs& a) {
@@ -188,6 +201,9 @@ void addTransportOptions(ArgParser& parser, RenderJobArgs& a) {
                       if (!(p.fixedContinuation > 0 && p.fixedContinuation <= 1))
                           throw UsageError("--rr-continue must be in (0, 1]");
                   });
+    parser.intOption("rr-start", "",
+                     "--rr throughput plays roulette once a path has bounced N times (default 3)",
+                     p.rouletteMinBounces, 1, 100000);
     parser.option("bounce-only", "", 0, "",
                   "keep only light that bounced exactly -m times (accumulate bounces off)",
                   [&p](const std::vector<std::string>&) { p.accumulateBounces = false; });
@@ -225,6 +241,8 @@ RenderJobOptions RenderJobArgs::finish() const {
             throw UsageError("--crop window holds no pixel at " + std::to_string(s.width) + "x" +
                              std::to_string(s.height));
     }
+    if (s.adaptiveBatch > 0 && s.noiseThreshold > 0)
+        throw UsageError("-a and --noise-threshold are two adaptive sampling rules: give one");
     try {
         out.aovs = AovRequest::parse(aovList, out.path.maxDepth);
     } catch (const std::invalid_argument& e) {

@@ -87,6 +87,10 @@ inline bool isFinite(const Vec3T<T>& v) {
 }
 inline float luminance(const Color& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
+// A squared error d2 of an estimate of r, relative to r and robust near black (below a luminance
+// of 0.1 it is absolute): the accuracy report's relative MSE and the noise threshold's measure.
+constexpr double relativeSquaredError(double d2, double r) { return d2 / (r * r + 0.01); }
+
 // Builds an orthonormal basis around a unit vector n (Duff et al. 2017).
 inline void orthonormalBasis(const Vec3& n, Vec3& s, Vec3& t) {
     float sign = std::copysign(1.0f, n.z);

@@ -46,6 +46,17 @@ class Sampler {
         pendingY_ = p.y;
         return toUnit(p.x);
     }
+    // The two coordinates of one 2D sample (a light's or a BSDF's square). sobol: both from one
+    // pair, so the points are stratified in 2D (a pair's leftover value is skipped); independent:
+    // two next1D values, as before.
+    struct Point2 {
+        float u, v;
+    };
+    Point2 next2D() {
+        if (kind_ == SamplerKind::Sobol && dimension_ % 2 == 1) ++dimension_;
+        float u = next1D();
+        return {u, next1D()};
+    }
     uint32_t dimension() const { return dimension_; }
     SamplerKind kind() const { return kind_; }
 

@@ -34,13 +34,32 @@ constexpr uint32_t nestedUniformScramble(uint32_t x, uint32_t seed) {
     return reverseBits32(laineKarrasPermutation(reverseBits32(x), seed));
 }
 
-// The second Sobol dimension's generator matrix applied to index (directions v_k = v_{k-1} ^
-// v_{k-1} >> 1).
+// The second Sobol dimension's generator matrix: direction v_k for index bit k (v_0 = 2^31,
+// v_k = v_{k-1} ^ v_{k-1} >> 1).
+constexpr uint32_t sobolDirection1(int bit) {
+    uint32_t v = 0x80000000u;
+    for (int k = 0; k < bit; ++k) v ^= v >> 1;
+    return v;
+}
+
+// The matrix applied to each byte of an index, tabulated: the product is linear over GF(2), so it
+// is the xor of four lookups (instead of a loop over up to 32 index bits, which was the sampler's
+// largest cost).
+struct SobolByteTables {
+    uint32_t t[4][256];
+    constexpr SobolByteTables() : t{} {
+        for (int byte = 0; byte < 4; ++byte)
+            for (uint32_t b = 0; b < 256; ++b)
+                for (int j = 0; j < 8; ++j)
+                    if (b >> j & 1u) t[byte][b] ^= sobolDirection1(8 * byte + j);
+    }
+};
+inline constexpr SobolByteTables kSobolDimension1Tables{};
+
 constexpr uint32_t sobolDimension1(uint32_t index) {
-    uint32_t x = 0;
-    for (uint32_t v = 0x80000000u; index; index >>= 1, v ^= v >> 1)
-        if (index & 1u) x ^= v;
-    return x;
+    const auto& t = kSobolDimension1Tables.t;
+    return t[0][index & 0xffu] ^ t[1][(index >> 8) & 0xffu] ^ t[2][(index >> 16) & 0xffu] ^
+           t[3][index >> 24];
 }
 
 // A 32-bit hash (lowbias32) for deriving the per-pair and per-coordinate seeds.
@@ -60,9 +79,11 @@ struct SobolPair {
 // Sample `index` of the pair with this seed.
 constexpr SobolPair shuffledScrambledSobol2D(uint32_t index, uint32_t seed) {
     index = nestedUniformScramble(index, seed);
-    uint32_t x = reverseBits32(index), y = sobolDimension1(index);
     uint32_t sx = hash32(seed ^ 0xa511e9b3u), sy = hash32(seed ^ 0x63d83595u);
-    return {nestedUniformScramble(x, sx), nestedUniformScramble(y, sy)};
+    // The first dimension is the bit-reversed index (van der Corput); its scramble reverses the
+    // bits back first, so the two reversals cancel.
+    return {reverseBits32(laineKarrasPermutation(index, sx)),
+            nestedUniformScramble(sobolDimension1(index), sy)};
 }
 
 }  // namespace kiln

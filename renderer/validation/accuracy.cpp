@@ -79,7 +79,7 @@ ErrorStats compare(const std::vector<Color>& test, const std::vector<Color>& ref
         // E[(t - r_hat)^2] = E[(t - r)^2] + Var(r_hat): remove the reference's share.
         double d2 = (t - r) * (t - r) - refVar;
         se += d2;
-        rel += d2 / (r * r + 0.01);
+        rel += relativeSquaredError(d2, r);
         meanT += t, meanR += r;
     }
     e.rmse = std::sqrt(std::max(0.0, se / double(n)));

@@ -59,7 +59,7 @@ void expectStrategiesAgree(const Scene& s, int maxBounce, int spp) {
             path.accumulateBounces = false;
             path.roulette = Roulette::Off;
             path.sampling = kStrategies[k].sampling;
-            path.powerHeuristic = kStrategies[k].power;
+            path.heuristic = kStrategies[k].power ? MisHeuristic::Power : MisHeuristic::Balance;
             path.lightSamples = kStrategies[k].lightSamples;
             e[k] = render(s, *accel, path, spp);
             ASSERT_GT(e[k].stderror, 0.0) << kStrategies[k].name << " bounce " << bounce;

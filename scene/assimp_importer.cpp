@@ -6,6 +6,7 @@
 #include <assimp/Importer.hpp>
 #include <assimp/LogStream.hpp>
 #include <charconv>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -26,7 +27,10 @@ Mat4 toMat4(const aiMatrix4x4& a) {
 
 Vec3d toVec3d(const aiVector3D& v) { return {v.x, v.y, v.z}; }
 
-Material materialFromAssimp(const aiMaterial* am) {
+// cglRules (COLLADA): an emissive material is a light and nothing else, as in the course. Other
+// formats add the emission to the surface, which still reflects (Lambert, or principled where the
+// file states metallic-roughness).
+Material materialFromAssimp(const aiMaterial* am, bool cglRules) {
     Material m;  // albedo keeps the default grey unless the file states a diffuse colour
     aiString name;
     if (am->Get(AI_MATKEY_NAME, name) == AI_SUCCESS) m.name = name.C_Str();
@@ -36,9 +40,14 @@ Material materialFromAssimp(const aiMaterial* am) {
         m.albedo = Color(diffuse.r, diffuse.g, diffuse.b);
     if (am->Get(AI_MATKEY_COLOR_EMISSIVE, emissive) == AI_SUCCESS &&
         (emissive.r > 0 || emissive.g > 0 || emissive.b > 0)) {
-        m.kind = MaterialKind::Emission;
         m.emission = Color(emissive.r, emissive.g, emissive.b);
+        if (cglRules) m.kind = MaterialKind::Emission;
     }
+    if (cglRules) return m;
+    float strength = 1;  // KHR_materials_emissive_strength
+    if (am->Get(AI_MATKEY_EMISSIVE_INTENSITY, strength) == AI_SUCCESS && std::isfinite(strength))
+        m.emission = m.emission * std::max(0.0f, strength);
+    readPrincipled(am, m);
     return m;
 }
 
@@ -266,7 +275,7 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
     // Materials: through the CGL pass for COLLADA (matched by name or id), else Assimp's colours.
     uint32_t materialBase = uint32_t(scene.materials.size());
     for (unsigned i = 0; i < as->mNumMaterials; ++i) {
-        Material m = materialFromAssimp(as->mMaterials[i]);
+        Material m = materialFromAssimp(as->mMaterials[i], extras != nullptr);
         aiColor3D diffuse;
         bool statesColour = as->mMaterials[i]->Get(AI_MATKEY_COLOR_DIFFUSE, diffuse) == AI_SUCCESS;
         if (extras) {

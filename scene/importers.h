@@ -22,8 +22,12 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
 void readAssimpTextures(const aiScene* as, const aiMaterial* am, const std::string& assetPath,
                         bool statesColour, Material& m, Scene& scene);
 
-// A warning for each feature of an Assimp material that kiln's rendering of it drops (metal, gloss,
-// opacity, transmission, clearcoat, specular colour, an emissive colour turning it into a light).
+// Makes m principled (base colour, metallic, roughness, specular, clearcoat) when the Assimp
+// material states a glTF base colour or a metallic factor; false, m unchanged, otherwise.
+bool readPrincipled(const aiMaterial* am, Material& m);
+
+// A warning for each feature of an Assimp material that kiln's rendering of it drops (gloss and
+// specular colour of Phong materials, opacity, transmission, clearcoat of a non-principled one).
 void warnDroppedMaterialFeatures(const aiMaterial* am, const Material& m, Scene& scene);
 
 // The file name's extension, lower case, with its dot ("" when it has none).

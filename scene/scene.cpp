@@ -18,6 +18,8 @@ const char* toString(MaterialKind kind) {
             return "glossy";
         case MaterialKind::Emission:
             return "emission";
+        case MaterialKind::Principled:
+            return "principled";
     }
     return "unknown";
 }

@@ -23,6 +23,7 @@ Bsdf::Bsdf(const Material& material, MicrofacetModel model, const Color& albedo)
     micro_.alpha = std::max(1e-4f, material.alpha);
     delta_ = material.kind == MaterialKind::Mirror || material.kind == MaterialKind::Glass ||
              material.kind == MaterialKind::Refraction;
+    if (material.kind == MaterialKind::Principled) principled_ = PrincipledBsdf(material, albedo);
 }
 
 bool Bsdf::hasTransmission() const {
@@ -48,6 +49,8 @@ Color Bsdf::eval(const Vec3& wo, const Vec3& wi) const {
             float n = m_.shininess, c = dot(reflectLocal(wo), wi);
             return c > 0 ? m_.reflectance * ((n + 2) / (2 * kPi) * std::pow(c, n)) : Color(0.0f);
         }
+        case MaterialKind::Principled:
+            return principled_.eval(wo, wi);
         default:
             return Color(0.0f);  // delta lobes and emission
     }
@@ -68,6 +71,8 @@ float Bsdf::pdf(const Vec3& wo, const Vec3& wi) const {
         }
         case MaterialKind::Glossy:
             return sameHemisphere(wo, wi) ? phongPdf(reflectLocal(wo), wi, m_.shininess) : 0.0f;
+        case MaterialKind::Principled:
+            return principled_.pdf(wo, wi);
         default:
             return 0.0f;
     }
@@ -149,6 +154,8 @@ bool Bsdf::sample(const Vec3& wo, float uc, float u1, float u2, BsdfSample& out)
             out.f = m_.transmittance * (T / (eta * eta)) / std::abs(wt.z);
             return true;
         }
+        case MaterialKind::Principled:
+            return principled_.sample(wo, uc, u1, u2, out);
         case MaterialKind::Emission:
             return false;
     }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "integrators/microfacet.h"
+#include "integrators/principled_bsdf.h"
 #include "renderer/core/warp.h"
 #include "scene/scene.h"
 
@@ -36,6 +37,7 @@ class Bsdf {
     const Material& m_;
     Color albedo_;
     Microfacet micro_;
+    PrincipledBsdf principled_;  // MaterialKind::Principled only
     bool delta_;
 };
 

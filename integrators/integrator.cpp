@@ -28,6 +28,7 @@ void Integrator::recordSurface(const Ray& ray, const Hit& hit, const SurfaceInte
     if (aovs_.has(AovKind::Albedo)) {
         switch (m.kind) {
             case MaterialKind::Lambertian:
+            case MaterialKind::Principled:  // its base colour
                 r.albedo = colourVaries_
                                ? albedoAt(scene_, m, hit, hit.t * length(ray.dir), pixelSpread_)
                                : m.albedo;

@@ -63,9 +63,12 @@ void PathIntegrator::Li(std::span<CameraSample> batch, RayCounter& counter) cons
 
 namespace {
 
-Lobe lobeOf(MaterialKind kind, bool transmission) {
+// The lobe AOVs split by material: a principled surface counts as diffuse unless fully metallic.
+Lobe lobeOf(const Material& m, bool transmission) {
     if (transmission) return Lobe::Transmission;
-    return kind == MaterialKind::Lambertian ? Lobe::Diffuse : Lobe::Specular;
+    bool diffuse = m.kind == MaterialKind::Lambertian ||
+                   (m.kind == MaterialKind::Principled && m.metallic < 1);
+    return diffuse ? Lobe::Diffuse : Lobe::Specular;
 }
 
 // The BSDF of a diffuse-only scene: Lambert or black (emitters), no Fresnel or specular code at
@@ -329,7 +332,7 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
                     w.shadowRays.push_back(ls.infinite ? spawnRay(si, ls.wi)
                                                        : spawnRayTo(si, ls.p, ls.pError));
                     w.pending.push_back({pi, bounce + 1,
-                                         bounce == 0 ? lobeOf(mat.kind, false) : st.firstLobe,
+                                         bounce == 0 ? lobeOf(mat, false) : st.firstLobe,
                                          st.beta * f * ls.Li * (weight / (pl * perSample))});
                 }
             }
@@ -348,7 +351,7 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
                         continue;
                     w.probeRays.push_back(spawnRay(si, wiWorld));
                     w.probes.push_back({pi, bounce + 1,
-                                        bounce == 0 ? lobeOf(mat.kind, false) : st.firstLobe,
+                                        bounce == 0 ? lobeOf(mat, false) : st.firstLobe,
                                         st.beta * f / (uniformHemispherePdf() * nLight)});
                 }
             }
@@ -368,7 +371,7 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
             // out of it: following either would leak light through thin walls.
             Vec3 wiWorld = frame.toWorld(bs.wi);
             if ((dot(wiWorld, si.ng) > 0) == bs.transmission) continue;
-            if (bounce == 0) st.firstLobe = lobeOf(mat.kind, bs.transmission);
+            if (bounce == 0) st.firstLobe = lobeOf(mat, bs.transmission);
             st.beta *= bs.f * (std::abs(bs.wi.z) / bs.pdf);
             st.specular = bs.delta;
             st.prevPdf = bs.pdf;

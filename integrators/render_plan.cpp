@@ -57,7 +57,7 @@ RenderPlan planFor(const Scene& scene, const Accelerator& accel, const AovReques
             k == MaterialKind::Mirror || k == MaterialKind::Glass || k == MaterialKind::Refraction;
         p.transmission |= k == MaterialKind::Glass || k == MaterialKind::Refraction;
         p.roughConductor |= k == MaterialKind::Microfacet;
-        p.glossy |= k == MaterialKind::Glossy;
+        p.glossy |= k == MaterialKind::Glossy || k == MaterialKind::Principled;
         anyDiffuse |= k == MaterialKind::Lambertian;
         p.diffuseOnly &= k == MaterialKind::Lambertian || k == MaterialKind::Emission;
         p.emitters |= maxComponent(scene.materials[id].emission) > 0;

@@ -26,7 +26,7 @@ struct RenderPlan {
     bool deltaSpecular = false;   // mirror / glass / refraction
     bool transmission = false;    // glass / refraction
     bool roughConductor = false;  // microfacet
-    bool glossy = false;
+    bool glossy = false;          // Phong glossy or principled (GGX) surfaces
     bool deltaLightsOnly =
         false;                // point / spot / directional only: nothing for BSDF sampling to find
     bool areaLights = false;  // area lights and emissive meshes

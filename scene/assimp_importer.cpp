@@ -8,6 +8,7 @@
 #include <assimp/LogStream.hpp>
 #include <charconv>
 #include <cstdio>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -47,7 +48,10 @@ void readFileTangents(const aiMesh* am, const Mat4* xf, TriangleMesh& mesh) {
     }
 }
 
-Material materialFromAssimp(const aiMaterial* am) {
+// cglRules (COLLADA): an emissive material is a light and nothing else, as in the course. Other
+// formats add the emission to the surface, which still reflects (Lambert, or principled where the
+// file states metallic-roughness).
+Material materialFromAssimp(const aiMaterial* am, bool cglRules) {
     Material m;  // albedo keeps the default grey unless the file states a diffuse colour
     aiString name;
     if (am->Get(AI_MATKEY_NAME, name) == AI_SUCCESS) m.name = name.C_Str();
@@ -57,9 +61,14 @@ Material materialFromAssimp(const aiMaterial* am) {
         m.albedo = Color(diffuse.r, diffuse.g, diffuse.b);
     if (am->Get(AI_MATKEY_COLOR_EMISSIVE, emissive) == AI_SUCCESS &&
         (emissive.r > 0 || emissive.g > 0 || emissive.b > 0)) {
-        m.kind = MaterialKind::Emission;
         m.emission = Color(emissive.r, emissive.g, emissive.b);
+        if (cglRules) m.kind = MaterialKind::Emission;
     }
+    if (cglRules) return m;
+    float strength = 1;  // KHR_materials_emissive_strength
+    if (am->Get(AI_MATKEY_EMISSIVE_INTENSITY, strength) == AI_SUCCESS && std::isfinite(strength))
+        m.emission = m.emission * std::max(0.0f, strength);
+    readPrincipled(am, m);
     return m;
 }
 
@@ -469,7 +478,7 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
     // Materials: through the CGL pass for COLLADA (matched by name or id), else Assimp's colours.
     uint32_t materialBase = uint32_t(scene.materials.size());
     for (unsigned i = 0; i < as->mNumMaterials; ++i) {
-        Material m = materialFromAssimp(as->mMaterials[i]);
+        Material m = materialFromAssimp(as->mMaterials[i], extras != nullptr);
         aiColor3D diffuse;
         bool statesColour = as->mMaterials[i]->Get(AI_MATKEY_COLOR_DIFFUSE, diffuse) == AI_SUCCESS;
         if (statesColour && unsetMdlColour(path, as->mMaterials[i])) {

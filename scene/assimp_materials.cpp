@@ -1,7 +1,8 @@
 // What kiln takes from an Assimp material beyond its colours: the base-colour texture becomes a
 // texture source of the scene (a file relative to the asset, or an image embedded in it: glTF "*N"
 // references, data URIs, .glb buffers); every other texture slot and every shading feature kiln
-// cannot honour yet (metal, gloss, opacity, transmission, clearcoat, ...) is named in a warning.
+// cannot honour yet (opacity, transmission, the gloss of Phong materials, ...) is named in a
+// warning.
 #include <assimp/material.h>
 #include <assimp/scene.h>
 
@@ -122,23 +123,25 @@ void warnDroppedMaterialFeatures(const aiMaterial* am, const Material& m, Scene&
     auto warn = [&](const std::string& what) {
         scene.warnings.push_back(materialLabel(m) + ": " + what);
     };
-    float metallic = 0, roughness = 1, opacity = 1, transmission = 0, clearcoat = 0;
-    if (factor(AI_MATKEY_METALLIC_FACTOR, metallic) && metallic > 0)
-        warn("metallic " + number(metallic) + " rendered as a diffuse (Lambert) surface");
-    if (factor(AI_MATKEY_ROUGHNESS_FACTOR, roughness) && roughness < 1)
+    float roughness = 1, opacity = 1, transmission = 0, clearcoat = 0;
+    // Principled materials honour roughness, specular strength and clearcoat
+    // (scene/assimp_principled.cpp); a Phong or Lambert one renders as Lambert.
+    bool principled = m.kind == MaterialKind::Principled;
+    if (!principled && factor(AI_MATKEY_ROUGHNESS_FACTOR, roughness) && roughness < 1)
         warn("roughness " + number(roughness) + ": its glossy reflection is dropped");
     if (factor(AI_MATKEY_OPACITY, opacity) && opacity < 1 && !m.maps.hasAlpha())
         warn("opacity " + number(opacity) + " ignored: rendered opaque");
     if (factor(AI_MATKEY_TRANSMISSION_FACTOR, transmission) && transmission > 0)
         warn("transmission ignored: rendered opaque");
-    if (factor(AI_MATKEY_CLEARCOAT_FACTOR, clearcoat) && clearcoat > 0) warn("clearcoat ignored");
+    if (!principled && factor(AI_MATKEY_CLEARCOAT_FACTOR, clearcoat) && clearcoat > 0)
+        warn("clearcoat ignored");
     aiColor3D specular;
-    if (am->Get(AI_MATKEY_COLOR_SPECULAR, specular) == AI_SUCCESS &&
-        (specular.r > 0 || specular.g > 0 || specular.b > 0) &&
-        !factor(AI_MATKEY_METALLIC_FACTOR, metallic))
+    bool statesSpecular = am->Get(AI_MATKEY_COLOR_SPECULAR, specular) == AI_SUCCESS;
+    if (!principled && statesSpecular && (specular.r > 0 || specular.g > 0 || specular.b > 0))
         warn("specular colour dropped (Lambert)");
-    if (m.kind == MaterialKind::Emission)
-        warn("emissive colour makes the whole material a light; its surface colour is dropped");
+    if (principled && statesSpecular &&
+        (specular.r != specular.g || specular.g != specular.b || specular.r != 1))
+        warn("specular colour tint dropped (KHR_materials_specular colour; its factor is kept)");
 }
 
 void readAssimpTextures(const aiScene* as, const aiMaterial* am, const std::string& assetPath,

@@ -39,8 +39,12 @@ bool assimpTextureSource(const aiScene* as, const std::string& assetPath, const 
                          TextureSource& source, std::string& reason);
 int addTextureSource(Scene& scene, TextureSource&& source);
 
-// A warning for each feature of an Assimp material that kiln's rendering of it drops (metal, gloss,
-// opacity, transmission, clearcoat, specular colour, an emissive colour turning it into a light).
+// Makes m principled (base colour, metallic, roughness, specular, clearcoat) when the Assimp
+// material states a glTF base colour or a metallic factor; false, m unchanged, otherwise.
+bool readPrincipled(const aiMaterial* am, Material& m);
+
+// A warning for each feature of an Assimp material that kiln's rendering of it drops (gloss and
+// specular colour of Phong materials, opacity, transmission, clearcoat of a non-principled one).
 void warnDroppedMaterialFeatures(const aiMaterial* am, const Material& m, Scene& scene);
 
 // A 3DS camera as its editor chunk (0x4700) states it, in the file's Z-up coordinates.

@@ -206,12 +206,51 @@ void merge(Scene& dst, Scene& src, const Mat4& xf, int override, bool asPrototyp
     dst.warnings.insert(dst.warnings.end(), src.warnings.begin(), src.warnings.end());
 }
 
-Material parseMaterial(const std::string& file, pugi::xml_node n) {
+float number(const std::string& file, pugi::xml_node n, const char* attr, float fallback) {
+    return n.attribute(attr) ? float(numbers(file, n, attr, 1)[0]) : fallback;
+}
+
+// A number in [0, 1] (a principled weight or roughness).
+float unitNumber(const std::string& file, pugi::xml_node n, const char* attr, float fallback) {
+    float v = number(file, n, attr, fallback);
+    if (v < 0 || v > 1)
+        throw SceneError(file, "<material> " + std::string(attr) + " must be in [0, 1]");
+    return v;
+}
+
+// The principled material's parameters (glTF metallic-roughness; docs/kiln-scene.md), its
+// base-colour texture a path relative to the .kiln file.
+void parsePrincipled(const std::string& file, pugi::xml_node n, Material& m, Scene& scene) {
+    m.kind = MaterialKind::Principled;
+    m.albedo = Color(0.8f);
+    if (n.attribute("base-color")) m.albedo = Color(vec3(file, n, "base-color"));
+    m.metallic = unitNumber(file, n, "metallic", 0.0f);
+    m.roughness = unitNumber(file, n, "roughness", 0.5f);
+    m.specular = number(file, n, "specular", 1.0f);
+    m.ior = number(file, n, "ior", 1.5f);
+    m.clearcoat = unitNumber(file, n, "clearcoat", 0.0f);
+    m.clearcoatRoughness = unitNumber(file, n, "clearcoat-roughness", 0.03f);
+    if (m.specular < 0 || !(m.ior >= 1))
+        throw SceneError(file, "<material> needs specular >= 0 and ior >= 1");
+    if (pugi::xml_attribute tex = n.attribute("base-color-texture")) {
+        fs::path p = fs::path(file).parent_path() / tex.as_string();
+        if (!fs::is_regular_file(p))
+            throw SceneError(file, "<material> base-color-texture " + p.string() + " not found");
+        TextureSource source;
+        source.name = p.lexically_normal().string();
+        scene.textureSources.push_back(std::move(source));
+        m.albedoTexture = int(scene.textureSources.size()) - 1;
+    }
+}
+
+Material parseMaterial(const std::string& file, pugi::xml_node n, Scene& scene) {
     Material m;
     m.name = n.attribute("name").as_string();
     std::string kind = n.attribute("kind").as_string("lambertian");
     if (kind == "lambertian") {
         if (n.attribute("albedo")) m.albedo = Color(vec3(file, n, "albedo"));
+    } else if (kind == "principled") {
+        parsePrincipled(file, n, m, scene);
     } else if (kind == "mirror") {
         m.kind = MaterialKind::Mirror;
         if (n.attribute("reflectance")) m.reflectance = Color(vec3(file, n, "reflectance"));
@@ -224,8 +263,14 @@ Material parseMaterial(const std::string& file, pugi::xml_node n) {
         m.eta = Color(vec3(file, n, "eta"));
         m.k = Color(vec3(file, n, "k"));
     } else {
-        throw SceneError(
-            file, "unknown material kind '" + kind + "' (lambertian, mirror, glass, microfacet)");
+        throw SceneError(file, "unknown material kind '" + kind +
+                                   "' (lambertian, principled, mirror, glass, microfacet)");
+    }
+    // Emission is added to what the surface reflects (an emitting mesh is also a light).
+    if (n.attribute("emission")) {
+        if (m.kind != MaterialKind::Lambertian && m.kind != MaterialKind::Principled)
+            throw SceneError(file, "<material> emission needs kind lambertian or principled");
+        m.emission = max(Color(vec3(file, n, "emission")), Color(0.0f));
     }
     return m;
 }
@@ -437,9 +482,13 @@ void readKilnScene(const std::string& path, Scene& scene) {
     // so positions given in the file are stored against it whatever the order of the elements.
     std::map<std::string, uint32_t> materials;
     for (pugi::xml_node n : root.children("material")) {
-        checkKnown(path, n, {"name", "kind", "albedo", "reflectance", "ior", "alpha", "eta", "k"});
+        checkKnown(path, n,
+                   {"name", "kind", "albedo", "reflectance", "ior", "alpha", "eta", "k",
+                    // principled (docs/kiln-scene.md)
+                    "base-color", "base-color-texture", "metallic", "roughness", "specular",
+                    "clearcoat", "clearcoat-roughness", "emission"});
         materials[n.attribute("name").as_string()] = uint32_t(scene.materials.size());
-        scene.materials.push_back(parseMaterial(path, n));
+        scene.materials.push_back(parseMaterial(path, n, scene));
     }
     for (pugi::xml_node n : root.children()) {
         std::string tag = n.name();

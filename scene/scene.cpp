@@ -21,6 +21,8 @@ const char* toString(MaterialKind kind) {
             return "glossy";
         case MaterialKind::Emission:
             return "emission";
+        case MaterialKind::Principled:
+            return "principled";
     }
     return "unknown";
 }

@@ -15,7 +15,16 @@
 
 namespace kiln {
 
-enum class MaterialKind { Lambertian, Mirror, Glass, Microfacet, Refraction, Glossy, Emission };
+enum class MaterialKind {
+    Lambertian,
+    Mirror,
+    Glass,
+    Microfacet,
+    Refraction,
+    Glossy,
+    Emission,
+    Principled
+};
 const char* toString(MaterialKind kind);
 
 struct Material {
@@ -34,6 +43,14 @@ struct Material {
     int albedoTexture = -1;     // Scene::textureSources index: multiplies albedo (Lambertian)
     // Maps: normal map, alpha cutout/blend, texture transforms (scene/material_maps.h).
     MaterialMaps maps{};
+    // Principled (glTF 2.0 metallic-roughness, integrators/principled_bsdf.h): base colour is
+    // albedo (with albedoTexture and vertex colours), roughness is the perceptual roughness
+    // (GGX alpha = roughness^2), the dielectric F0 comes from ior (1.5: 0.04) times specular,
+    // emission is added to what the surface reflects.
+    float metallic = 0.0f;
+    float specular = 1.0f;            // KHR_materials_specular factor: scales the dielectric F0
+    float clearcoat = 0.0f;           // KHR_materials_clearcoat: weight of a GGX coat, F0 0.04
+    float clearcoatRoughness = 0.0f;  // its perceptual roughness
 };
 
 enum class LightKind { Area, MeshEmitter, Point, Spot, Directional, Ambient, Environment };

@@ -105,6 +105,14 @@ std::string sceneInfoText(const Scene& scene) {
             case MaterialKind::Emission:
                 os << " radiance " << vec(m.emission);
                 break;
+            case MaterialKind::Principled:
+                os << " base " << vec(m.albedo) << " metallic " << num(m.metallic) << " roughness "
+                   << num(m.roughness) << " specular " << num(m.specular);
+                if (m.clearcoat > 0)
+                    os << " clearcoat " << num(m.clearcoat) << " clearcoat-roughness "
+                       << num(m.clearcoatRoughness);
+                if (maxComponent(m.emission) > 0) os << " emission " << vec(m.emission);
+                break;
         }
         // Maps (scene/material_maps.h).
         if (m.maps.normalTexture >= 0) os << " normal-map scale " << num(m.maps.normalScale);

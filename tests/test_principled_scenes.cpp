@@ -1,0 +1,228 @@
+// The principled material in scenes: glTF metallic-roughness imported and rendered (the metal /
+// roughness sweep's highlights dim monotonically with roughness), emission added to a surface that
+// still reflects, such an emitter found by light sampling and by BSDF-sampled rays alike, and the
+// .kiln principled material with a base-colour texture.
+#include "integrators/bsdf.h"
+#include "integrators/lights.h"
+#include "integrators/path.h"
+#include "integrators/render_plan.h"
+#include "renderer/accel/accelerator.h"
+#include "scene/scene_loader.h"
+#include "test_support.h"
+
+namespace kiln {
+namespace {
+
+Vec3 layer(const Film& f, int x, int y, const std::string& name) {
+    Vec3 v;
+    for (int c = 0; c < 3; ++c) v[c] = f.aov(x, y, test::aovChannel(f, name + "." + "RGB"[c]));
+    return v;
+}
+
+// scenes/metal_rough/grid.kiln: 2 rows x 5 spheres, roughness 0.3 .. 0.9 left to right, camera
+// 6 units away with a 28 degree vertical field: at 200 x 100 pixels a unit spans 100 / (2 * 6 *
+// tan 14) pixels and the sphere centres sit at x = (i - 2) units, y = +-0.55.
+TEST(PrincipledScenes, MetalRoughSweepHighlightsDimWithRoughness) {
+    Scene s = loadScene(test::repo("scenes/metal_rough/grid.kiln"));
+    ASSERT_GE(test::countKind(s, MaterialKind::Principled), 10);  // and Assimp's default
+    const Material* first = test::findMaterial(s, MaterialKind::Principled);
+    EXPECT_FLOAT_EQ(first->metallic, 1.0f);
+    EXPECT_FLOAT_EQ(first->roughness, 0.3f);
+    auto accel = makeEmbreeAccelerator(s);
+    RenderPlan plan = planFor(s, *accel, {});
+    EXPECT_TRUE(plan.glossy);
+    EXPECT_FALSE(plan.diffuseOnly);
+    constexpr int kW = 200, kH = 100;
+    Film f = test::renderJob(s, *accel, test::jobOptions(kW, kH, 16));
+    const float unit = kH / (2 * 6 * std::tan(radians(14.0f)));
+    for (float rowY : {0.55f, -0.55f}) {
+        float previous = std::numeric_limits<float>::infinity();
+        for (int i = 0; i < 5; ++i) {
+            int cx = int(kW / 2 + (i - 2) * unit), cy = int(kH / 2 - rowY * unit);
+            int r = int(0.45f * unit);
+            float peak = 0;
+            for (int y = cy - r; y <= cy + r; ++y)
+                for (int x = cx - r; x <= cx + r; ++x)
+                    peak = std::max(peak, luminance(f.pixel(x, y)));
+            EXPECT_LT(peak, previous) << "row " << rowY << " sphere " << i;
+            EXPECT_GT(peak, 0.0f);
+            previous = peak;
+        }
+    }
+}
+
+// A quad facing the camera: principled red base, blue emission, a point light at the camera.
+Scene emissiveQuad(bool withLight) {
+    Scene s = test::sceneWith(test::gridMesh(1, 1, 4.0f));
+    Material& m = s.materials[0];
+    m.kind = MaterialKind::Principled;
+    m.albedo = Color(0.8f, 0.1f, 0.1f);
+    m.roughness = 0.5f;
+    m.emission = Color(0.0f, 0.0f, 0.5f);
+    s.camera.position = Vec3(2, 2, 5);
+    if (withLight) {
+        Light l;
+        l.kind = LightKind::Point;
+        l.position = s.camera.position;
+        l.radiance = Color(25.0f);  // irradiance 1 at the quad's centre
+        s.lights.push_back(l);
+    }
+    addEmissiveMeshLights(s);
+    return s;
+}
+
+TEST(PrincipledScenes, EmissionIsAddedToTheLitSurface) {
+    AovRequest aovs;
+    aovs.add(AovKind::Emission);
+    aovs.add(AovKind::Direct);
+    for (bool withLight : {false, true}) {
+        Scene s = emissiveQuad(withLight);
+        ASSERT_TRUE(test::findLight(s, LightKind::MeshEmitter));
+        auto accel = makeEmbreeAccelerator(s);
+        constexpr int kSpp = 64;
+        Film f = test::renderJob(s, *accel, test::jobOptions(33, 33, kSpp, PathOptions{}, aovs));
+        // One light sample per vertex, chosen by power: the point light with probability p, its
+        // estimate then divided by p, so a pixel's relative standard deviation is
+        // sqrt((1 - p) / (p spp)).
+        float p = withLight ? LightSet(s).selectPmf(0) : 1.0f;
+        float rel = 5 * std::sqrt((1 - p) / (p * kSpp)) + 0.005f;  // 5 sigma, footprint 0.5 %
+        Color emitted = layer(f, 16, 16, "emission"), direct = layer(f, 16, 16, "direct");
+        EXPECT_NEAR(emitted.z, 0.5f, 1e-5f);
+        EXPECT_NEAR(emitted.x, 0.0f, 1e-6f);
+        // What the light adds: f(n, n) cos * irradiance, as the BSDF evaluates it (the pixel's
+        // footprint moves the light's distance and angle by well under 1 %).
+        Color lit =
+            withLight ? Bsdf(s.materials[0]).eval(Vec3(0, 0, 1), Vec3(0, 0, 1)) : Color(0.0f);
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(direct[c], lit[c], rel * lit[c] + 1e-6f);
+        Color beauty = f.pixel(16, 16);
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(beauty[c], emitted[c] + lit[c], rel * lit[c] + 1e-5f);
+        if (withLight) {
+            EXPECT_GT(lit.x, 0.1f);  // the red base colour, lit
+        }
+    }
+}
+
+// A principled emitter lighting a Lambert floor: light sampling alone and MIS with BSDF sampling
+// agree (the emitter is a light NEE samples and a surface bounce rays find, weighted consistently).
+TEST(PrincipledScenes, EmittingSurfaceIsALightForNeeAndMis) {
+    Scene s = test::sceneWith(test::gridMesh(1, 1, 4.0f));  // floor at z = 0, 0..4
+    TriangleMesh lamp = test::gridMesh(1, 1, 1.0f);
+    for (size_t v = 0; v < lamp.vertexCount(); ++v) {  // a 1 x 1 lamp at z = 1.5 above the centre
+        lamp.positions[3 * v] += 1.5f, lamp.positions[3 * v + 1] += 1.5f;
+        lamp.positions[3 * v + 2] = 1.5f;
+    }
+    lamp.materialIds = {1};
+    s.meshes.push_back(lamp);
+    Material emitter;
+    emitter.kind = MaterialKind::Principled;
+    emitter.albedo = Color(0.5f);
+    emitter.roughness = 0.4f;
+    emitter.emission = Color(4.0f);
+    s.materials.push_back(emitter);
+    s.camera.position = Vec3(2, -3, 4);
+    s.camera.forward = normalize(Vec3(2, 2, 0) - s.camera.position);
+    s.camera.up = Vec3(0, 0, 1);
+    addEmissiveMeshLights(s);
+    ASSERT_EQ(s.lights.size(), 1u);
+    auto accel = makeEmbreeAccelerator(s);
+    RenderPlan plan = planFor(s, *accel, {});
+    EXPECT_TRUE(plan.emitters);
+    EXPECT_TRUE(plan.areaLights);
+    auto render = [&](DirectSampling sampling) {
+        PathOptions o;
+        o.sampling = sampling;
+        o.maxDepth = 1;
+        return test::renderJob(s, *accel, test::jobOptions(32, 24, 32, o));
+    };
+    Film mis = render(DirectSampling::Mis), light = render(DirectSampling::Light);
+    // Paired pixel differences: their mean is 0 when both estimate the same image; its standard
+    // error comes from their spread.
+    double sum = 0, sum2 = 0, lit = 0;
+    int n = 0;
+    for (int y = 0; y < 24; ++y)
+        for (int x = 0; x < 32; ++x) {
+            double d = luminance(mis.pixel(x, y)) - luminance(light.pixel(x, y));
+            sum += d, sum2 += d * d, lit += luminance(light.pixel(x, y)), ++n;
+        }
+    double mean = sum / n, se = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n);
+    EXPECT_GT(lit / n, 0.05) << "the emitter lights the floor";
+    EXPECT_NEAR(mean, 0.0, 5 * se + 1e-6);
+}
+
+// .kiln: kind="principled" with its parameters and a base-colour texture beside the file.
+TEST(PrincipledScenes, KilnPrincipledMaterialWithTexture) {
+    auto dir = test::scratchDir();
+    test::writeFile(dir / "quad.obj",
+                    "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                    "f 1/1 2/2 3/3\nf 1/1 3/3 4/4\n");
+    std::filesystem::copy_file("/usr/share/assimp/models/LWO/LWO2/boxuv.png", dir / "base.png");
+    test::writeFile(dir / "t.kiln",
+                    "<kiln-scene>\n"
+                    "  <material name=\"p\" kind=\"principled\" base-color=\"0.9 0.5 0.1\" "
+                    "metallic=\"0.25\" roughness=\"0.7\" specular=\"0.5\" clearcoat=\"1\" "
+                    "clearcoat-roughness=\"0.1\" emission=\"0 0.2 0\" "
+                    "base-color-texture=\"base.png\"/>\n"
+                    "  <mesh file=\"quad.obj\" material=\"p\"/>\n"
+                    "</kiln-scene>\n");
+    // The texture path is resolved beside the .kiln file; a missing one is an error.
+    test::writeFile(dir / "missing.kiln",
+                    "<kiln-scene><material name=\"p\" kind=\"principled\" "
+                    "base-color-texture=\"nope.png\"/></kiln-scene>\n");
+    test::expectError((dir / "missing.kiln").string(), "nope.png not found");
+    test::writeFile(dir / "range.kiln",
+                    "<kiln-scene><material name=\"p\" kind=\"principled\" metallic=\"2\"/>"
+                    "</kiln-scene>\n");
+    test::expectError((dir / "range.kiln").string(), "metallic must be in [0, 1]");
+    Scene s = loadScene((dir / "t.kiln").string());
+    for (const std::string& w : s.warnings) EXPECT_EQ(w.find("base.png"), std::string::npos) << w;
+    const Material* m = test::findMaterial(s, MaterialKind::Principled);
+    ASSERT_TRUE(m);
+    EXPECT_EQ(m->albedo, Color(0.9f, 0.5f, 0.1f));
+    EXPECT_FLOAT_EQ(m->metallic, 0.25f);
+    EXPECT_FLOAT_EQ(m->roughness, 0.7f);
+    EXPECT_FLOAT_EQ(m->specular, 0.5f);
+    EXPECT_FLOAT_EQ(m->clearcoat, 1.0f);
+    EXPECT_FLOAT_EQ(m->clearcoatRoughness, 0.1f);
+    EXPECT_EQ(m->emission, Color(0.0f, 0.2f, 0.0f));
+    ASSERT_GE(m->albedoTexture, 0);
+    EXPECT_EQ(s.textureSources[size_t(m->albedoTexture)].name, (dir / "base.png").string());
+}
+
+}  // namespace
+}  // namespace kiln
+
+namespace kiln {
+namespace {
+
+// Assimp's samples: glTF metallic-roughness becomes the principled material; an FBX emissive
+// colour is added to a surface that keeps its diffuse colour (it used to replace it).
+TEST(PrincipledImport, GltfMetallicRoughnessAndFbxEmission) {
+    Scene box = loadScene("/usr/share/assimp/models/glTF2/BoxTextured-glTF-Binary/BoxTextured.glb");
+    const Material* textured = test::findMaterial(box, MaterialKind::Principled);
+    ASSERT_TRUE(textured);
+    EXPECT_FLOAT_EQ(textured->metallic, 0.0f);  // the file's metallicFactor 0
+    EXPECT_FLOAT_EQ(textured->roughness, 1.0f);
+    EXPECT_GE(textured->albedoTexture, 0);
+
+    Scene cube = loadScene("/usr/share/assimp/models/FBX/phong_cube.fbx");
+    const Material* phong = test::findMaterial(cube, MaterialKind::Lambertian);
+    ASSERT_TRUE(phong);
+    EXPECT_EQ(test::countKind(cube, MaterialKind::Emission), 0);
+    EXPECT_EQ(phong->albedo, Color(0.5f, 0.25f, 0.25f));
+    EXPECT_EQ(phong->emission, Color(0.25f, 0.125f, 0.25f));
+    EXPECT_TRUE(test::findLight(cube, LightKind::MeshEmitter));
+
+    Scene pbr = loadScene("/usr/share/assimp/models/FBX/maxPbrMaterial_metalRough.fbx");
+    EXPECT_EQ(test::countKind(pbr, MaterialKind::Emission), 0);
+}
+
+// COLLADA keeps the course's rules: an emissive material is a light and nothing else.
+TEST(PrincipledImport, ColladaEmittersStayEmission) {
+    Scene s = loadScene(test::cs184("sky/CBspheres_lambertian.dae"));
+    EXPECT_EQ(test::countKind(s, MaterialKind::Principled), 0);
+    EXPECT_GE(test::countKind(s, MaterialKind::Emission), 1);
+}
+
+}  // namespace
+}  // namespace kiln

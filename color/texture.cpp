@@ -110,7 +110,13 @@ struct TextureSet::Impl {
     std::vector<OIIO::TextureSystem::TextureHandle*> handles;
     std::vector<int> channels;  // per handle
     ~Impl() {
-        if (system) OIIO::TextureSystem::destroy(system, true);
+        // Never destroyed: OIIO's per-thread micro-cache outlives a TextureSystem and keys its last
+        // tile by the file record's address, so a later scene's texture allocated at a freed
+        // record's address read the earlier scene's tiles (NormalMap tests after AssetScenes ones
+        // in one process). Its tiles and open files are released; the small file records stay.
+        if (!system) return;
+        system->imagecache()->invalidate_all(true);
+        system->imagecache()->close_all();
     }
 };
 

@@ -347,9 +347,10 @@ void applyOverride(const std::string& path, pugi::xml_node n,
     if (o.attribute("spec")) {
         // A file named by the spec is relative to this .kiln, as every path in it.
         std::string spec = o.attribute("spec").as_string();
-        if (spec != "clay" && spec.rfind("lambertian:", 0) != 0 && fs::path(spec).is_relative())
+        if (spec != "clay" && spec != kDiffuseOverride && spec.rfind("lambertian:", 0) != 0 &&
+            fs::path(spec).is_relative())
             spec = (fs::path(path).parent_path() / spec).string();
-        overrideMaterials(part, parseMaterialOverride(spec));
+        overrideMaterials(part, spec);
         return;
     }
     auto it = materials.find(o.attribute("material").as_string());

@@ -44,6 +44,10 @@ Material materialFromFile(const std::string& path, const std::string& name) {
 Material parseMaterialOverride(const std::string& spec) {
     Material m;
     m.name = "override";
+    if (spec == kDiffuseOverride) {  // applied per material by overrideMaterials(scene, spec)
+        m.name = kDiffuseOverride;
+        return m;
+    }
     if (spec == "clay") {
         m.name = "clay";
         m.albedo = Color(0.5f);
@@ -60,17 +64,35 @@ Material parseMaterialOverride(const std::string& spec) {
         if (colon != std::string::npos) path = spec.substr(0, colon), name = spec.substr(colon + 1);
     }
     if (!std::filesystem::exists(path))
-        throw SceneError(spec,
-                         "not a material override: use clay, lambertian:G, lambertian:R,G,B, "
-                         "or a .kiln file with a <material> (FILE or FILE:NAME)");
+        throw SceneError(
+            spec,
+            "not a material override: use clay, diffuse, lambertian:G, lambertian:R,G,B, "
+            "or a .kiln file with a <material> (FILE or FILE:NAME)");
     if (lowerExtension(path) != ".kiln")
         throw SceneError(path, "a material override file must be a .kiln scene with <material>");
     return materialFromFile(path, name);
 }
 
+namespace {
+bool emits(const Material& m) {
+    return m.kind == MaterialKind::Emission || maxComponent(m.emission) > 0;
+}
+}  // namespace
+
 void overrideMaterials(Scene& scene, const Material& m) {
     for (Material& old : scene.materials)
-        if (old.kind != MaterialKind::Emission && !(maxComponent(old.emission) > 0)) old = m;
+        if (!emits(old)) old = m;
+}
+
+void overrideMaterials(Scene& scene, const std::string& spec) {
+    if (spec != kDiffuseOverride) return overrideMaterials(scene, parseMaterialOverride(spec));
+    // Each surface keeps its base colour, textures, vertex colours and maps; only its reflection
+    // becomes Lambert (a diffuse-only look, and exact Lambert shading for tests).
+    for (Material& m : scene.materials)
+        if (!emits(m) && m.kind != MaterialKind::Lambertian) {
+            if (m.kind != MaterialKind::Principled) m.albedo = Material{}.albedo;
+            m.kind = MaterialKind::Lambertian;
+        }
 }
 
 }  // namespace kiln

@@ -9,10 +9,10 @@
 #include <array>
 #include <bit>
 #include <chrono>
-#include <optional>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <tuple>
 
 #include "scene/framing.h"
@@ -258,12 +258,10 @@ Scene loadScene(const std::string& path, const LoadOptions& options) {
     Scene scene;
     scene.sourcePath = path;
     // Checked before the (maybe long) import: a bad spec is a quick one-line error.
-    std::optional<Material> override;
-    if (!options.materialOverride.empty())
-        override = parseMaterialOverride(options.materialOverride);
+    if (!options.materialOverride.empty()) parseMaterialOverride(options.materialOverride);
     importOrRefuse(path, scene);
     std::string ext = lowerExtension(path);
-    if (override) overrideMaterials(scene, *override);
+    if (!options.materialOverride.empty()) overrideMaterials(scene, options.materialOverride);
     validateScene(scene);
     addMissingTangents(scene);
     recenterScene(scene);

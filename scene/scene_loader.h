@@ -32,13 +32,18 @@ struct EnumNames<LoadOptions::CameraRule> {
         {LoadOptions::CameraRule::File, "file"}, {LoadOptions::CameraRule::Framed, "framed"}};
 };
 
-// The material a --material-override names: "clay" (Lambert grey 0.5), "lambertian:G" or
+// The material a --material-override names: "clay" (Lambert grey 0.5), "diffuse" (see below),
+// "lambertian:G" or
 // "lambertian:R,G,B", or a .kiln file with a <material> (FILE, or FILE:NAME for one of several).
 // Throws SceneError naming the spec or file.
 Material parseMaterialOverride(const std::string& spec);
 
 // Replaces every material of the scene that does not emit by `m` (emitters keep lighting it).
 void overrideMaterials(Scene& scene, const Material& m);
+// The same for a spec; "diffuse" keeps every material's base colour, textures and maps and makes
+// it reflect as Lambert.
+void overrideMaterials(Scene& scene, const std::string& spec);
+constexpr const char* kDiffuseOverride = "diffuse";
 
 // Throws SceneError (one line: file and problem) on anything it cannot load.
 Scene loadScene(const std::string& path, const LoadOptions& options = {});

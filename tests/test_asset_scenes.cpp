@@ -65,10 +65,13 @@ TEST(AssetScenes, TexturedCheckerTexelsAndMean) {
 }
 
 // The lit render of the same quad: one directional light (KHR_lights_punctual, intensity 3 lux,
-// tilted 30 degrees) on a Lambertian plane, nothing else to bounce off, so every pixel is
-// albedo * E cos(30) / pi exactly: the light is converted with its intensity as irradiance.
+// tilted 30 degrees) on the plane rendered Lambertian (--material-override diffuse), nothing else
+// to bounce off, so every pixel is albedo * E cos(30) / pi exactly: the light is converted with its
+// intensity as irradiance.
 TEST(AssetScenes, GltfDirectionalLightIrradianceIsItsLux) {
-    Scene s = loadScene(assetScene("textured.gltf"));
+    LoadOptions diffuse;  // the glTF material is principled; its Lambert look is exact
+    diffuse.materialOverride = kDiffuseOverride;
+    Scene s = loadScene(assetScene("textured.gltf"), diffuse);
     ASSERT_EQ(s.lights.size(), 1u);
     EXPECT_EQ(s.lights[0].kind, LightKind::Directional);
     Film f = renderWithAlbedo(s, 4);

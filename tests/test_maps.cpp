@@ -66,6 +66,18 @@ TEST(NormalMap, TangentAndBitangentPointAlongIncreasingUAndV) {
     EXPECT_NEAR(up.pixel(32, 32).x, lambert(0.8f), 1e-4f);
 }
 
+// Scenes rendered one after another in one process (kiln batch, the test binary) each see their
+// own textures: OIIO's per-thread micro-cache once handed a later scene an earlier one's tiles.
+TEST(NormalMap, ALaterSceneReadsItsOwnTextures) {
+    Film first = render(loadScene(asset("maps_normal_up.kiln")));
+    for (const char* other : {"textured.gltf", "maps_normal_side.kiln", "maps_alpha_mask.kiln"})
+        render(loadScene(asset(other)));
+    Film again = render(loadScene(asset("maps_normal_up.kiln")));
+    for (int y = 0; y < first.height(); ++y)
+        for (int x = 0; x < first.width(); ++x)
+            ASSERT_EQ(first.pixel(x, y), again.pixel(x, y)) << x << " " << y;
+}
+
 TEST(NormalMap, GltfScaleShortensTheTilt) {
     Scene s = loadScene(asset("maps_normal_scale.kiln"));
     EXPECT_EQ(s.materials[0].maps.normalScale, 0.5f);

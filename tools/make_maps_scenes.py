@@ -102,9 +102,11 @@ def gltf(path, quads, materials, images, with_tangents=False):
         json.dump(doc, f, indent=1)
 
 
+# glTF materials import as kiln's principled material; the tests' expected pixels are Lambert's
+# (albedo E cos / pi), so the wrappers render the assets diffuse (base colour, textures and maps kept).
 def kiln(path, include, light_dir, camera, extra=""):
     with open(os.path.join(OUT, path), "w") as f:
-        f.write('<kiln-scene>\n  <include file="%s"/>\n%s'
+        f.write('<kiln-scene>\n  <include file="%s">\n    <override spec="diffuse"/>\n  </include>\n%s'
                 '  <light kind="directional" radiance="3 3 3" direction="%s"/>\n'
                 '  <camera position="0 4 0" look-at="0 0 0" up="0 0 -1" fov="%s"/>\n'
                 '</kiln-scene>\n' % (include, extra, light_dir, camera))

@@ -151,6 +151,15 @@ class Parser {
                 break;
             }
         }
+        // The standard <emission><color>: under the CGL rules an emitting material is a light
+        // (a CGL <emission> extra, below, states its radiance instead).
+        for (const char* shader : {"phong", "lambert", "blinn", "constant"}) {
+            pugi::xml_node emission = common.child(shader).child("emission");
+            if (!emission.child("color")) continue;
+            Color radiance = expectColor(file_, emission, "color");
+            if (maxComponent(radiance) > 0) m.kind = MaterialKind::Emission, m.emission = radiance;
+            break;
+        }
         pugi::xml_node tech = extraTechnique(effect);
         pugi::xml_node kind = tech.first_child();
         if (!kind) return m;

@@ -1,5 +1,6 @@
 // Every scene of the CS184 library imports with the counts of its SOURCES.md and the CGL extras it
 // holds.
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "scene/scene_info.h"
@@ -194,6 +195,31 @@ TEST(Cs184Extras, InfoJsonHasTheDocumentedKeys) {
     EXPECT_EQ(json["lights"], nlohmann::json({{"area", 1}}));
     for (const char* key : {"meshes", "camera", "bbox", "load_seconds"})
         EXPECT_TRUE(json.contains(key)) << key << "\n" << json;
+}
+
+// A standard COLLADA <emission><color> (no CGL extra) is a light too, as the CGL rules make every
+// emitting material; it used to become a black Lambertian surface and the default rig.
+TEST(Cs184Extras, StandardColladaEmissionIsALight) {
+    std::ifstream in(test::repo("scenes/cornell.dae"));
+    std::string dae((std::istreambuf_iterator<char>(in)), {});
+    const std::string cgl =
+        "<lambert><diffuse><color>0.78 0.78 0.78 1</color></diffuse></lambert></technique>"
+        "</profile_COMMON><extra><technique profile=\"CGL\"><emission><radiance>8 8 8</radiance>"
+        "</emission></technique></extra>";
+    const std::string standard =
+        "<lambert><emission><color>8 8 8 1</color></emission><diffuse><color>0.78 0.78 0.78 "
+        "1</color></diffuse></lambert></technique></profile_COMMON>";
+    size_t at = dae.find(cgl);
+    ASSERT_NE(at, std::string::npos);
+    dae.replace(at, cgl.size(), standard);
+    Scene s = loadScene(test::writeFile(test::scratchDir() / "standard_emission.dae", dae));
+    Scene original = loadScene(test::repo("scenes/cornell.dae"));
+    ASSERT_EQ(s.materials.size(), original.materials.size());
+    for (size_t i = 0; i < s.materials.size(); ++i) {
+        EXPECT_EQ(s.materials[i].kind, original.materials[i].kind) << s.materials[i].name;
+        EXPECT_EQ(s.materials[i].emission, original.materials[i].emission) << s.materials[i].name;
+    }
+    EXPECT_EQ(s.lights.size(), original.lights.size());
 }
 
 }  // namespace

@@ -171,16 +171,12 @@ TEST(AssetWarnings, NoneIsACountOfZero) {
 // rendered plain white without a word); the ones read or warned about elsewhere are not.
 TEST(AssetWarnings, UnreadGltfExtensionsAreNamed) {
     const std::string dir = "/usr/share/assimp/models/glTF2/";
-    auto naming = [](const Scene& s, const std::string& what) {
-        return std::count_if(s.warnings.begin(), s.warnings.end(),
-                             [&](const std::string& w) { return w.find(what) != w.npos; });
-    };
     Scene webgl = loadScene(dir + "BoxTextured-glTF-techniqueWebGL/BoxTextured.gltf");
-    EXPECT_EQ(naming(webgl, "glTF extension KHR_technique_webgl is not read"), 1);
+    EXPECT_EQ(test::warningsNaming(webgl, "glTF extension KHR_technique_webgl is not read"), 1);
     for (const char* read : {"BoxTextured-glTF-Binary/BoxTextured.glb",
                              "BoxTextured-glTF-pbrSpecularGlossiness/BoxTextured.gltf",
                              "ClearCoat-glTF/ClearCoatTest.gltf"})
-        EXPECT_EQ(naming(loadScene(dir + read), "glTF extension"), 0) << read;
+        EXPECT_EQ(test::warningsNaming(loadScene(dir + read), "glTF extension"), 0) << read;
 }
 
 }  // namespace

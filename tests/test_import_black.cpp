@@ -11,12 +11,6 @@
 namespace kiln {
 namespace {
 
-bool hasWarning(const Scene& s, const std::string& text) {
-    for (const std::string& w : s.warnings)
-        if (w.find(text) != std::string::npos) return true;
-    return false;
-}
-
 std::string corpus(const std::string& rel) {
     std::string path = "/usr/share/assimp/models/" + rel;
     EXPECT_TRUE(std::filesystem::exists(path)) << "assimp-testmodels (tools/setup.sh) missing";
@@ -30,12 +24,12 @@ TEST(ImportBlack, BlackMaterialsAreNamedInAWarning) {
     Scene s = loadScene(test::writeFile(
         dir / "black.obj",
         "mtllib black.mtl\nusemtl black\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n"));
-    EXPECT_TRUE(hasWarning(s, "diffuse colour is black"));
+    EXPECT_TRUE(test::hasWarning(s, "diffuse colour is black"));
     test::writeFile(dir / "grey.mtl", "newmtl grey\nKd 0.5 0.5 0.5\n");
     Scene grey = loadScene(test::writeFile(
         dir / "grey.obj",
         "mtllib grey.mtl\nusemtl grey\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n"));
-    EXPECT_FALSE(hasWarning(grey, "diffuse colour is black"));
+    EXPECT_FALSE(test::hasWarning(grey, "diffuse colour is black"));
 }
 
 // A point light of intensity 1 at 1000 units from a unit quad gives it 1e-6: too dim to see. The
@@ -49,8 +43,8 @@ TEST(ImportBlack, LightsTooFarForTheirIntensityWarn) {
 <light kind="point" radiance="1 1 1" position=")" +
                                              position + R"("/></kiln-scene>)"));
     };
-    EXPECT_TRUE(hasWarning(scene("0.5 0.5 1000"), "irradiance of at most 1e-06"));
-    EXPECT_FALSE(hasWarning(scene("0.5 0.5 2"), "irradiance of at most"));
+    EXPECT_TRUE(test::hasWarning(scene("0.5 0.5 1000"), "irradiance of at most 1e-06"));
+    EXPECT_FALSE(test::hasWarning(scene("0.5 0.5 2"), "irradiance of at most"));
 }
 
 // AC's SphereWithLight has no camera and its light behind the sphere as the default front view
@@ -81,7 +75,7 @@ TEST(ImportBlack, FbxLightsFallOffAsTheFileStates) {
     EXPECT_TRUE(lamp->attenuationStated);
     EXPECT_NEAR(lamp->attenuationLinear, 0.000666667f, 1e-8f);
     EXPECT_NEAR(lamp->falloffDenominator(600.0f * 600.0f), 0.4f, 1e-5f);
-    EXPECT_FALSE(hasWarning(s, "irradiance of at most"));
+    EXPECT_FALSE(test::hasWarning(s, "irradiance of at most"));
     Light physical;
     EXPECT_EQ(physical.falloffDenominator(2.5f), 2.5f);
 }
@@ -91,17 +85,17 @@ TEST(ImportBlack, FbxLightsFallOffAsTheFileStates) {
 TEST(ImportBlack, AssimpReaderLimitsAreWarnings) {
     Scene mdl = loadScene(corpus("MDL/MDL5 (3DGS A5)/PhosphoricAcid_MDl5.mdl"));
     EXPECT_EQ(mdl.materials[0].albedo, Material{}.albedo);
-    EXPECT_TRUE(hasWarning(mdl, "has no skin"));
+    EXPECT_TRUE(test::hasWarning(mdl, "has no skin"));
     Scene q3d = loadScene(corpus("Q3D/WusonOrange.q3s"));
     EXPECT_FALSE(q3d.hasFileCamera);
-    EXPECT_TRUE(hasWarning(q3d, "Quick3D"));
+    EXPECT_TRUE(test::hasWarning(q3d, "Quick3D"));
     EXPECT_NE(test::findLight(q3d, LightKind::Directional), nullptr);  // the default rig
     Scene amf = loadScene(corpus("AMF/test8.amf"));
-    EXPECT_TRUE(hasWarning(amf, "constellation"));
-    EXPECT_TRUE(hasWarning(amf, "first <volume>"));
+    EXPECT_TRUE(test::hasWarning(amf, "constellation"));
+    EXPECT_TRUE(test::hasWarning(amf, "first <volume>"));
     Scene zeros = loadScene(corpus("AMF/test1.amf"));  // no colours in the file: Assimp's zeros
     EXPECT_TRUE(zeros.meshes[0].colors.empty());
-    EXPECT_TRUE(hasWarning(zeros, "(0, 0, 0, 0)"));
+    EXPECT_TRUE(test::hasWarning(zeros, "(0, 0, 0, 0)"));
     Scene blend = loadScene(corpus("BLEND/BlenderDefault_250.blend"));  // Assimp: (-1, -1, -1, -1)
     EXPECT_TRUE(blend.meshes[0].colors.empty());
 }

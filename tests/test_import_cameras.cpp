@@ -23,12 +23,6 @@ Scene loadAsFile(const std::string& path) {
     return loadScene(path, o);
 }
 
-bool hasWarning(const Scene& s, const std::string& text) {
-    for (const std::string& w : s.warnings)
-        if (w.find(text) != std::string::npos) return true;
-    return false;
-}
-
 // yfov 0.7 rad (40.107 degrees) at aspect 1.5, node at (0.5, 0.5, 3): Assimp reports
 // mHorizontalFOV = yfov * aspect and copies the node's translation into mPosition.
 TEST(ImportCameras, GltfFieldOfViewAndPositionAsWritten) {
@@ -145,7 +139,7 @@ TEST(ImportCameras, ColladaOrthographicIsScaledAndNotReframed) {
     framed.cameraRule = LoadOptions::CameraRule::Framed;
     std::string path = (dir / "ortho.dae").string();
     Scene f = loadScene(path, framed);
-    EXPECT_TRUE(hasWarning(f, "CS184 framing rule does not apply"));
+    EXPECT_TRUE(test::hasWarning(f, "CS184 framing rule does not apply"));
     EXPECT_NEAR(f.world(f.camera.position).x, p.x, 1e-6);
 }
 

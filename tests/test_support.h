@@ -97,6 +97,16 @@ inline int countKind(const Scene& s, MaterialKind kind) {
     for (const Material& m : s.materials) n += m.kind == kind;
     return n;
 }
+// How many of the scene's warnings name `text`.
+inline int warningsNaming(const Scene& s, const std::string& text) {
+    int n = 0;
+    for (const std::string& w : s.warnings) n += w.find(text) != std::string::npos;
+    return n;
+}
+inline bool hasWarning(const Scene& s, const std::string& text) {
+    return warningsNaming(s, text) > 0;
+}
+
 inline const Light* findLight(const Scene& s, LightKind kind) {
     for (const Light& l : s.lights)
         if (l.kind == kind) return &l;

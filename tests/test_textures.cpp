@@ -15,12 +15,6 @@
 namespace kiln {
 namespace {
 
-int warningsNaming(const Scene& s, const std::string& what) {
-    int n = 0;
-    for (const std::string& w : s.warnings) n += w.find(what) != std::string::npos;
-    return n;
-}
-
 using TexelFn = std::function<uint8_t(int x, int y, int c)>;
 
 void writePng(const std::filesystem::path& path, int w, int h, const TexelFn& texel) {
@@ -150,7 +144,7 @@ TEST(Textures, MipMappedFilesAreUsedAsStored) {
                                                  (dir / "checker.tx").string(), config));
     Scene s = loadScene(writeTexturedQuad(dir, "checker.tx"));
     ASSERT_EQ(s.textureSources.size(), 1u);
-    EXPECT_EQ(warningsNaming(s, "texture"), 0);
+    EXPECT_EQ(test::warningsNaming(s, "texture"), 0);
     Film f = renderAlbedo(s, 16, 16, 4);
     int checked = 0;
     forEachQuadPixel(f, [&](int x, int y, float, float) {
@@ -164,7 +158,7 @@ TEST(Textures, MipMappedFilesAreUsedAsStored) {
     ASSERT_TRUE(OIIO::ImageBufAlgo::make_texture(OIIO::ImageBufAlgo::MakeTxTexture, codes,
                                                  (dir / "codes.tx").string(), config));
     Scene eight = loadScene(writeTexturedQuad(dir, "codes.tx"));
-    EXPECT_EQ(warningsNaming(eight, "8-bit MIP-mapped texture used as stored"), 1);
+    EXPECT_EQ(test::warningsNaming(eight, "8-bit MIP-mapped texture used as stored"), 1);
 }
 
 // Fraction of pixels whose albedo is dominated by channel c (the Cesium logo: blue sky, green
@@ -245,19 +239,19 @@ namespace {
 // material (no warning either).
 TEST(MaterialWarnings, FeaturesKilnDropsAreNamed) {
     Scene s = loadScene("/usr/share/assimp/models/FBX/phong_cube.fbx");
-    EXPECT_EQ(warningsNaming(s, "opacity 0.5 ignored"), 1);
-    EXPECT_EQ(warningsNaming(s, "specular colour dropped"), 1);
-    EXPECT_EQ(warningsNaming(s, "emissive"), 0);
+    EXPECT_EQ(test::warningsNaming(s, "opacity 0.5 ignored"), 1);
+    EXPECT_EQ(test::warningsNaming(s, "specular colour dropped"), 1);
+    EXPECT_EQ(test::warningsNaming(s, "emissive"), 0);
     Scene box = loadScene("/usr/share/assimp/models/glTF2/BoxTextured-glTF-Binary/BoxTextured.glb");
     // Its material states metallic 0; the metallic 1 of the default material Assimp's glTF
     // reader adds and no mesh uses is no one's to warn about.
-    EXPECT_EQ(warningsNaming(box, "metallic"), 0);
+    EXPECT_EQ(test::warningsNaming(box, "metallic"), 0);
 }
 
 // The CS184 files follow the CGL rules: no material warnings there.
 TEST(MaterialWarnings, Cs184ScenesGetNone) {
     Scene s = loadScene(test::cs184("sky/CBspheres_lambertian.dae"));
-    EXPECT_EQ(warningsNaming(s, "material"), 0);
+    EXPECT_EQ(test::warningsNaming(s, "material"), 0);
 }
 
 }  // namespace

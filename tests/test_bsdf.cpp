@@ -1,5 +1,6 @@
 // BSDFs: sampling agrees with the pdf (chi-square), sample() agrees with eval()/pdf(), energy
 // bounds, and the delta lobes' directions and Fresnel-weighted choices.
+#include "bsdf_check.h"
 #include "chi2.h"
 #include "integrators/bsdf.h"
 #include "integrators/fresnel.h"
@@ -56,13 +57,7 @@ TEST_P(BsdfSampling, ChiSquareAndConsistency) {
                 BsdfSample bs;
                 float uc = s.next1D(), u1 = s.next1D(), u2 = s.next1D();
                 if (!bsdf.sample(w, uc, u1, u2, bs)) return std::nullopt;
-                // The sample's value and density are the ones eval() and pdf() give for that
-                // direction.
-                float pdf = bsdf.pdf(w, bs.wi);
-                Color f = bsdf.eval(w, bs.wi);
-                if (std::abs(pdf - bs.pdf) > 1e-3f * pdf ||
-                    maxComponent(abs(f - bs.f)) > 1e-3f * maxComponent(f))
-                    ++inconsistent;
+                if (test::disagreesWithEvalAndPdf(bsdf, w, bs)) ++inconsistent;
                 return bs.wi;
             };
             test::Chi2Result r = test::chi2Directions(

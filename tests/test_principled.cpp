@@ -2,6 +2,7 @@
 // clearcoat settings, sample() agrees with eval() and pdf(), and the white furnace: a white
 // dielectric reflects at most what arrives, a white metal (F0 = 1) exactly the single-scattering
 // GGX albedo (1 minus the energy GGX without multiple scattering loses).
+#include "bsdf_check.h"
 #include "chi2.h"
 #include "integrators/bsdf.h"
 #include "test_support.h"
@@ -54,11 +55,8 @@ TEST_P(PrincipledSampling, ChiSquareAndConsistency) {
                 BsdfSample bs;
                 float uc = s.next1D(), u1 = s.next1D(), u2 = s.next1D();
                 if (!bsdf.sample(w, uc, u1, u2, bs)) return std::nullopt;
-                float pdf = bsdf.pdf(w, bs.wi);
-                Color f = bsdf.eval(w, bs.wi);
                 if (bs.delta || bs.transmission || bs.wi.z * w.z <= 0 ||
-                    std::abs(pdf - bs.pdf) > 1e-3f * pdf ||
-                    maxComponent(abs(f - bs.f)) > 1e-3f * maxComponent(f))
+                    test::disagreesWithEvalAndPdf(bsdf, w, bs))
                     ++inconsistent;
                 return bs.wi;
             };

@@ -90,6 +90,14 @@ daemon_pid() {
     echo "$pid"
 }
 
+# True while the process launch() just started for daemon $1 lives. Unlike
+# daemon_pid it skips the command-line check: between fork and exec (a loaded
+# machine can stretch that) the child still shows bash's command line.
+launched_alive() {
+    local pidfile=$DIR/run/$1.pid
+    [[ -s $pidfile ]] && alive "$(<"$pidfile")"
+}
+
 # Runs daemon $1 in the foreground flavour of its command line, in its own
 # session (a harness killing its process group must not take the cluster
 # down) and with stdio detached (so `eval "$(... start)"` returns).
@@ -257,7 +265,7 @@ wait_for() {
     shift
     for ((i = 0; i < START_TIMEOUT * 10; i++)); do
         "$@" && return 0
-        daemon_pid "$daemon" >/dev/null || { show_logs; die "$daemon exited during start-up"; }
+        launched_alive "$daemon" || { show_logs; die "$daemon exited during start-up"; }
         sleep 0.1
     done
     show_logs

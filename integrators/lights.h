@@ -19,19 +19,19 @@ struct LightSample {
     bool infinite = false;  // shadow ray has no end point
 };
 
-// A lat-long environment map, looked up bilinearly through the scene's TextureSet (nearest texel
-// in memory for scenes built without the loader), with its importance-sampling distribution.
+// A lat-long environment map in memory (scaled, in the working space), looked up bilinearly
+// (nearest texel for scenes built without the loader), with its importance-sampling distribution.
 struct EnvironmentMap {
     int width = 0, height = 0;
     std::vector<Color> pixels;
     Color constant{0.0f};  // used when there is no image (uniform environment)
     Distribution2D distribution;
     float scale = 1;
-    float rotation = 0;  // radians about +Y (right-handed: counterclockwise seen from above)
-    const TextureSet* textures = nullptr;
-    int texture = -1;
+    float rotation = 0;     // radians about +Y (right-handed: counterclockwise seen from above)
+    bool bilinear = false;  // between texel centres (the loader's maps); else nearest texel
     Color lookup(const Vec3& dir) const;
-    Vec3 direction(float u, float v) const;  // (u, v) in [0,1)^2 -> unit direction
+    Color bilinearLookup(float u, float v) const;  // (u, v) in [0,1)^2
+    Vec3 direction(float u, float v) const;        // (u, v) in [0,1)^2 -> unit direction
     void coordinates(const Vec3& dir, float& u, float& v) const;
 };
 

@@ -81,7 +81,8 @@ struct Light {
     std::shared_ptr<const RgbImage> environmentImage;  // its pixels in the working space
     float environmentScale = 1.0f;
     float environmentRotationDeg = 0.0f;  // about the up (+Y) axis, counterclockwise from above
-    int environmentTexture = -1;          // Scene::textureSources index of its pixels
+    bool environmentBilinear =
+        false;  // between texel centres (maps the loader reads), else nearest
 };
 
 struct Camera {

@@ -293,9 +293,7 @@ Scene loadScene(const std::string& path, const LoadOptions& options) {
         env.environmentScale = options.environmentScale;
         env.environmentRotationDeg = options.environmentRotationDeg;
         env.radiance = Color(options.environmentScale);
-        env.environmentTexture = int(scene.textureSources.size());
-        scene.textureSources.push_back(TextureSource{
-            options.environmentMap, nullptr, env.environmentImage, "", TextureEncoding::Color});
+        env.environmentBilinear = true;
         scene.lights.push_back(env);
     }
     openTextures(scene, options.textureCacheMb);

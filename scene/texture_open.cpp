@@ -27,8 +27,6 @@ void openTextures(Scene& scene, float cacheMb) {
         remap(m.maps.normalTexture);
         remap(m.maps.opacityTexture);
     }
-    for (Light& l : scene.lights)
-        if (l.environmentTexture >= 0) l.environmentTexture = idOf[size_t(l.environmentTexture)];
     scene.textures = std::move(set);
 }
 

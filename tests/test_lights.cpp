@@ -160,11 +160,8 @@ void checkEnvironmentImportance(float rotationDeg) {
     l.environmentPath = path;
     l.environmentImage = std::make_shared<const RgbImage>(readWorkingSpaceImage(path));
     l.environmentRotationDeg = rotationDeg;
-    l.environmentTexture = 0;
-    s.textureSources.push_back(
-        TextureSource{path, nullptr, l.environmentImage, "", TextureEncoding::Color});
+    l.environmentBilinear = true;
     s.lights.push_back(l);
-    openTextures(s, 64.0f);
     LightSet lights(s);
     // Histogram in the map's own spherical coordinates (pole = +Y, phi = 0 at -Z) so bins align
     // with pixels.
@@ -205,11 +202,8 @@ TEST(LightSampling, EnvironmentLookupIsBilinearAndRotates) {
         l.kind = LightKind::Environment;
         l.environmentImage = image;
         l.environmentRotationDeg = rotationDeg;
-        l.environmentTexture = 0;
-        s.textureSources.push_back(
-            TextureSource{"grid", nullptr, image, "", TextureEncoding::Color});
+        l.environmentBilinear = true;
         s.lights.push_back(l);
-        openTextures(s, 16.0f);
         return LightSet(s);
     };
     Scene plainScene, turnedScene;

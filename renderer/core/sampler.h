@@ -30,7 +30,9 @@ class Sampler {
   public:
     Sampler(uint64_t seed, uint64_t pixelIndex, uint64_t sampleIndex,
             SamplerKind kind = SamplerKind::Independent)
-        : key_(mix64(mix64(seed) ^ pixelIndex)), sample_(uint32_t(sampleIndex)), kind_(kind) {
+        : key_(mix64(mix64(seed) ^ pixelIndex)),
+          reversedSample_(reverseBits32(uint32_t(sampleIndex))),
+          kind_(kind) {
         if (kind_ == SamplerKind::Independent) key_ = mix64(key_ ^ sampleIndex);
     }
     float next1D() {
@@ -42,7 +44,7 @@ class Sampler {
         // Dimensions 1, 2 form pair 0; 3, 4 pair 1; ... The pair's second value is kept for
         // the next call.
         if (d % 2 == 0) return toUnit(pendingY_);
-        SobolPair p = shuffledScrambledSobol2D(sample_, pairSeed(d / 2));
+        SobolPair p = shuffledScrambledSobol2D(reversedSample_, pairSeed(d / 2));
         pendingY_ = p.y;
         return toUnit(p.x);
     }
@@ -67,7 +69,7 @@ class Sampler {
         return uint32_t(mix64(key_ + 0x9e3779b97f4a7c15ull * (uint64_t(pair) + 1)));
     }
     uint64_t key_;
-    uint32_t sample_;  // the Sobol index (the independent sampler mixes it into key_)
+    uint32_t reversedSample_;  // the Sobol index, bit-reversed (independent: mixed into key_)
     uint32_t dimension_ = 0;
     uint32_t pendingY_ = 0;
     SamplerKind kind_;

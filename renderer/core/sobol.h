@@ -9,12 +9,12 @@
 
 namespace kiln {
 
+// A byte swap (one instruction) leaves three swap steps instead of five.
 constexpr uint32_t reverseBits32(uint32_t x) {
-    x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
-    x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+    x = __builtin_bswap32(x);
     x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
-    x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
-    return (x >> 16) | (x << 16);
+    x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+    return ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
 }
 
 // Laine-Karras style hash on bit-reversed values: bit j of the result depends only on bits <= j,
@@ -28,12 +28,6 @@ constexpr uint32_t laineKarrasPermutation(uint32_t x, uint32_t seed) {
     return x;
 }
 
-// An Owen scramble of a 32-bit fixed-point value in [0, 1): each digit flipped by a hash of the
-// digits above it.
-constexpr uint32_t nestedUniformScramble(uint32_t x, uint32_t seed) {
-    return reverseBits32(laineKarrasPermutation(reverseBits32(x), seed));
-}
-
 // The second Sobol dimension's generator matrix: direction v_k for index bit k (v_0 = 2^31,
 // v_k = v_{k-1} ^ v_{k-1} >> 1).
 constexpr uint32_t sobolDirection1(int bit) {
@@ -42,21 +36,25 @@ constexpr uint32_t sobolDirection1(int bit) {
     return v;
 }
 
-// The matrix applied to each byte of an index, tabulated: the product is linear over GF(2), so it
-// is the xor of four lookups (instead of a loop over up to 32 index bits, which was the sampler's
-// largest cost).
+// The matrix applied to each byte of an index, tabulated with its result bit-reversed (the form
+// the scramble takes): the product is linear over GF(2), so it is the xor of four lookups (instead
+// of a loop over up to 32 index bits, which was the sampler's largest cost).
 struct SobolByteTables {
     uint32_t t[4][256];
     constexpr SobolByteTables() : t{} {
         for (int byte = 0; byte < 4; ++byte)
-            for (uint32_t b = 0; b < 256; ++b)
+            for (uint32_t b = 0; b < 256; ++b) {
+                uint32_t v = 0;
                 for (int j = 0; j < 8; ++j)
-                    if (b >> j & 1u) t[byte][b] ^= sobolDirection1(8 * byte + j);
+                    if (b >> j & 1u) v ^= sobolDirection1(8 * byte + j);
+                t[byte][b] = reverseBits32(v);
+            }
     }
 };
 inline constexpr SobolByteTables kSobolDimension1Tables{};
 
-constexpr uint32_t sobolDimension1(uint32_t index) {
+// reverseBits32 of the second Sobol dimension at `index`.
+constexpr uint32_t sobolDimension1Reversed(uint32_t index) {
     const auto& t = kSobolDimension1Tables.t;
     return t[0][index & 0xffu] ^ t[1][(index >> 8) & 0xffu] ^ t[2][(index >> 16) & 0xffu] ^
            t[3][index >> 24];
@@ -76,14 +74,16 @@ struct SobolPair {
     uint32_t x, y;  // fixed point, [0, 2^32) for [0, 1)
 };
 
-// Sample `index` of the pair with this seed.
-constexpr SobolPair shuffledScrambledSobol2D(uint32_t index, uint32_t seed) {
-    index = nestedUniformScramble(index, seed);
+// Sample `index` of the pair with this seed, given reversedIndex = reverseBits32(index) (a
+// sampler reverses its sample index once, not once per pair).
+constexpr SobolPair shuffledScrambledSobol2D(uint32_t reversedIndex, uint32_t seed) {
+    // An Owen scramble of the index (the hash on its reversed bits, reversed back) shuffles it.
+    uint32_t index = reverseBits32(laineKarrasPermutation(reversedIndex, seed));
     uint32_t sx = hash32(seed ^ 0xa511e9b3u), sy = hash32(seed ^ 0x63d83595u);
     // The first dimension is the bit-reversed index (van der Corput); its scramble reverses the
-    // bits back first, so the two reversals cancel.
+    // bits back first, so the two reversals cancel. The second's table is stored reversed.
     return {reverseBits32(laineKarrasPermutation(index, sx)),
-            nestedUniformScramble(sobolDimension1(index), sy)};
+            reverseBits32(laineKarrasPermutation(sobolDimension1Reversed(index), sy))};
 }
 
 }  // namespace kiln

@@ -4,14 +4,17 @@ the same scene, each against its own converged reference (a benchmark, not a tes
 
   tools/peer_bench.py [--scene lucy_env|box_bunny|box_metal] [--spp 16,32,64,128,256] [--ref-spp 2048]
                       [--repeats 3] [--threads 2] [--resolution W H] [--out out/peer]
-                      [--samplers independent,sobol] [--check]
+                      [--samplers independent,sobol] [--variant LABEL=ARGS[@P1,...]]... [--check]
 
 Scenes: lucy_env (an environment-lit mesh), box_bunny (a closed box lit by an emissive ceiling quad, a
 diffuse bunny inside), box_metal (the same box, the bunny in rough chrome). Before timing, the two
 converged references are put side by side (OUT/SCENE.refs.png) and their mean RGB printed: the scenes
 are identical when those agree (--check stops there).
 
-For every spp the renderers run interleaved (kiln per sampler, then Cycles), --repeats times; times are
+A --variant is another kiln series (e.g. "l4=-l 4", or "noise=-s 1024 --noise-threshold {p}@0.2,0.1,0.05":
+one point per spp step), its error measured against the first sampler's reference (every variant
+converges to the same image). For every spp the renderers run interleaved (kiln per sampler and
+variant, then Cycles), --repeats times; times are
 medians. Error: `kiln bench compare TEST REF --keep-reference-noise` (luminance relMSE, the same formula
 for both renderers, neither reference's noise subtracted). Time: kiln's build + render (the EXR write
 and the file load excluded), Cycles' render call (scene sync, BVH build and sampling). The error levels
@@ -24,6 +27,7 @@ import json
 import math
 import os
 import re
+import shlex
 import statistics
 import subprocess
 import sys
@@ -133,12 +137,13 @@ def describe(name, out, resolution=None):
     return kiln_path, json_path, s
 
 
-def run_kiln(kiln, scene_path, s, spp, sampler, threads, out_base):
+def run_kiln(kiln, scene_path, s, args, threads, out_base):
+    """One kiln render of the scene with ARGS (a list: sampler, spp, a variant's options)."""
     w, h = s["resolution"]
     env = ["--env", os.path.join(SHARED, s["environment"])] if s.get("environment") else []
     cmd = [kiln, "render", scene_path] + env + [
-        "-r", str(w), str(h), "-s", str(spp), "-m", str(s["max_depth"]), "-t", str(threads),
-        "--sampler", sampler, "--aov", "none", "-q", "-o", out_base]
+        "-r", str(w), str(h), "-m", str(s["max_depth"]), "-t", str(threads),
+        "--aov", "none", "-q", "-o", out_base] + args
     err = subprocess.run(cmd, capture_output=True, text=True, check=True).stderr
     m = re.search(r"build ([0-9.]+)s, render ([0-9.]+)s", err)
     return float(m.group(1)) + float(m.group(2)), out_base + ".exr"
@@ -206,6 +211,10 @@ def main():
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--resolution", type=int, nargs=2, help="override the scene's image size")
     ap.add_argument("--samplers", default="independent,sobol")
+    ap.add_argument("--variant", action="append", default=[],
+                    help="a kiln variant, LABEL=ARGS[@P1,P2,...] as in tools/estimator_bench.py: one\n"
+                         "point per --spp step ({p} in ARGS; default the step's spp); its error is\n"
+                         "measured against the reference of the first of --samplers")
     ap.add_argument("--out", default=os.path.join(ROOT, "out", "peer"))
     ap.add_argument("--kiln", default=os.path.join(ROOT, "build", "kiln"))
     ap.add_argument("--blender", default="blender")
@@ -224,7 +233,8 @@ def main():
     for sampler in samplers:
         ref = base + ref_tag + ".kiln." + sampler
         if not os.path.exists(ref + ".exr"):
-            run_kiln(a.kiln, kiln_scene, s, a.ref_spp, sampler, a.threads, ref)
+            run_kiln(a.kiln, kiln_scene, s, ["--sampler", sampler, "-s", str(a.ref_spp)], a.threads,
+                     ref)
         refs["kiln " + sampler] = ref + ".exr"
     refs["cycles"] = base + ref_tag + ".cycles.exr"
     if not os.path.exists(refs["cycles"]):
@@ -233,21 +243,33 @@ def main():
     if a.check:
         return
 
-    rows = []  # (renderer, spp, median seconds, relMSE)
-    for spp in spps:
-        times = {k: [] for k in refs}
+    # Each kiln series: (label, args with {p}, one point per spp step, its reference).
+    from estimator_bench import parse_variant  # here: estimator_bench imports this module
+    series = [("kiln " + x, "--sampler %s -s {p}" % x, [str(p) for p in spps], refs["kiln " + x])
+              for x in samplers]
+    for text in a.variant:
+        label, _, args, points = parse_variant(text, [str(p) for p in spps], a.kiln)
+        if len(points) != len(spps):
+            sys.exit("variant %s: %d points for %d spp steps" % (label, len(points), len(spps)))
+        series.append(("kiln " + label, args, points, refs["kiln " + samplers[0]]))
+    rows = []  # (renderer, spp step, median seconds, relMSE)
+    for step, spp in enumerate(spps):
+        times = {label: [] for label, *_ in series}
+        times["cycles"] = []
         images = {}
         for _ in range(a.repeats):  # interleaved: A B C, A B C, ...
-            for sampler in samplers:
-                t, img = run_kiln(a.kiln, kiln_scene, s, spp, sampler, a.threads,
-                                  "%s.kiln.%s.%d" % (base, sampler, spp))
-                times["kiln " + sampler].append(t)
-                images["kiln " + sampler] = img
+            for n, (label, args, points, _) in enumerate(series):
+                t, img = run_kiln(a.kiln, kiln_scene, s,
+                                  shlex.split(args.replace("{p}", points[step])), a.threads,
+                                  "%s.kiln.v%d.%d" % (base, n, spp))
+                times[label].append(t)
+                images[label] = img
             t, img = run_cycles(a.blender, json_path, spp, a.threads, "%s.cycles.%d.exr" % (base, spp))
             times["cycles"].append(t)
             images["cycles"] = img
-        for k in refs:
-            rows.append((k, spp, statistics.median(times[k]), rel_mse(a.kiln, images[k], refs[k])))
+        for label, *_, ref in series + [("cycles", refs["cycles"])]:
+            rows.append((label, spp, statistics.median(times[label]),
+                         rel_mse(a.kiln, images[label], ref)))
             print("%-18s %5d spp %8.3f s  relMSE %.5g" % rows[-1], flush=True)
 
     cycles = [(t, e) for k, _, t, e in rows if k == "cycles"]
@@ -255,9 +277,8 @@ def main():
     lines = ["| error level (Cycles at) | renderer | time to reach | / Cycles |", "|---|---|---:|---:|"]
     for level, spp in zip(levels, (spps[len(spps) // 2], spps[-1])):
         tc, _ = time_at(cycles, level)
-        for k in refs:
-            series = [(t, e) for kk, _, t, e in rows if kk == k]
-            tk, mark = time_at(series, level)
+        for k in [label for label, *_ in series] + ["cycles"]:
+            tk, mark = time_at([(t, e) for kk, _, t, e in rows if kk == k], level)
             lines.append("| %.4g (%d spp) | %s | %.3f s%s | %.2f |" % (level, spp, k, tk, mark, tk / tc))
     table = "\n".join(lines)
     print("\n" + table)

@@ -149,10 +149,10 @@ def run_kiln(kiln, scene_path, s, args, threads, out_base):
     return float(m.group(1)) + float(m.group(2)), out_base + ".exr"
 
 
-def run_cycles(blender, json_path, spp, threads, out_path):
+def run_cycles(blender, json_path, spp, threads, out_path, seed=7):
     script = os.path.join(ROOT, "tools", "peer", "cycles_scene.py")
     cmd = [blender, "-b", "--factory-startup", "--python", script, "--",
-           json_path, str(spp), str(threads), out_path]
+           json_path, str(spp), str(threads), out_path, str(seed)]
     res = subprocess.run(cmd, capture_output=True, text=True)
     m = re.search(r"kiln-peer: render_seconds ([0-9.]+)", res.stdout)
     if res.returncode != 0 or not m:
@@ -185,6 +185,9 @@ def check_references(refs, base):
         lines.append("mean RGB %-18s %s" % (k, " ".join("%.5f" % c for c in mean_rgb(v))))
         print(lines[-1], flush=True)
     return lines
+
+
+REF_SEED = 1007  # test renders use each renderer's default seed (kiln 0, Cycles 7)
 
 
 def time_at(series, level):
@@ -228,17 +231,20 @@ def main():
     base = os.path.join(a.out, a.scene)
 
     # references are reused by a later run only when they were made at the same size and spp
-    ref_tag = ".ref%d.%dx%d" % (a.ref_spp, *s["resolution"])
+    # References use their own seed: a render sharing its first samples with its reference (both
+    # renderers index samples the same way whatever the count) would understate its error.
+    ref_tag = ".ref%d.%dx%d.seed%d" % (a.ref_spp, *s["resolution"], REF_SEED)
     refs = {}
     for sampler in samplers:
         ref = base + ref_tag + ".kiln." + sampler
         if not os.path.exists(ref + ".exr"):
-            run_kiln(a.kiln, kiln_scene, s, ["--sampler", sampler, "-s", str(a.ref_spp)], a.threads,
+            run_kiln(a.kiln, kiln_scene, s,
+                     ["--sampler", sampler, "-s", str(a.ref_spp), "--seed", str(REF_SEED)], a.threads,
                      ref)
         refs["kiln " + sampler] = ref + ".exr"
     refs["cycles"] = base + ref_tag + ".cycles.exr"
     if not os.path.exists(refs["cycles"]):
-        run_cycles(a.blender, json_path, a.ref_spp, a.threads, refs["cycles"])
+        run_cycles(a.blender, json_path, a.ref_spp, a.threads, refs["cycles"], REF_SEED)
     means = check_references(refs, base)
     if a.check:
         return

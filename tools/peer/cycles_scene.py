@@ -13,7 +13,8 @@ import bpy
 
 def args():
     argv = sys.argv[sys.argv.index("--") + 1:]
-    return json.load(open(argv[0])), int(argv[1]), int(argv[2]), argv[3]
+    seed = int(argv[4]) if len(argv) > 4 else 7
+    return json.load(open(argv[0])), int(argv[1]), int(argv[2]), argv[3], seed
 
 
 def clear():
@@ -149,7 +150,7 @@ def black_world():
     bpy.context.scene.world = world
 
 
-def configure(scene_desc, spp, threads, out):
+def configure(scene_desc, spp, threads, out, seed):
     scene = bpy.context.scene
     scene.render.engine = "CYCLES"
     c = scene.cycles
@@ -159,7 +160,7 @@ def configure(scene_desc, spp, threads, out):
     c.use_denoising = False
     c.sample_clamp_direct = 0.0
     c.sample_clamp_indirect = 0.0
-    c.seed = 7
+    c.seed = seed
     c.pixel_filter_type = "BOX"
     c.filter_width = 1.0
     bounces = scene_desc["max_bounces"]
@@ -180,7 +181,7 @@ def configure(scene_desc, spp, threads, out):
 
 
 def main():
-    desc, spp, threads, out = args()
+    desc, spp, threads, out, seed = args()
     clear()
     for mesh in desc["meshes"]:
         import_mesh(mesh["file"], mesh["matrix"], mesh["material"])
@@ -191,7 +192,7 @@ def main():
         add_environment(desc["environment"], desc.get("environment_strength", 1.0))
     else:
         black_world()
-    configure(desc, spp, threads, out)
+    configure(desc, spp, threads, out, seed)
     start = time.perf_counter()
     bpy.ops.render.render(write_still=True)
     print("kiln-peer: render_seconds %.4f" % (time.perf_counter() - start), flush=True)

@@ -75,7 +75,7 @@ Lobe lobeOf(const Material& m, bool transmission) {
 // all.
 class LambertBsdf {
   public:
-    LambertBsdf(const Material& m, MicrofacetModel, const Color& albedo)
+    LambertBsdf(const Material& m, MicrofacetModel, const Color& albedo, MetallicRoughness)
         : albedo_(albedo), black_(m.kind == MaterialKind::Emission) {}
     bool isDelta() const { return false; }
     bool isBlack() const { return black_; }
@@ -283,13 +283,16 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
             }
             if (bounce >= opt_.maxDepth) continue;
             Color albedo = mat.albedo;
+            MetallicRoughness mr = MetallicRoughness::of(mat);
             if (colourVaries_) {
                 st.travelled += hit.t * length(ray.dir);
                 albedo = albedoAt(scene_, mat, hit, st.travelled, opt_.pixelSpread);
+                mr = metallicRoughnessAt(scene_, mat, hit, st.travelled, opt_.pixelSpread);
                 applyNormalMap(scene_, mat, hit, -normalize(ray.dir),
                                st.travelled * opt_.pixelSpread, si);
             }
-            std::conditional_t<DiffuseOnly, LambertBsdf, Bsdf> bsdf(mat, opt_.microfacet, albedo);
+            std::conditional_t<DiffuseOnly, LambertBsdf, Bsdf> bsdf(mat, opt_.microfacet, albedo,
+                                                                    mr);
             if (bsdf.isBlack()) continue;
             // A shading normal bent so far that the viewer is below its tangent plane would make
             // the surface black: shade such a vertex with the geometric normal instead (on the

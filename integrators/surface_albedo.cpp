@@ -49,12 +49,22 @@ Color textureAt(const Scene& scene, int texture, const UvTransform& uvTransform,
     return scene.textures->lookup(texture, uvTransform.s(u, v), uvTransform.t(u, v), width);
 }
 
+float channelAt(const Scene& scene, int texture, int channel, const UvTransform& uvTransform,
+                const Hit& hit, const TriangleMesh& mesh, float worldWidth) {
+    float u, v;
+    uvAt(mesh, hit.prim, hit.u, hit.v, u, v);
+    float width = textureWidth(scene, hit, uvTransform, worldWidth);
+    return scene.textures->lookupChannel(texture, channel, uvTransform.s(u, v), uvTransform.t(u, v),
+                                         width);
+}
+
 }  // namespace
 
 bool hasSurfaceColourVariation(const Scene& scene) {
     return std::any_of(scene.materials.begin(), scene.materials.end(),
                        [](const Material& m) {
-                           return m.albedoTexture >= 0 || m.maps.normalTexture >= 0;
+                           return m.albedoTexture >= 0 || m.maps.normalTexture >= 0 ||
+                                  m.maps.metallicTexture >= 0 || m.maps.roughnessTexture >= 0;
                        }) ||
            std::any_of(scene.meshes.begin(), scene.meshes.end(),
                        [](const TriangleMesh& m) { return !m.colors.empty(); });
@@ -74,6 +84,24 @@ Color albedoAt(const Scene& scene, const Material& material, const Hit& hit, flo
                                     mesh, travelled * pixelSpread);
     if (!mesh.colors.empty()) albedo = albedo * colourAt(mesh, idx, b);
     return albedo;
+}
+
+MetallicRoughness metallicRoughnessAt(const Scene& scene, const Material& material, const Hit& hit,
+                                      float travelled, float pixelSpread) {
+    MetallicRoughness mr = MetallicRoughness::of(material);
+    const MaterialMaps& maps = material.maps;
+    if (maps.metallicTexture < 0 && maps.roughnessTexture < 0) return mr;
+    if (hit.shape == kSphereShape || !scene.textures) return mr;
+    const TriangleMesh& mesh = scene.meshes[hit.shape];
+    if (mesh.uvs.empty()) return mr;
+    float worldWidth = travelled * pixelSpread;
+    if (maps.metallicTexture >= 0)
+        mr.metallic *= channelAt(scene, maps.metallicTexture, maps.metallicChannel, maps.metallicUv,
+                                 hit, mesh, worldWidth);
+    if (maps.roughnessTexture >= 0)
+        mr.roughness *= channelAt(scene, maps.roughnessTexture, maps.roughnessChannel,
+                                  maps.roughnessUv, hit, mesh, worldWidth);
+    return mr;
 }
 
 }  // namespace kiln

@@ -3,6 +3,7 @@
 // the material's albedo, unchanged.
 #pragma once
 
+#include "integrators/principled_bsdf.h"
 #include "renderer/core/ray.h"
 #include "scene/scene.h"
 
@@ -22,5 +23,10 @@ float textureWidth(const Scene& scene, const Hit& hit, const UvTransform& uvTran
 
 Color albedoAt(const Scene& scene, const Material& material, const Hit& hit, float travelled,
                float pixelSpread);
+
+// A principled material's metallic and roughness at the hit: its factors times the
+// metallic-roughness texture's channels (glTF: B and G), looked up with the same footprint rule.
+MetallicRoughness metallicRoughnessAt(const Scene& scene, const Material& material, const Hit& hit,
+                                      float travelled, float pixelSpread);
 
 }  // namespace kiln

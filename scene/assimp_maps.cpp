@@ -61,6 +61,37 @@ void readNormalMap(const aiScene* as, const aiMaterial* am, const std::string& a
     }
 }
 
+// Principled materials: glTF's metallicRoughnessTexture (Assimp 5.2 stores it in the UNKNOWN slot,
+// AI_MATKEY_GLTF_PBRMETALLICROUGHNESS_METALLICROUGHNESS_TEXTURE, and repeats it as METALNESS and
+// DIFFUSE_ROUGHNESS): B metallic, G roughness. Other formats (FBX, OBJ map_Pm/map_Pr): a grey
+// metalness and a grey roughness map.
+void readMetallicRoughness(const aiScene* as, const aiMaterial* am, const std::string& assetPath,
+                           Material& m, Scene& scene) {
+    MaterialMaps& maps = m.maps;
+    if (m.kind != MaterialKind::Principled) return;
+    if (isGltf(assetPath)) {
+        if (am->GetTextureCount(aiTextureType_UNKNOWN) == 0) return;
+        int id = mapSource(as, am, aiTextureType_UNKNOWN, assetPath, TextureEncoding::Data,
+                           "metallic-roughness texture", maps.metallicUv, m, scene);
+        maps.metallicTexture = maps.roughnessTexture = id;
+        maps.metallicChannel = 2, maps.roughnessChannel = 1;
+        maps.roughnessUv = maps.metallicUv;
+        return;
+    }
+    if (am->GetTextureCount(aiTextureType_METALNESS) > 0) {
+        maps.metallicTexture =
+            mapSource(as, am, aiTextureType_METALNESS, assetPath, TextureEncoding::Data,
+                      "metalness map", maps.metallicUv, m, scene);
+        maps.metallicChannel = 0;
+    }
+    if (am->GetTextureCount(aiTextureType_DIFFUSE_ROUGHNESS) > 0) {
+        maps.roughnessTexture =
+            mapSource(as, am, aiTextureType_DIFFUSE_ROUGHNESS, assetPath, TextureEncoding::Data,
+                      "roughness map", maps.roughnessUv, m, scene);
+        maps.roughnessChannel = 0;
+    }
+}
+
 // glTF: alphaMode decides; OPAQUE ignores alpha altogether (the specification's rule).
 void readGltfAlpha(const aiMaterial* am, Material& m, Scene& scene) {
     MaterialMaps& maps = m.maps;
@@ -127,10 +158,24 @@ bool readUvTransform(const aiMaterial* am, unsigned slot, const std::string& ass
 void readAssimpMaps(const aiScene* as, const aiMaterial* am, const std::string& assetPath,
                     Material& m, Scene& scene) {
     readNormalMap(as, am, assetPath, m, scene);
+    readMetallicRoughness(as, am, assetPath, m, scene);
     if (isGltf(assetPath))
         readGltfAlpha(am, m, scene);
     else if (lowerExtension(assetPath) == ".obj")
         readObjAlpha(as, am, assetPath, m, scene);
+}
+
+bool readsTextureSlot(unsigned slot, const Material& m, const std::string& assetPath) {
+    bool principled = m.kind == MaterialKind::Principled;
+    switch (slot) {
+        case aiTextureType_METALNESS:
+        case aiTextureType_DIFFUSE_ROUGHNESS:
+            return principled;
+        case aiTextureType_UNKNOWN:
+            return principled && isGltf(assetPath);
+        default:
+            return false;
+    }
 }
 
 }  // namespace kiln

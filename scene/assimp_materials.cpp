@@ -149,7 +149,7 @@ void readAssimpTextures(const aiScene* as, const aiMaterial* am, const std::stri
     readBaseColour(as, am, assetPath, statesColour, m, scene);
     readAssimpMaps(as, am, assetPath, m, scene);
     for (const auto& [slot, what] : kIgnoredSlots)
-        if (am->GetTextureCount(slot) > 0) {
+        if (am->GetTextureCount(slot) > 0 && !readsTextureSlot(slot, m, assetPath)) {
             aiString ref;
             am->GetTexture(slot, 0, &ref);
             scene.warnings.push_back(materialLabel(m) + ": " + what + " '" + ref.C_Str() +

@@ -30,6 +30,9 @@ void readAssimpTextures(const aiScene* as, const aiMaterial* am, const std::stri
 // alphaMode and cutoff, base-colour alpha; OBJ d and map_d) into Material::maps.
 void readAssimpMaps(const aiScene* as, const aiMaterial* am, const std::string& assetPath,
                     Material& m, Scene& scene);
+// Whether the material's Assimp texture slot (an aiTextureType) is one kiln reads, or warns about
+// itself, for this material and format (readAssimpMaps): the slots left over get a warning each.
+bool readsTextureSlot(unsigned slot, const Material& m, const std::string& assetPath);
 // The slot's UV transform (KHR_texture_transform through Assimp), if the material states one.
 bool readUvTransform(const aiMaterial* am, unsigned slot, const std::string& assetPath,
                      UvTransform& uv);

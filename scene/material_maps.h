@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "renderer/core/math.h"
 
@@ -12,6 +13,7 @@ namespace kiln {
 
 struct TriangleMesh;
 struct Scene;
+struct Material;
 
 // Mesh UVs (v up, as OBJ and Assimp store them) to the texture lookup's (s, t) (t down the image):
 // s = a*u + b*v + c, t = d*u + e*v + f. The identity transform is s = u, t = 1 - v.
@@ -49,8 +51,18 @@ struct MaterialMaps {
     int opacityTexture = -1;   // multiplies opacity: channel opacityChannel of this texture
     int opacityChannel = 3;    // 3: the base-colour texture's alpha; 0: a grey map (OBJ map_d)
     UvTransform opacityUv;
+    // Principled: the metallic and roughness factors times one channel each of these data
+    // textures (glTF metallicRoughnessTexture: one texture, B metallic and G roughness; FBX/OBJ
+    // metalness and roughness maps: a grey texture each, channel 0).
+    int metallicTexture = -1, metallicChannel = 2;
+    int roughnessTexture = -1, roughnessChannel = 1;
+    UvTransform metallicUv, roughnessUv;
     bool hasAlpha() const { return alphaMode != AlphaMode::Opaque; }
 };
+
+// Every texture id a material holds (Material::albedoTexture and those of its maps), so code
+// that moves or renumbers texture ids (merging scenes, opening textures) misses none.
+std::vector<int*> textureIds(Material& m);
 
 // Barycentric interpolation of the mesh's UVs at triangle `prim` (b1, b2: weights of its vertices
 // 1 and 2). The mesh must have UVs.

@@ -22,11 +22,8 @@ void openTextures(Scene& scene, float cacheMb) {
     auto remap = [&](int& id) {
         if (id >= 0) id = idOf[size_t(id)];
     };
-    for (Material& m : scene.materials) {
-        remap(m.albedoTexture);
-        remap(m.maps.normalTexture);
-        remap(m.maps.opacityTexture);
-    }
+    for (Material& m : scene.materials)
+        for (int* id : textureIds(m)) remap(*id);
     for (Light& l : scene.lights)
         if (l.environmentTexture >= 0) l.environmentTexture = idOf[size_t(l.environmentTexture)];
     scene.textures = std::move(set);

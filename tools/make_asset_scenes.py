@@ -241,6 +241,37 @@ def vertex_colored():
     return g
 
 
+# metal_rough_texture: the metallicRoughnessTexture's two halves as (metallic, roughness) 8-bit
+# codes (glTF: B metallic, G roughness), the left half first.
+MR_LEFT = (255, 128)  # metal, roughness 128/255
+MR_RIGHT = (0, 204)   # dielectric, roughness 204/255
+MR_BASE = (0.9, 0.6, 0.2)
+
+
+@scene("metal_rough_texture")
+def metal_rough_texture():
+    """The textured quad's layout (x, y in [-1.25, 1.25], sun at 30 degrees) with a principled
+    material of base colour MR_BASE, metallicFactor and roughnessFactor 1, and a 64 x 64
+    metallicRoughnessTexture whose left half (image x < 0: pixel columns 0..31 of a 64 x 64
+    render) holds MR_LEFT and right half MR_RIGHT: each half shades as the constant material with
+    those factors."""
+    g = Gltf()
+
+    def halves(path):
+        write_png(path, 64, 64, lambda x, y: (0, (MR_LEFT if x < 32 else MR_RIGHT)[1],
+                                              (MR_LEFT if x < 32 else MR_RIGHT)[0]))
+
+    texture = g.texture("metal_rough_halves.png", halves)
+    material = g.material("metal_rough", baseColorFactor=list(MR_BASE) + [1],
+                          metallicFactor=1.0, roughnessFactor=1.0,
+                          metallicRoughnessTexture={"index": texture})
+    positions, uvs, triangles = quad(-1.25, -1.25, 1.25, 1.25)
+    g.mesh("metal_rough_quad", positions, triangles, material, uvs=uvs)
+    g.camera(EYE, YFOV)
+    g.directional_light(3.0, rotation=SUN)
+    return g
+
+
 def main():
     here = os.path.dirname(os.path.abspath(__file__))
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])

@@ -125,8 +125,11 @@ Color PathIntegrator::emissionAt(const Ray& ray, const Hit& hit, const SurfaceIn
                                  int& li) const {
     li = (hit.shape != kSphereShape && hit.instance == kInvalidId) ? lights_.lightOfMesh(hit.shape)
                                                                    : -1;
-    return li >= 0 ? lights_.emitted(size_t(li), si.p, si.ng, ray.origin)
-                   : scene_.materials[si.material].emission;
+    const Material& m = scene_.materials[si.material];
+    Color Le = li >= 0 ? lights_.emitted(size_t(li), si.p, si.ng, ray.origin) : m.emission;
+    if (m.maps.emissionTexture >= 0 && hit.shape != kSphereShape)
+        Le = Le * emissionTexelAt(scene_, m, hit.shape, hit.prim, hit.u, hit.v);
+    return Le;
 }
 
 template <bool Infinite>

@@ -104,4 +104,25 @@ MetallicRoughness metallicRoughnessAt(const Scene& scene, const Material& materi
     return mr;
 }
 
+Color emissionTexelAt(const Scene& scene, const Material& material, uint32_t mesh, uint32_t prim,
+                      float b1, float b2) {
+    const MaterialMaps& maps = material.maps;
+    if (maps.emissionTexture < 0 || !scene.textures || mesh >= scene.meshes.size())
+        return Color(1.0f);
+    const TriangleMesh& m = scene.meshes[mesh];
+    if (m.uvs.empty()) return Color(1.0f);
+    float u, v;
+    uvAt(m, prim, b1, b2, u, v);
+    const UvTransform& x = maps.emissionUv;
+    return scene.textures->lookup(maps.emissionTexture, x.s(u, v), x.t(u, v), 0.0f);
+}
+
+bool hasEmissionTexture(const Scene& scene, uint32_t mesh) {
+    const TriangleMesh& m = scene.meshes[mesh];
+    if (m.uvs.empty() || !scene.textures) return false;
+    return std::any_of(m.materialIds.begin(), m.materialIds.end(), [&](uint32_t id) {
+        return id < scene.materials.size() && scene.materials[id].maps.emissionTexture >= 0;
+    });
+}
+
 }  // namespace kiln

@@ -92,6 +92,34 @@ void readMetallicRoughness(const aiScene* as, const aiMaterial* am, const std::s
     }
 }
 
+// The emissive texture (glTF emissiveTexture, OBJ map_Ke, FBX emissive or emission-colour maps),
+// sRGB colour multiplying the emissive factor; with no emissive colour it could add nothing.
+void readEmissionMap(const aiScene* as, const aiMaterial* am, const std::string& assetPath,
+                     Material& m, Scene& scene) {
+    for (aiTextureType slot : {aiTextureType_EMISSIVE, aiTextureType_EMISSION_COLOR}) {
+        if (am->GetTextureCount(slot) == 0) continue;
+        if (!(maxComponent(m.emission) > 0)) {
+            aiString ref;
+            am->GetTexture(slot, 0, &ref);
+            warn(scene, m,
+                 "emissive map '" + std::string(ref.C_Str()) +
+                     "' ignored: the emissive colour it multiplies is black");
+            return;
+        }
+        m.maps.emissionTexture = mapSource(as, am, slot, assetPath, TextureEncoding::Color,
+                                           "emissive map", m.maps.emissionUv, m, scene);
+        aiString used, other;
+        am->GetTexture(slot, 0, &used);
+        if (slot == aiTextureType_EMISSIVE &&
+            am->GetTexture(aiTextureType_EMISSION_COLOR, 0, &other) == AI_SUCCESS &&
+            std::string(other.C_Str()) != used.C_Str())
+            warn(scene, m,
+                 "emission-colour map '" + std::string(other.C_Str()) +
+                     "' ignored: the emissive map is used");
+        return;
+    }
+}
+
 // glTF: alphaMode decides; OPAQUE ignores alpha altogether (the specification's rule).
 void readGltfAlpha(const aiMaterial* am, Material& m, Scene& scene) {
     MaterialMaps& maps = m.maps;
@@ -159,6 +187,7 @@ void readAssimpMaps(const aiScene* as, const aiMaterial* am, const std::string& 
                     Material& m, Scene& scene) {
     readNormalMap(as, am, assetPath, m, scene);
     readMetallicRoughness(as, am, assetPath, m, scene);
+    readEmissionMap(as, am, assetPath, m, scene);
     if (isGltf(assetPath))
         readGltfAlpha(am, m, scene);
     else if (lowerExtension(assetPath) == ".obj")
@@ -173,6 +202,9 @@ bool readsTextureSlot(unsigned slot, const Material& m, const std::string& asset
             return principled;
         case aiTextureType_UNKNOWN:
             return principled && isGltf(assetPath);
+        case aiTextureType_EMISSIVE:
+        case aiTextureType_EMISSION_COLOR:
+            return true;  // readEmissionMap warns when it cannot use one
         default:
             return false;
     }

@@ -3,6 +3,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "renderer/core/memory.h"
 #include "scene/cgl_extras.h"
@@ -19,6 +20,10 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
 
 // A warning for each glTF extension the file uses that neither Assimp nor kiln reads.
 void warnUnreadGltfExtensions(const std::string& path, Scene& scene);
+// Each glTF material's KHR_materials_emissive_strength (1 where it states none), in the file's
+// order, which is Assimp's (its default material comes after them); empty when unreadable.
+// Assimp 5.2 does not hand the extension over (AI_MATKEY_EMISSIVE_INTENSITY stays unset).
+std::vector<float> gltfEmissiveStrengths(const std::string& path);
 
 // An Assimp material's base-colour texture as a source of the scene (Material::albedoTexture; the
 // albedo becomes 1 unless the file states a colour, which then multiplies it), and a warning for

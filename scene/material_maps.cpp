@@ -43,8 +43,8 @@ const char* toString(AlphaMode mode) {
 
 std::vector<int*> textureIds(Material& m) {
     MaterialMaps& x = m.maps;
-    return {&m.albedoTexture, &x.normalTexture, &x.opacityTexture, &x.metallicTexture,
-            &x.roughnessTexture};
+    return {&m.albedoTexture,   &x.normalTexture,    &x.opacityTexture,
+            &x.metallicTexture, &x.roughnessTexture, &x.emissionTexture};
 }
 
 void uvAt(const TriangleMesh& mesh, uint32_t prim, float b1, float b2, float& u, float& v) {

@@ -57,6 +57,9 @@ struct MaterialMaps {
     int metallicTexture = -1, metallicChannel = 2;
     int roughnessTexture = -1, roughnessChannel = 1;
     UvTransform metallicUv, roughnessUv;
+    // Multiplies Material::emission (glTF emissiveTexture, FBX/OBJ emissive maps): a colour map.
+    int emissionTexture = -1;
+    UvTransform emissionUv;
     bool hasAlpha() const { return alphaMode != AlphaMode::Opaque; }
 };
 

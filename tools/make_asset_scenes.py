@@ -272,6 +272,44 @@ def metal_rough_texture():
     return g
 
 
+# emissive: the panel's emissive texture codes (sRGB, grey) in its top and bottom halves, its
+# emissiveFactor and KHR_materials_emissive_strength.
+EMISSIVE_TOP = 255
+EMISSIVE_BOTTOM = 128
+EMISSIVE_STRENGTH = 4.0
+
+
+@scene("emissive")
+def emissive():
+    """A white floor (x, y in [-1.25, 1.25], z = 0) lit only by an emitting panel above its right
+    side: x in [0.2, 1.25], y in [-1.25, 1.25], z = 0.5, facing the camera (and, emitters being
+    two-sided, the floor). The panel's base colour is black (it reflects next to nothing); its
+    64 x 64 emissive texture is EMISSIVE_TOP in its upper half (y > 0) and EMISSIVE_BOTTOM in its
+    lower half, times emissiveFactor 1 and KHR_materials_emissive_strength EMISSIVE_STRENGTH. Seen
+    from the camera (1.5 units away, 0.75 units a half image) the panel covers pixel columns 41..63
+    of a 64 x 64 render, its halves split at row 32; the floor fills columns 0..39."""
+    g = Gltf()
+
+    def halves(path):
+        write_png(path, 64, 64, lambda x, y: (EMISSIVE_TOP if y < 32 else EMISSIVE_BOTTOM,) * 3)
+
+    texture = g.texture("emissive_halves.png", halves)
+    floor = g.material("floor", baseColorFactor=[0.8, 0.8, 0.8, 1], metallicFactor=0.0,
+                       roughnessFactor=1.0)
+    panel = g.material("panel", baseColorFactor=[0, 0, 0, 1], metallicFactor=0.0,
+                       roughnessFactor=1.0,
+                       extra={"emissiveFactor": [1, 1, 1], "emissiveTexture": {"index": texture},
+                              "extensions": {"KHR_materials_emissive_strength":
+                                             {"emissiveStrength": EMISSIVE_STRENGTH}}})
+    g.doc.setdefault("extensionsUsed", []).append("KHR_materials_emissive_strength")
+    positions, uvs, triangles = quad(-1.25, -1.25, 1.25, 1.25)
+    g.mesh("floor", positions, triangles, floor, uvs=uvs)
+    positions, uvs, triangles = quad(0.2, -1.25, 1.25, 1.25, z=0.5)
+    g.mesh("panel", positions, triangles, panel, uvs=uvs)
+    g.camera(EYE, YFOV)
+    return g
+
+
 def main():
     here = os.path.dirname(os.path.abspath(__file__))
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])

@@ -120,6 +120,21 @@ void readEmissionMap(const aiScene* as, const aiMaterial* am, const std::string&
     }
 }
 
+// A path tracer computes occlusion itself: an occlusion map (glTF occlusionTexture, which Assimp
+// 5.2 stores in the LIGHTMAP slot; FBX ambient occlusion) is named once per material.
+void warnOcclusionMap(const aiMaterial* am, const std::string& assetPath, const Material& m,
+                      Scene& scene) {
+    for (aiTextureType slot : {aiTextureType_AMBIENT_OCCLUSION, aiTextureType_LIGHTMAP}) {
+        if (slot == aiTextureType_LIGHTMAP && !isGltf(assetPath)) continue;
+        aiString ref;
+        if (am->GetTexture(slot, 0, &ref) != AI_SUCCESS) continue;
+        warn(
+            scene, m,
+            "occlusionTexture '" + std::string(ref.C_Str()) + "' ignored: kiln computes occlusion");
+        return;
+    }
+}
+
 // glTF: alphaMode decides; OPAQUE ignores alpha altogether (the specification's rule).
 void readGltfAlpha(const aiMaterial* am, Material& m, Scene& scene) {
     MaterialMaps& maps = m.maps;
@@ -188,6 +203,7 @@ void readAssimpMaps(const aiScene* as, const aiMaterial* am, const std::string& 
     readNormalMap(as, am, assetPath, m, scene);
     readMetallicRoughness(as, am, assetPath, m, scene);
     readEmissionMap(as, am, assetPath, m, scene);
+    warnOcclusionMap(am, assetPath, m, scene);
     if (isGltf(assetPath))
         readGltfAlpha(am, m, scene);
     else if (lowerExtension(assetPath) == ".obj")
@@ -202,9 +218,8 @@ bool readsTextureSlot(unsigned slot, const Material& m, const std::string& asset
             return principled;
         case aiTextureType_UNKNOWN:
             return principled && isGltf(assetPath);
-        case aiTextureType_EMISSIVE:
-        case aiTextureType_EMISSION_COLOR:
-            return true;  // readEmissionMap warns when it cannot use one
+        case aiTextureType_LIGHTMAP:
+            return isGltf(assetPath);  // glTF's occlusionTexture: warnOcclusionMap names it
         default:
             return false;
     }

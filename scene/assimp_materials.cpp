@@ -14,18 +14,16 @@
 namespace kiln {
 namespace {
 
-// Slots whose textures kiln does not apply (yet), with the words a warning uses.
+// Slots whose textures kiln does not apply (yet), with the words a warning uses (emissive and
+// occlusion maps: scene/assimp_maps.cpp reads or names them).
 constexpr std::pair<aiTextureType, const char*> kIgnoredSlots[] = {
     {aiTextureType_HEIGHT, "height/bump map"},
     {aiTextureType_DISPLACEMENT, "displacement map"},
     {aiTextureType_METALNESS, "metallic map"},
     {aiTextureType_DIFFUSE_ROUGHNESS, "roughness map"},
-    {aiTextureType_EMISSIVE, "emissive map"},
-    {aiTextureType_EMISSION_COLOR, "emissive map"},
     {aiTextureType_SPECULAR, "specular map"},
     {aiTextureType_SHININESS, "shininess map"},
     {aiTextureType_AMBIENT, "ambient map"},
-    {aiTextureType_AMBIENT_OCCLUSION, "ambient-occlusion map"},
     {aiTextureType_LIGHTMAP, "lightmap"},
     {aiTextureType_REFLECTION, "reflection map"},
     {aiTextureType_SHEEN, "sheen map"},

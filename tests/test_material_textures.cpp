@@ -1,6 +1,9 @@
 // A principled material's metallic-roughness, emissive and occlusion textures and the glTF sampler
 // wrap modes (scenes/assets, written by tools/make_asset_scenes.py): each texture changes shading
 // as the constant material it stands for would, and what kiln does not read is named once.
+#include <fstream>
+#include <nlohmann/json.hpp>
+
 #include "color/image_input.h"
 #include "renderer/accel/accelerator.h"
 #include "test_support.h"
@@ -166,6 +169,44 @@ TEST(EmissiveTexture, NeeAndMisAgreeOnATexturedEmitter) {
             upper += luminance(light.pixel(x, y)),
                 lower += luminance(light.pixel(x, kSize - 1 - y));
     EXPECT_GT(upper, 1.5 * lower);
+}
+
+// glTF occlusionTexture (Assimp 5.2's LIGHTMAP slot) and FBX ambient occlusion: a path tracer
+// computes occlusion, so the map is named in one warning per material that has one.
+TEST(OcclusionTexture, NamedOncePerMaterial) {
+    auto dir = test::scratchDir();
+    std::filesystem::copy_file(assetScene("emissive_halves.png"), dir / "emissive_halves.png");
+    nlohmann::json doc = nlohmann::json::parse(std::ifstream(assetScene("emissive.gltf")));
+    for (auto& m : doc["materials"]) m["occlusionTexture"] = {{"index", 0}, {"strength", 0.5}};
+    std::string path = test::writeFile(dir / "occluded.gltf", doc.dump());
+    Scene s = loadScene(path);
+    EXPECT_EQ(test::warningsNaming(s,
+                                   "occlusionTexture 'emissive_halves.png' ignored: kiln "
+                                   "computes occlusion"),
+              2);
+    EXPECT_EQ(test::warningsNaming(s, "material 'floor': occlusionTexture"), 1);
+    EXPECT_EQ(test::warningsNaming(s, "material 'panel': occlusionTexture"), 1);
+    EXPECT_EQ(test::warningsNaming(s, "lightmap"), 0);
+    EXPECT_EQ(s.warnings.size(), 2u) << s.warnings.front();
+
+    Scene fbx = loadScene("/usr/share/assimp/models/FBX/maxPbrMaterial_metalRough.fbx");
+    EXPECT_EQ(test::warningsNaming(fbx, "occlusionTexture 'Textures\\occlusion.png' ignored"), 1);
+    EXPECT_EQ(test::warningsNaming(fbx, "ambient-occlusion"), 0);
+}
+
+// Khronos' ClearCoatTest through Assimp: the metallic-roughness texture is read (not named as an
+// ignored metallic, roughness or unknown map) and the label's emissive texture is used.
+TEST(MaterialTextures, ClearCoatSampleReadsItsMetallicRoughnessAndEmissiveMaps) {
+    Scene s = loadScene("/usr/share/assimp/models/glTF2/ClearCoat-glTF/ClearCoatTest.gltf");
+    for (const char* dropped : {"metallic map", "roughness map", "unknown use", "emissive map"})
+        EXPECT_EQ(test::warningsNaming(s, dropped), 0) << dropped;
+    int metalRough = 0, emissive = 0;
+    for (const Material& m : s.materials) {
+        metalRough += m.maps.metallicTexture >= 0;
+        emissive += m.maps.emissionTexture >= 0;
+    }
+    EXPECT_GE(metalRough, 1);
+    EXPECT_EQ(emissive, 1);
 }
 
 }  // namespace

@@ -46,7 +46,8 @@ Color textureAt(const Scene& scene, int texture, const UvTransform& uvTransform,
     float u, v;
     uvAt(mesh, hit.prim, hit.u, hit.v, u, v);
     float width = textureWidth(scene, hit, uvTransform, worldWidth);
-    return scene.textures->lookup(texture, uvTransform.s(u, v), uvTransform.t(u, v), width);
+    return scene.textures->lookup(texture, uvTransform.s(u, v), uvTransform.t(u, v), width,
+                                  uvTransform.wrap);
 }
 
 float channelAt(const Scene& scene, int texture, int channel, const UvTransform& uvTransform,
@@ -55,7 +56,7 @@ float channelAt(const Scene& scene, int texture, int channel, const UvTransform&
     uvAt(mesh, hit.prim, hit.u, hit.v, u, v);
     float width = textureWidth(scene, hit, uvTransform, worldWidth);
     return scene.textures->lookupChannel(texture, channel, uvTransform.s(u, v), uvTransform.t(u, v),
-                                         width);
+                                         width, uvTransform.wrap);
 }
 
 }  // namespace
@@ -114,7 +115,7 @@ Color emissionTexelAt(const Scene& scene, const Material& material, uint32_t mes
     float u, v;
     uvAt(m, prim, b1, b2, u, v);
     const UvTransform& x = maps.emissionUv;
-    return scene.textures->lookup(maps.emissionTexture, x.s(u, v), x.t(u, v), 0.0f);
+    return scene.textures->lookup(maps.emissionTexture, x.s(u, v), x.t(u, v), 0.0f, x.wrap);
 }
 
 bool hasEmissionTexture(const Scene& scene, uint32_t mesh) {

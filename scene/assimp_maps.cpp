@@ -178,13 +178,37 @@ void readObjAlpha(const aiScene* as, const aiMaterial* am, const std::string& as
 
 }  // namespace
 
+namespace {
+
+// Assimp's mapping mode (glTF sampler wrapS/wrapT; OBJ -clamp) of the slot's texture on one axis.
+TextureWrap readWrap(const aiMaterial* am, const char* key, unsigned slot) {
+    int mode = aiTextureMapMode_Wrap;
+    if (am->Get(key, slot, 0, mode) != AI_SUCCESS) return TextureWrap::Repeat;
+    switch (mode) {
+        case aiTextureMapMode_Clamp:
+            return TextureWrap::Clamp;
+        case aiTextureMapMode_Mirror:
+            return TextureWrap::Mirror;
+        case aiTextureMapMode_Decal:
+            return TextureWrap::Black;
+        default:
+            return TextureWrap::Repeat;
+    }
+}
+
+}  // namespace
+
 bool readUvTransform(const aiMaterial* am, unsigned slot, const std::string& assetPath,
                      UvTransform& uv) {
+    uv.wrap = {readWrap(am, _AI_MATKEY_MAPPINGMODE_U_BASE, slot),
+               readWrap(am, _AI_MATKEY_MAPPINGMODE_V_BASE, slot)};
+    const WrapModes wrap = uv.wrap;  // the transforms below replace uv whole
     aiUVTransform x;
     if (am->Get(AI_MATKEY_UVTRANSFORM(slot, 0), x) != AI_SUCCESS) return false;
     if (!isGltf(assetPath)) {
         uv = UvTransform::assimp(x.mTranslation.x, x.mTranslation.y, x.mRotation, x.mScaling.x,
                                  x.mScaling.y);
+        uv.wrap = wrap;
         return true;
     }
     // Assimp's glTF importer re-expresses KHR_texture_transform for its own UV-transform rule
@@ -195,6 +219,7 @@ bool readUvTransform(const aiMaterial* am, unsigned slot, const std::string& ass
     float offsetU = x.mTranslation.x - 0.5f * su * (-c + s + 1);
     float offsetV = -(x.mTranslation.y - 0.5f * sv * (s + c - 1) - 1 + sv);
     uv = UvTransform::gltf(offsetU, offsetV, rotation, su, sv);
+    uv.wrap = wrap;
     return true;
 }
 

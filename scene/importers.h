@@ -38,7 +38,8 @@ void readAssimpMaps(const aiScene* as, const aiMaterial* am, const std::string& 
 // Whether the material's Assimp texture slot (an aiTextureType) is one kiln reads, or warns about
 // itself, for this material and format (readAssimpMaps): the slots left over get a warning each.
 bool readsTextureSlot(unsigned slot, const Material& m, const std::string& assetPath);
-// The slot's UV transform (KHR_texture_transform through Assimp), if the material states one.
+// The slot's wrap modes (glTF sampler wrapS/wrapT, as Assimp's mapping modes) into uv.wrap, and
+// its UV transform (KHR_texture_transform through Assimp) if the material states one (true).
 bool readUvTransform(const aiMaterial* am, unsigned slot, const std::string& assetPath,
                      UvTransform& uv);
 // The texture source an Assimp texture reference names (a file relative to the asset, or bytes

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "color/texture.h"
 #include "renderer/core/math.h"
 
 namespace kiln {
@@ -25,6 +26,9 @@ struct UvTransform {
     // How far one unit of mesh UV goes in (s, t): the footprint rule's scale (the mean of the two
     // axes' stretch, sqrt of the determinant).
     float areaScale() const { return std::sqrt(std::abs(a * e - b * d)); }
+    // How the lookup reads (s, t) outside [0, 1] (glTF sampler wrapS/wrapT), applied after the
+    // transform as glTF specifies.
+    WrapModes wrap;
     // glTF KHR_texture_transform (offset, rotation in radians, scale) applied in glTF's UV space
     // (v down): uv' = T * R * S * uv, R = [cos sin; -sin cos].
     static UvTransform gltf(float offsetU, float offsetV, float rotation, float scaleU,

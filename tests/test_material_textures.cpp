@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "color/image_input.h"
+#include "color/texture.h"
 #include "renderer/accel/accelerator.h"
 #include "test_support.h"
 
@@ -207,6 +208,72 @@ TEST(MaterialTextures, ClearCoatSampleReadsItsMetallicRoughnessAndEmissiveMaps) 
     }
     EXPECT_GE(metalRough, 1);
     EXPECT_EQ(emissive, 1);
+}
+
+// metal_rough_halves.png (64 x 64): left half (x < 32) B = 1, right half B = 0. At s = 1.25 a
+// repeating lookup reads s = 0.25 (left), a clamped one the right edge, a mirrored one s = 0.75
+// (right), and at s = 1.75 the mirror reads s = 0.25 (left); black reads nothing.
+TEST(TextureWrap, LookupsOutsideTheUnitSquare) {
+    TextureSet set;
+    TextureSource source;
+    source.name = assetScene("metal_rough_halves.png");
+    source.encoding = TextureEncoding::Data;
+    int id = set.add(source);
+    auto blue = [&](float s, TextureWrap wrap) {
+        return set.lookupChannel(id, 2, s, 0.5f, 0.0f, {wrap, TextureWrap::Repeat});
+    };
+    EXPECT_FLOAT_EQ(blue(0.25f, TextureWrap::Repeat), 1.0f);
+    EXPECT_FLOAT_EQ(blue(1.25f, TextureWrap::Repeat), 1.0f);
+    EXPECT_FLOAT_EQ(blue(1.25f, TextureWrap::Clamp), 0.0f);
+    EXPECT_FLOAT_EQ(blue(1.25f, TextureWrap::Mirror), 0.0f);
+    EXPECT_FLOAT_EQ(blue(1.75f, TextureWrap::Mirror), 1.0f);
+    EXPECT_FLOAT_EQ(blue(-0.25f, TextureWrap::Clamp), 1.0f);
+    Color black = set.lookup(id, 1.25f, 0.5f, 0.0f, {TextureWrap::Black, TextureWrap::Repeat});
+    EXPECT_EQ(black, Color(0.0f));
+    // t wraps on its own: clamped on t, repeating on s.
+    Color c = set.lookup(id, 1.25f, 1.5f, 0.0f, {TextureWrap::Repeat, TextureWrap::Clamp});
+    EXPECT_FLOAT_EQ(c.z, 1.0f);
+}
+
+// emissive.gltf with the panel's emissiveTexture read through KHR_texture_transform scale (1, 2)
+// and a sampler: the camera sees the panel's v in [0.2, 0.8], so v' = 2 v runs 0.4 .. 1.6, leaving
+// the texture at row 32. Rows 36..54 (v' in 1.1 .. 1.45) are bright (v' - 1 < 0.5) when it
+// repeats, dark when clamped to its last row or mirrored (2 - v' > 0.5); rows 60..63 (v' > 1.53)
+// are bright only mirrored (2 - v' < 0.5).
+TEST(TextureWrap, GltfSamplerWrapsTheEmissiveTexture) {
+    auto dir = test::scratchDir();
+    std::filesystem::copy_file(assetScene("emissive_halves.png"), dir / "emissive_halves.png");
+    const float bright = kStrength, dark = kStrength * srgbToLinear(128 / 255.0f);
+    struct Case {
+        int gl;  // glTF wrapT
+        TextureWrap wrap;
+        float middle, bottom;  // emission in rows 36..54 and 60..63
+    };
+    for (const Case& c : {Case{10497, TextureWrap::Repeat, bright, dark},
+                          Case{33071, TextureWrap::Clamp, dark, dark},
+                          Case{33648, TextureWrap::Mirror, dark, bright}}) {
+        nlohmann::json doc = nlohmann::json::parse(std::ifstream(assetScene("emissive.gltf")));
+        doc["samplers"] = {{{"wrapS", 33071}, {"wrapT", c.gl}}};
+        doc["textures"][0]["sampler"] = 0;
+        doc["extensionsUsed"].push_back("KHR_texture_transform");
+        doc["materials"][1]["emissiveTexture"]["extensions"] = {
+            {"KHR_texture_transform", {{"scale", {1, 2}}}}};
+        Scene s = loadScene(test::writeFile(dir / "wrapped.gltf", doc.dump()));
+        const Material* panel = test::findMaterial(s, MaterialKind::Principled, 1);
+        ASSERT_TRUE(panel);
+        EXPECT_EQ(panel->maps.emissionUv.wrap.s, TextureWrap::Clamp);
+        EXPECT_EQ(panel->maps.emissionUv.wrap.t, c.wrap);
+        AovRequest aovs;
+        aovs.add(AovKind::Emission);
+        Film f = render(s, 1, PathOptions{}, aovs);
+        size_t channel = test::aovChannel(f, "emission.G");
+        for (int x = 44; x < kSize; x += 4) {
+            for (int y = 36; y <= 54; y += 3)
+                EXPECT_NEAR(f.aov(x, y, channel), c.middle, 1e-3f * bright) << x << "," << y;
+            for (int y = 60; y < kSize; ++y)
+                EXPECT_NEAR(f.aov(x, y, channel), c.bottom, 1e-3f * bright) << x << "," << y;
+        }
+    }
 }
 
 }  // namespace

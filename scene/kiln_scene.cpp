@@ -370,7 +370,7 @@ void applyOverride(const std::string& path, pugi::xml_node n,
     if (it == materials.end())
         throw SceneError(path, std::string("<override> names unknown material '") +
                                    o.attribute("material").as_string() + "'");
-    overrideMaterials(part, scene.materials[it->second]);
+    overrideMaterials(part, scene.materials[it->second], scene.textureSources);
 }
 
 void readCamera(const std::string& path, pugi::xml_node n, Scene& scene) {

@@ -276,5 +276,36 @@ TEST(TextureWrap, GltfSamplerWrapsTheEmissiveTexture) {
     }
 }
 
+// A textured override material (--material-override FILE, and a .kiln <override material>)
+// brings its own texture sources: its ids used to index the overridden scene's sources (the
+// checker, or past their end).
+TEST(MaterialTextures, OverrideMaterialKeepsItsTextures) {
+    auto dir = test::scratchDir();
+    std::filesystem::copy_file(assetScene("metal_rough_halves.png"), dir / "mr.png");
+    std::string mats = test::writeFile(
+        dir / "mats.kiln",
+        "<kiln-scene><material name=\"p\" kind=\"principled\" base-color-texture=\"mr.png\" "
+        "metallic-roughness-texture=\"mr.png\"/></kiln-scene>\n");
+    std::string include = test::writeFile(
+        dir / "include.kiln",
+        "<kiln-scene><material name=\"p\" kind=\"principled\" base-color-texture=\"mr.png\" "
+        "metallic-roughness-texture=\"mr.png\"/><include file=\"" +
+            assetScene("textured.gltf") + "\"><override material=\"p\"/></include></kiln-scene>\n");
+    LoadOptions byFlag;
+    byFlag.materialOverride = mats;
+    for (const Scene& s : {loadScene(assetScene("textured.gltf"), byFlag), loadScene(include)}) {
+        ASSERT_EQ(s.meshes.size(), 1u);
+        const Material* m = &s.materials[s.meshes[0].materialOf(0)];  // the quad's
+        EXPECT_EQ(m->name, "p");
+        for (int id : {m->albedoTexture, m->maps.metallicTexture}) {
+            ASSERT_GE(id, 0);
+            ASSERT_LT(size_t(id), s.textureSources.size());
+            EXPECT_EQ(s.textureSources[size_t(id)].name, (dir / "mr.png").string());
+        }
+        EXPECT_EQ(s.textureSources[size_t(m->maps.metallicTexture)].encoding,
+                  TextureEncoding::Data);
+    }
+}
+
 }  // namespace
 }  // namespace kiln

@@ -165,9 +165,27 @@ int TextureSet::add(const TextureSource& source, std::string* note) {
     return int(impl_->handles.size()) - 1;
 }
 
-Color TextureSet::lookup(int id, float s, float t, float width) const {
+namespace {
+
+OIIO::TextureOpt::Wrap oiioWrap(TextureWrap wrap) {
+    switch (wrap) {
+        case TextureWrap::Clamp:
+            return OIIO::TextureOpt::WrapClamp;
+        case TextureWrap::Mirror:
+            return OIIO::TextureOpt::WrapMirror;
+        case TextureWrap::Black:
+            return OIIO::TextureOpt::WrapBlack;
+        case TextureWrap::Repeat:
+            break;
+    }
+    return OIIO::TextureOpt::WrapPeriodic;
+}
+
+}  // namespace
+
+Color TextureSet::lookup(int id, float s, float t, float width, WrapModes wrap) const {
     OIIO::TextureOpt opt;
-    opt.swrap = opt.twrap = OIIO::TextureOpt::WrapPeriodic;
+    opt.swrap = oiioWrap(wrap.s), opt.twrap = oiioWrap(wrap.t);
     float rgb[3] = {0, 0, 0};
     opt.fill = 0;
     impl_->system->texture(impl_->handles[size_t(id)], nullptr, opt, s, t, width, 0, 0, width, 3,
@@ -175,10 +193,11 @@ Color TextureSet::lookup(int id, float s, float t, float width) const {
     return Color(rgb[0], rgb[1], rgb[2]);
 }
 
-float TextureSet::lookupChannel(int id, int channel, float s, float t, float width) const {
+float TextureSet::lookupChannel(int id, int channel, float s, float t, float width,
+                                WrapModes wrap) const {
     if (channel >= impl_->channels[size_t(id)]) return 1.0f;
     OIIO::TextureOpt opt;
-    opt.swrap = opt.twrap = OIIO::TextureOpt::WrapPeriodic;
+    opt.swrap = oiioWrap(wrap.s), opt.twrap = oiioWrap(wrap.t);
     opt.firstchannel = channel;
     float value = 1.0f;
     impl_->system->texture(impl_->handles[size_t(id)], nullptr, opt, s, t, width, 0, 0, width, 1,

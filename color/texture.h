@@ -27,6 +27,13 @@ struct TextureSource {
     TextureEncoding encoding = TextureEncoding::Color;
 };
 
+// How a lookup reads (s, t) outside [0, 1] on each axis (glTF sampler wrapS/wrapT: REPEAT,
+// CLAMP_TO_EDGE, MIRRORED_REPEAT; Assimp's decal mode: nothing, black, outside).
+enum class TextureWrap { Repeat, Clamp, Mirror, Black };
+struct WrapModes {
+    TextureWrap s = TextureWrap::Repeat, t = TextureWrap::Repeat;
+};
+
 class TextureSet {
   public:
     static constexpr float kDefaultCacheMb = 256.0f;
@@ -41,12 +48,14 @@ class TextureSet {
     size_t size() const { return sources_.size(); }
     float cacheMb() const { return cacheMb_; }
 
-    // The filtered RGB at (s, t) (s right, t down, 1 = the image width/height, wrapping), over a
-    // square footprint `width` wide in the same units (0: the finest level, bilinear).
-    Color lookup(int id, float s, float t, float width) const;
+    // The filtered RGB at (s, t) (s right, t down, 1 = the image width/height, outside [0, 1] as
+    // `wrap` says), over a square footprint `width` wide in the same units (0: the finest level,
+    // bilinear).
+    Color lookup(int id, float s, float t, float width, WrapModes wrap = {}) const;
     // One channel, filtered the same way (alpha: channel 3); a channel the image lacks reads as 1
     // (an RGB texture is opaque).
-    float lookupChannel(int id, int channel, float s, float t, float width) const;
+    float lookupChannel(int id, int channel, float s, float t, float width,
+                        WrapModes wrap = {}) const;
     // Bilinear between texel centres of the finest level, s wrapping and t clamped: a lat-long
     // environment map (s = longitude, t = polar angle, both in [0, 1]).
     Color lookupLatLong(int id, float s, float t) const;

@@ -17,13 +17,15 @@ float phongPdf(const Vec3& r, const Vec3& wi, float n) {
 
 }  // namespace
 
-Bsdf::Bsdf(const Material& material, MicrofacetModel model, const Color& albedo)
+Bsdf::Bsdf(const Material& material, MicrofacetModel model, const Color& albedo,
+           MetallicRoughness mr)
     : m_(material), albedo_(albedo) {
     micro_.model = model;
     micro_.alpha = std::max(1e-4f, material.alpha);
     delta_ = material.kind == MaterialKind::Mirror || material.kind == MaterialKind::Glass ||
              material.kind == MaterialKind::Refraction;
-    if (material.kind == MaterialKind::Principled) principled_ = PrincipledBsdf(material, albedo);
+    if (material.kind == MaterialKind::Principled)
+        principled_ = PrincipledBsdf(material, albedo, mr);
 }
 
 bool Bsdf::hasTransmission() const {

@@ -22,8 +22,12 @@ class Bsdf {
   public:
     explicit Bsdf(const Material& material, MicrofacetModel model = MicrofacetModel::Beckmann)
         : Bsdf(material, model, material.albedo) {}
-    // albedo: the Lambertian colour at this point (textures, vertex colours: surface_albedo.h).
-    Bsdf(const Material& material, MicrofacetModel model, const Color& albedo);
+    // albedo: the Lambertian colour at this point (textures, vertex colours: surface_albedo.h);
+    // mr: a principled material's metallic and roughness there (else its factors).
+    Bsdf(const Material& material, MicrofacetModel model, const Color& albedo)
+        : Bsdf(material, model, albedo, MetallicRoughness::of(material)) {}
+    Bsdf(const Material& material, MicrofacetModel model, const Color& albedo,
+         MetallicRoughness mr);
     bool isDelta() const { return delta_; }
     bool isBlack() const { return m_.kind == MaterialKind::Emission; }
     bool hasTransmission() const;

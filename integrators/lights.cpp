@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "integrators/surface_albedo.h"
 #include "renderer/core/warp.h"
 
 namespace kiln {
@@ -137,7 +138,7 @@ Color EnvironmentMap::bilinearLookup(float u, float v) const {
            (at(x0, y1) * (1 - tx) + at(x1, y1) * tx) * ty;
 }
 
-LightSet::LightSet(const Scene& scene) {
+LightSet::LightSet(const Scene& scene) : scene_(&scene) {
     std::vector<bool> proto = scene.prototypeMask();
     meshLight_.assign(scene.meshes.size(), -1);
     Bounds3 b = scene.storedBounds();
@@ -158,6 +159,7 @@ LightSet::LightSet(const Scene& scene) {
                 }
                 e.triangleArea = Distribution1D(areas);
                 if (!proto[l.mesh]) meshLight_[l.mesh] = int(lights_.size());
+                e.emissionTextured = hasEmissionTexture(scene, l.mesh);
             } else {
                 // The CGL rectangle: two triangles spanning position +- dimX/2 +- dimY/2.
                 Vec3 p00 = l.position - l.dimX * 0.5f - l.dimY * 0.5f;
@@ -170,7 +172,7 @@ LightSet::LightSet(const Scene& scene) {
                 Vec3 n = cross(e.triangles[t + 1], e.triangles[t + 2]);
                 e.normals.push_back(dot(n, n) > 0 ? normalize(n) : Vec3(0, 1, 0));
             }
-            findParallelogram(e);
+            if (!e.emissionTextured) findParallelogram(e);
             e.oneSided = l.kind == LightKind::Area;
             e.side = normalize(l.direction);
         } else if (l.kind == LightKind::Environment) {
@@ -243,6 +245,7 @@ bool LightSet::sample(size_t i, const Vec3& ref, float u1, float u2, LightSample
             // Uniform by area. Written for few divisions and branches: this runs -l times at every
             // path vertex.
             Vec3 p, pError, n;
+            Color texel(1.0f);
             if (e.parallelogram) {
                 p = e.origin + e.edgeX * u1 + e.edgeY * u2;
                 pError = (abs(e.origin) + abs(e.edgeX * u1) + abs(e.edgeY * u2)) * gamma(7) +
@@ -266,6 +269,10 @@ bool LightSet::sample(size_t i, const Vec3& ref, float u1, float u2, LightSample
                 // interpolation).
                 pError = (abs(tri[0]) + abs(tri[1] * b1) + abs(tri[2] * b2)) * gamma(7);
                 n = e.normals[t];
+                if (e.emissionTextured)  // as a ray hitting this point sees it (path.cpp)
+                    texel = emissionTexelAt(*scene_,
+                                            scene_->materials[scene_->meshes[l.mesh].materialOf(t)],
+                                            l.mesh, uint32_t(t), b1, b2);
             }
             Vec3 d = p - ref;
             // A one-sided light sends nothing to points behind (or in) its plane.
@@ -279,7 +286,7 @@ bool LightSet::sample(size_t i, const Vec3& ref, float u1, float u2, LightSample
             out.pdf = dist2 / (cosL * e.area);
             out.p = p;
             out.pError = pError;
-            out.Li = l.radiance;
+            out.Li = l.radiance * texel;
             return maxComponent(out.Li) > 0;
         }
         case LightKind::Point:

@@ -81,10 +81,13 @@ class LightSet {
         float area = 0;
         bool oneSided = false;
         Vec3 side;  // emitting side for one-sided lights
+        // A mesh with an emission texture: sampled by triangle (the point's UVs read the texture).
+        bool emissionTextured = false;
         EnvironmentMap env;
     };
     float power(const Entry& e, float sceneRadius) const;
     static void findParallelogram(Entry& e);
+    const Scene* scene_;  // emission textures of mesh lights
     std::vector<Entry> lights_;
     std::vector<int> meshLight_;
     std::vector<size_t> infinite_;

@@ -30,7 +30,7 @@ void applyNormalMap(const Scene& scene, const Material& material, const Hit& hit
     uvAt(mesh, hit.prim, hit.u, hit.v, u, v);
     const UvTransform& x = maps.normalUv;
     Color texel = scene.textures->lookup(maps.normalTexture, x.s(u, v), x.t(u, v),
-                                         textureWidth(scene, hit, x, worldWidth));
+                                         textureWidth(scene, hit, x, worldWidth), x.wrap);
     Vec3 m((2 * texel.x - 1) * maps.normalScale, (2 * texel.y - 1) * maps.normalScale,
            2 * texel.z - 1);
     if (m.x == 0 && m.y == 0 && m.z > 0) return;  // the map says: the normal as it is

@@ -75,7 +75,7 @@ Lobe lobeOf(const Material& m, bool transmission) {
 // all.
 class LambertBsdf {
   public:
-    LambertBsdf(const Material& m, MicrofacetModel, const Color& albedo)
+    LambertBsdf(const Material& m, MicrofacetModel, const Color& albedo, MetallicRoughness)
         : albedo_(albedo), black_(m.kind == MaterialKind::Emission) {}
     bool isDelta() const { return false; }
     bool isBlack() const { return black_; }
@@ -125,8 +125,11 @@ Color PathIntegrator::emissionAt(const Ray& ray, const Hit& hit, const SurfaceIn
                                  int& li) const {
     li = (hit.shape != kSphereShape && hit.instance == kInvalidId) ? lights_.lightOfMesh(hit.shape)
                                                                    : -1;
-    return li >= 0 ? lights_.emitted(size_t(li), si.p, si.ng, ray.origin)
-                   : scene_.materials[si.material].emission;
+    const Material& m = scene_.materials[si.material];
+    Color Le = li >= 0 ? lights_.emitted(size_t(li), si.p, si.ng, ray.origin) : m.emission;
+    if (m.maps.emissionTexture >= 0 && hit.shape != kSphereShape)
+        Le = Le * emissionTexelAt(scene_, m, hit.shape, hit.prim, hit.u, hit.v);
+    return Le;
 }
 
 template <bool Infinite>
@@ -283,13 +286,16 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
             }
             if (bounce >= opt_.maxDepth) continue;
             Color albedo = mat.albedo;
+            MetallicRoughness mr = MetallicRoughness::of(mat);
             if (colourVaries_) {
                 st.travelled += hit.t * length(ray.dir);
                 albedo = albedoAt(scene_, mat, hit, st.travelled, opt_.pixelSpread);
+                mr = metallicRoughnessAt(scene_, mat, hit, st.travelled, opt_.pixelSpread);
                 applyNormalMap(scene_, mat, hit, -normalize(ray.dir),
                                st.travelled * opt_.pixelSpread, si);
             }
-            std::conditional_t<DiffuseOnly, LambertBsdf, Bsdf> bsdf(mat, opt_.microfacet, albedo);
+            std::conditional_t<DiffuseOnly, LambertBsdf, Bsdf> bsdf(mat, opt_.microfacet, albedo,
+                                                                    mr);
             if (bsdf.isBlack()) continue;
             // A shading normal bent so far that the viewer is below its tangent plane would make
             // the surface black: shade such a vertex with the geometric normal instead (on the

@@ -35,11 +35,11 @@ Vec3 upper(const Vec3& w, bool flip) { return flip ? Vec3(w.x, w.y, -w.z) : w; }
 
 }  // namespace
 
-PrincipledBsdf::PrincipledBsdf(const Material& m, const Color& baseColour)
+PrincipledBsdf::PrincipledBsdf(const Material& m, const Color& baseColour, MetallicRoughness mr)
     : base_(max(baseColour, Color(0.0f))),
-      metallic_(std::clamp(m.metallic, 0.0f, 1.0f)),
+      metallic_(std::clamp(mr.metallic, 0.0f, 1.0f)),
       coat_(std::clamp(m.clearcoat, 0.0f, 1.0f)),
-      specular_(ggx(m.roughness)),
+      specular_(ggx(mr.roughness)),
       coatLobe_(ggx(m.clearcoatRoughness)) {
     float r = (m.ior - 1) / (m.ior + 1);
     dielectricF0_ = std::clamp(m.specular * r * r, 0.0f, 1.0f);

@@ -19,11 +19,21 @@ namespace kiln {
 
 struct BsdfSample;
 
+// Metallic and perceptual roughness at a point: the material's factors times its
+// metallic-roughness texture there (surface_albedo.h).
+struct MetallicRoughness {
+    float metallic = 0, roughness = 1;
+    static MetallicRoughness of(const Material& m) { return {m.metallic, m.roughness}; }
+};
+
 class PrincipledBsdf {
   public:
     PrincipledBsdf() = default;
-    // baseColour: the material's albedo at this point (textures, vertex colours).
-    PrincipledBsdf(const Material& material, const Color& baseColour);
+    // baseColour: the material's albedo at this point (textures, vertex colours); mr: its
+    // metallic and roughness there (else the material's factors).
+    PrincipledBsdf(const Material& material, const Color& baseColour)
+        : PrincipledBsdf(material, baseColour, MetallicRoughness::of(material)) {}
+    PrincipledBsdf(const Material& material, const Color& baseColour, MetallicRoughness mr);
 
     Color eval(const Vec3& wo, const Vec3& wi) const;
     float pdf(const Vec3& wo, const Vec3& wi) const;

@@ -46,7 +46,17 @@ Color textureAt(const Scene& scene, int texture, const UvTransform& uvTransform,
     float u, v;
     uvAt(mesh, hit.prim, hit.u, hit.v, u, v);
     float width = textureWidth(scene, hit, uvTransform, worldWidth);
-    return scene.textures->lookup(texture, uvTransform.s(u, v), uvTransform.t(u, v), width);
+    return scene.textures->lookup(texture, uvTransform.s(u, v), uvTransform.t(u, v), width,
+                                  uvTransform.wrap);
+}
+
+float channelAt(const Scene& scene, int texture, int channel, const UvTransform& uvTransform,
+                const Hit& hit, const TriangleMesh& mesh, float worldWidth) {
+    float u, v;
+    uvAt(mesh, hit.prim, hit.u, hit.v, u, v);
+    float width = textureWidth(scene, hit, uvTransform, worldWidth);
+    return scene.textures->lookupChannel(texture, channel, uvTransform.s(u, v), uvTransform.t(u, v),
+                                         width, uvTransform.wrap);
 }
 
 }  // namespace
@@ -54,7 +64,8 @@ Color textureAt(const Scene& scene, int texture, const UvTransform& uvTransform,
 bool hasSurfaceColourVariation(const Scene& scene) {
     return std::any_of(scene.materials.begin(), scene.materials.end(),
                        [](const Material& m) {
-                           return m.albedoTexture >= 0 || m.maps.normalTexture >= 0;
+                           return m.albedoTexture >= 0 || m.maps.normalTexture >= 0 ||
+                                  m.maps.metallicTexture >= 0 || m.maps.roughnessTexture >= 0;
                        }) ||
            std::any_of(scene.meshes.begin(), scene.meshes.end(),
                        [](const TriangleMesh& m) { return !m.colors.empty(); });
@@ -74,6 +85,45 @@ Color albedoAt(const Scene& scene, const Material& material, const Hit& hit, flo
                                     mesh, travelled * pixelSpread);
     if (!mesh.colors.empty()) albedo = albedo * colourAt(mesh, idx, b);
     return albedo;
+}
+
+MetallicRoughness metallicRoughnessAt(const Scene& scene, const Material& material, const Hit& hit,
+                                      float travelled, float pixelSpread) {
+    MetallicRoughness mr = MetallicRoughness::of(material);
+    const MaterialMaps& maps = material.maps;
+    if (maps.metallicTexture < 0 && maps.roughnessTexture < 0) return mr;
+    if (hit.shape == kSphereShape || !scene.textures) return mr;
+    const TriangleMesh& mesh = scene.meshes[hit.shape];
+    if (mesh.uvs.empty()) return mr;
+    float worldWidth = travelled * pixelSpread;
+    if (maps.metallicTexture >= 0)
+        mr.metallic *= channelAt(scene, maps.metallicTexture, maps.metallicChannel, maps.metallicUv,
+                                 hit, mesh, worldWidth);
+    if (maps.roughnessTexture >= 0)
+        mr.roughness *= channelAt(scene, maps.roughnessTexture, maps.roughnessChannel,
+                                  maps.roughnessUv, hit, mesh, worldWidth);
+    return mr;
+}
+
+Color emissionTexelAt(const Scene& scene, const Material& material, uint32_t mesh, uint32_t prim,
+                      float b1, float b2) {
+    const MaterialMaps& maps = material.maps;
+    if (maps.emissionTexture < 0 || !scene.textures || mesh >= scene.meshes.size())
+        return Color(1.0f);
+    const TriangleMesh& m = scene.meshes[mesh];
+    if (m.uvs.empty()) return Color(1.0f);
+    float u, v;
+    uvAt(m, prim, b1, b2, u, v);
+    const UvTransform& x = maps.emissionUv;
+    return scene.textures->lookup(maps.emissionTexture, x.s(u, v), x.t(u, v), 0.0f, x.wrap);
+}
+
+bool hasEmissionTexture(const Scene& scene, uint32_t mesh) {
+    const TriangleMesh& m = scene.meshes[mesh];
+    if (m.uvs.empty() || !scene.textures) return false;
+    return std::any_of(m.materialIds.begin(), m.materialIds.end(), [&](uint32_t id) {
+        return id < scene.materials.size() && scene.materials[id].maps.emissionTexture >= 0;
+    });
 }
 
 }  // namespace kiln

@@ -3,6 +3,7 @@
 // the material's albedo, unchanged.
 #pragma once
 
+#include "integrators/principled_bsdf.h"
 #include "renderer/core/ray.h"
 #include "scene/scene.h"
 
@@ -22,5 +23,19 @@ float textureWidth(const Scene& scene, const Hit& hit, const UvTransform& uvTran
 
 Color albedoAt(const Scene& scene, const Material& material, const Hit& hit, float travelled,
                float pixelSpread);
+
+// A principled material's metallic and roughness at the hit: its factors times the
+// metallic-roughness texture's channels (glTF: B and G), looked up with the same footprint rule.
+MetallicRoughness metallicRoughnessAt(const Scene& scene, const Material& material, const Hit& hit,
+                                      float travelled, float pixelSpread);
+
+// The emission texture's colour at a point of triangle `prim` of mesh `mesh` (b1, b2: weights of
+// its vertices 1 and 2), 1 where the material has none: it multiplies the emitted radiance. Read at
+// the finest level, with no footprint, so that a ray hitting the point and a light sample picking
+// it see the same radiance (MIS weighs the two as estimates of one integrand).
+Color emissionTexelAt(const Scene& scene, const Material& material, uint32_t mesh, uint32_t prim,
+                      float b1, float b2);
+// Whether any material of the mesh has an emission texture it can read (the mesh has UVs).
+bool hasEmissionTexture(const Scene& scene, uint32_t mesh);
 
 }  // namespace kiln

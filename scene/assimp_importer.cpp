@@ -7,8 +7,8 @@
 #include <assimp/Importer.hpp>
 #include <assimp/LogStream.hpp>
 #include <charconv>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -471,14 +471,21 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
     printed.addWarnings(scene);
     if (lowerExtension(path) == ".amf") warnAmfLimits(path, scene);
     as = joinVerticesUnlessColoured(importer, as);
-    if (std::string ext = lowerExtension(path); ext == ".gltf" || ext == ".glb")
+    std::vector<float> emissiveStrengths;
+    if (std::string ext = lowerExtension(path); ext == ".gltf" || ext == ".glb") {
         warnUnreadGltfExtensions(path, scene);
+        emissiveStrengths = gltfEmissiveStrengths(path);
+    }
     std::vector<bool> used = usedMaterials(as);
 
     // Materials: through the CGL pass for COLLADA (matched by name or id), else Assimp's colours.
     uint32_t materialBase = uint32_t(scene.materials.size());
     for (unsigned i = 0; i < as->mNumMaterials; ++i) {
         Material m = materialFromAssimp(as->mMaterials[i], extras != nullptr);
+        float stated = 1;
+        if (i < emissiveStrengths.size() &&
+            as->mMaterials[i]->Get(AI_MATKEY_EMISSIVE_INTENSITY, stated) != AI_SUCCESS)
+            m.emission = m.emission * emissiveStrengths[i];
         aiColor3D diffuse;
         bool statesColour = as->mMaterials[i]->Get(AI_MATKEY_COLOR_DIFFUSE, diffuse) == AI_SUCCESS;
         if (statesColour && unsetMdlColour(path, as->mMaterials[i])) {

@@ -61,6 +61,80 @@ void readNormalMap(const aiScene* as, const aiMaterial* am, const std::string& a
     }
 }
 
+// Principled materials: glTF's metallicRoughnessTexture (Assimp 5.2 stores it in the UNKNOWN slot,
+// AI_MATKEY_GLTF_PBRMETALLICROUGHNESS_METALLICROUGHNESS_TEXTURE, and repeats it as METALNESS and
+// DIFFUSE_ROUGHNESS): B metallic, G roughness. Other formats (FBX, OBJ map_Pm/map_Pr): a grey
+// metalness and a grey roughness map.
+void readMetallicRoughness(const aiScene* as, const aiMaterial* am, const std::string& assetPath,
+                           Material& m, Scene& scene) {
+    MaterialMaps& maps = m.maps;
+    if (m.kind != MaterialKind::Principled) return;
+    if (isGltf(assetPath)) {
+        if (am->GetTextureCount(aiTextureType_UNKNOWN) == 0) return;
+        int id = mapSource(as, am, aiTextureType_UNKNOWN, assetPath, TextureEncoding::Data,
+                           "metallic-roughness texture", maps.metallicUv, m, scene);
+        maps.metallicTexture = maps.roughnessTexture = id;
+        maps.metallicChannel = 2, maps.roughnessChannel = 1;
+        maps.roughnessUv = maps.metallicUv;
+        return;
+    }
+    if (am->GetTextureCount(aiTextureType_METALNESS) > 0) {
+        maps.metallicTexture =
+            mapSource(as, am, aiTextureType_METALNESS, assetPath, TextureEncoding::Data,
+                      "metalness map", maps.metallicUv, m, scene);
+        maps.metallicChannel = 0;
+    }
+    if (am->GetTextureCount(aiTextureType_DIFFUSE_ROUGHNESS) > 0) {
+        maps.roughnessTexture =
+            mapSource(as, am, aiTextureType_DIFFUSE_ROUGHNESS, assetPath, TextureEncoding::Data,
+                      "roughness map", maps.roughnessUv, m, scene);
+        maps.roughnessChannel = 0;
+    }
+}
+
+// The emissive texture (glTF emissiveTexture, OBJ map_Ke, FBX emissive or emission-colour maps),
+// sRGB colour multiplying the emissive factor; with no emissive colour it could add nothing.
+void readEmissionMap(const aiScene* as, const aiMaterial* am, const std::string& assetPath,
+                     Material& m, Scene& scene) {
+    for (aiTextureType slot : {aiTextureType_EMISSIVE, aiTextureType_EMISSION_COLOR}) {
+        if (am->GetTextureCount(slot) == 0) continue;
+        if (!(maxComponent(m.emission) > 0)) {
+            aiString ref;
+            am->GetTexture(slot, 0, &ref);
+            warn(scene, m,
+                 "emissive map '" + std::string(ref.C_Str()) +
+                     "' ignored: the emissive colour it multiplies is black");
+            return;
+        }
+        m.maps.emissionTexture = mapSource(as, am, slot, assetPath, TextureEncoding::Color,
+                                           "emissive map", m.maps.emissionUv, m, scene);
+        aiString used, other;
+        am->GetTexture(slot, 0, &used);
+        if (slot == aiTextureType_EMISSIVE &&
+            am->GetTexture(aiTextureType_EMISSION_COLOR, 0, &other) == AI_SUCCESS &&
+            std::string(other.C_Str()) != used.C_Str())
+            warn(scene, m,
+                 "emission-colour map '" + std::string(other.C_Str()) +
+                     "' ignored: the emissive map is used");
+        return;
+    }
+}
+
+// A path tracer computes occlusion itself: an occlusion map (glTF occlusionTexture, which Assimp
+// 5.2 stores in the LIGHTMAP slot; FBX ambient occlusion) is named once per material.
+void warnOcclusionMap(const aiMaterial* am, const std::string& assetPath, const Material& m,
+                      Scene& scene) {
+    for (aiTextureType slot : {aiTextureType_AMBIENT_OCCLUSION, aiTextureType_LIGHTMAP}) {
+        if (slot == aiTextureType_LIGHTMAP && !isGltf(assetPath)) continue;
+        aiString ref;
+        if (am->GetTexture(slot, 0, &ref) != AI_SUCCESS) continue;
+        warn(
+            scene, m,
+            "occlusionTexture '" + std::string(ref.C_Str()) + "' ignored: kiln computes occlusion");
+        return;
+    }
+}
+
 // glTF: alphaMode decides; OPAQUE ignores alpha altogether (the specification's rule).
 void readGltfAlpha(const aiMaterial* am, Material& m, Scene& scene) {
     MaterialMaps& maps = m.maps;
@@ -104,13 +178,37 @@ void readObjAlpha(const aiScene* as, const aiMaterial* am, const std::string& as
 
 }  // namespace
 
+namespace {
+
+// Assimp's mapping mode (glTF sampler wrapS/wrapT; OBJ -clamp) of the slot's texture on one axis.
+TextureWrap readWrap(const aiMaterial* am, const char* key, unsigned slot) {
+    int mode = aiTextureMapMode_Wrap;
+    if (am->Get(key, slot, 0, mode) != AI_SUCCESS) return TextureWrap::Repeat;
+    switch (mode) {
+        case aiTextureMapMode_Clamp:
+            return TextureWrap::Clamp;
+        case aiTextureMapMode_Mirror:
+            return TextureWrap::Mirror;
+        case aiTextureMapMode_Decal:
+            return TextureWrap::Black;
+        default:
+            return TextureWrap::Repeat;
+    }
+}
+
+}  // namespace
+
 bool readUvTransform(const aiMaterial* am, unsigned slot, const std::string& assetPath,
                      UvTransform& uv) {
+    uv.wrap = {readWrap(am, _AI_MATKEY_MAPPINGMODE_U_BASE, slot),
+               readWrap(am, _AI_MATKEY_MAPPINGMODE_V_BASE, slot)};
+    const WrapModes wrap = uv.wrap;  // the transforms below replace uv whole
     aiUVTransform x;
     if (am->Get(AI_MATKEY_UVTRANSFORM(slot, 0), x) != AI_SUCCESS) return false;
     if (!isGltf(assetPath)) {
         uv = UvTransform::assimp(x.mTranslation.x, x.mTranslation.y, x.mRotation, x.mScaling.x,
                                  x.mScaling.y);
+        uv.wrap = wrap;
         return true;
     }
     // Assimp's glTF importer re-expresses KHR_texture_transform for its own UV-transform rule
@@ -121,16 +219,35 @@ bool readUvTransform(const aiMaterial* am, unsigned slot, const std::string& ass
     float offsetU = x.mTranslation.x - 0.5f * su * (-c + s + 1);
     float offsetV = -(x.mTranslation.y - 0.5f * sv * (s + c - 1) - 1 + sv);
     uv = UvTransform::gltf(offsetU, offsetV, rotation, su, sv);
+    uv.wrap = wrap;
     return true;
 }
 
 void readAssimpMaps(const aiScene* as, const aiMaterial* am, const std::string& assetPath,
                     Material& m, Scene& scene) {
     readNormalMap(as, am, assetPath, m, scene);
+    readMetallicRoughness(as, am, assetPath, m, scene);
+    readEmissionMap(as, am, assetPath, m, scene);
+    warnOcclusionMap(am, assetPath, m, scene);
     if (isGltf(assetPath))
         readGltfAlpha(am, m, scene);
     else if (lowerExtension(assetPath) == ".obj")
         readObjAlpha(as, am, assetPath, m, scene);
+}
+
+bool readsTextureSlot(unsigned slot, const Material& m, const std::string& assetPath) {
+    bool principled = m.kind == MaterialKind::Principled;
+    switch (slot) {
+        case aiTextureType_METALNESS:
+        case aiTextureType_DIFFUSE_ROUGHNESS:
+            return principled;
+        case aiTextureType_UNKNOWN:
+            return principled && isGltf(assetPath);
+        case aiTextureType_LIGHTMAP:
+            return isGltf(assetPath);  // glTF's occlusionTexture: warnOcclusionMap names it
+        default:
+            return false;
+    }
 }
 
 }  // namespace kiln

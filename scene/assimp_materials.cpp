@@ -14,18 +14,16 @@
 namespace kiln {
 namespace {
 
-// Slots whose textures kiln does not apply (yet), with the words a warning uses.
+// Slots whose textures kiln does not apply (yet), with the words a warning uses (emissive and
+// occlusion maps: scene/assimp_maps.cpp reads or names them).
 constexpr std::pair<aiTextureType, const char*> kIgnoredSlots[] = {
     {aiTextureType_HEIGHT, "height/bump map"},
     {aiTextureType_DISPLACEMENT, "displacement map"},
     {aiTextureType_METALNESS, "metallic map"},
     {aiTextureType_DIFFUSE_ROUGHNESS, "roughness map"},
-    {aiTextureType_EMISSIVE, "emissive map"},
-    {aiTextureType_EMISSION_COLOR, "emissive map"},
     {aiTextureType_SPECULAR, "specular map"},
     {aiTextureType_SHININESS, "shininess map"},
     {aiTextureType_AMBIENT, "ambient map"},
-    {aiTextureType_AMBIENT_OCCLUSION, "ambient-occlusion map"},
     {aiTextureType_LIGHTMAP, "lightmap"},
     {aiTextureType_REFLECTION, "reflection map"},
     {aiTextureType_SHEEN, "sheen map"},
@@ -149,7 +147,7 @@ void readAssimpTextures(const aiScene* as, const aiMaterial* am, const std::stri
     readBaseColour(as, am, assetPath, statesColour, m, scene);
     readAssimpMaps(as, am, assetPath, m, scene);
     for (const auto& [slot, what] : kIgnoredSlots)
-        if (am->GetTextureCount(slot) > 0) {
+        if (am->GetTextureCount(slot) > 0 && !readsTextureSlot(slot, m, assetPath)) {
             aiString ref;
             am->GetTexture(slot, 0, &ref);
             scene.warnings.push_back(materialLabel(m) + ": " + what + " '" + ref.C_Str() +

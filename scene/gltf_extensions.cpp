@@ -1,5 +1,7 @@
+// KHR_materials_emissive_strength, which Assimp 5.2 does not hand over, read from the JSON.
 // glTF extensions the file uses that Assimp 5.2 reads nothing of (KHR_techniques_webgl: the
 // material, its texture included, silently became Assimp's default one) are named in a warning.
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <set>
@@ -43,6 +45,25 @@ void warnUnreadGltfExtensions(const std::string& path, Scene& scene) {
             scene.warnings.push_back("glTF extension " + name.get<std::string>() +
                                      " is not read: what it states (materials, textures, ...) is "
                                      "dropped");
+}
+
+std::vector<float> gltfEmissiveStrengths(const std::string& path) {
+    Json doc = Json::parse(gltfJson(path), nullptr, false);
+    std::vector<float> strengths;
+    if (!doc.is_object() || !doc.contains("materials") || !doc["materials"].is_array())
+        return strengths;
+    for (const Json& m : doc["materials"]) {
+        float strength = 1.0f;
+        const Json* e = m.is_object() && m.contains("extensions") ? &m["extensions"] : nullptr;
+        if (e && e->is_object() && e->contains("KHR_materials_emissive_strength")) {
+            const Json& x = (*e)["KHR_materials_emissive_strength"];
+            if (x.is_object() && x.contains("emissiveStrength") &&
+                x["emissiveStrength"].is_number())
+                strength = x["emissiveStrength"].get<float>();
+        }
+        strengths.push_back(std::isfinite(strength) ? std::max(0.0f, strength) : 1.0f);
+    }
+    return strengths;
 }
 
 }  // namespace kiln

@@ -3,6 +3,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "renderer/core/memory.h"
 #include "scene/cgl_extras.h"
@@ -19,6 +20,10 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
 
 // A warning for each glTF extension the file uses that neither Assimp nor kiln reads.
 void warnUnreadGltfExtensions(const std::string& path, Scene& scene);
+// Each glTF material's KHR_materials_emissive_strength (1 where it states none), in the file's
+// order, which is Assimp's (its default material comes after them); empty when unreadable.
+// Assimp 5.2 does not hand the extension over (AI_MATKEY_EMISSIVE_INTENSITY stays unset).
+std::vector<float> gltfEmissiveStrengths(const std::string& path);
 
 // An Assimp material's base-colour texture as a source of the scene (Material::albedoTexture; the
 // albedo becomes 1 unless the file states a colour, which then multiplies it), and a warning for
@@ -30,7 +35,11 @@ void readAssimpTextures(const aiScene* as, const aiMaterial* am, const std::stri
 // alphaMode and cutoff, base-colour alpha; OBJ d and map_d) into Material::maps.
 void readAssimpMaps(const aiScene* as, const aiMaterial* am, const std::string& assetPath,
                     Material& m, Scene& scene);
-// The slot's UV transform (KHR_texture_transform through Assimp), if the material states one.
+// Whether the material's Assimp texture slot (an aiTextureType) is one kiln reads, or warns about
+// itself, for this material and format (readAssimpMaps): the slots left over get a warning each.
+bool readsTextureSlot(unsigned slot, const Material& m, const std::string& assetPath);
+// The slot's wrap modes (glTF sampler wrapS/wrapT, as Assimp's mapping modes) into uv.wrap, and
+// its UV transform (KHR_texture_transform through Assimp) if the material states one (true).
 bool readUvTransform(const aiMaterial* am, unsigned slot, const std::string& assetPath,
                      UvTransform& uv);
 // The texture source an Assimp texture reference names (a file relative to the asset, or bytes

@@ -132,7 +132,7 @@ void merge(Scene& dst, Scene& src, const Mat4& xf, int override, bool asPrototyp
     dst.textureSources.insert(dst.textureSources.end(), src.textureSources.begin(),
                               src.textureSources.end());
     for (Material& m : src.materials)
-        for (int* id : {&m.albedoTexture, &m.maps.normalTexture, &m.maps.opacityTexture})
+        for (int* id : textureIds(m))
             if (*id >= 0) *id += textureBase;
     dst.materials.insert(dst.materials.end(), src.materials.begin(), src.materials.end());
     std::vector<bool> proto = src.prototypeMask();
@@ -218,6 +218,22 @@ float unitNumber(const std::string& file, pugi::xml_node n, const char* attr, fl
     return v;
 }
 
+// The texture an attribute names (a path relative to the .kiln file) as a source of the scene, or
+// -1 when the attribute is absent.
+int textureAttribute(const std::string& file, pugi::xml_node n, const char* attr,
+                     TextureEncoding encoding, Scene& scene) {
+    pugi::xml_attribute tex = n.attribute(attr);
+    if (!tex) return -1;
+    fs::path p = fs::path(file).parent_path() / tex.as_string();
+    if (!fs::is_regular_file(p))
+        throw SceneError(file, "<material> " + std::string(attr) + " " + p.string() + " not found");
+    TextureSource source;
+    source.name = p.lexically_normal().string();
+    source.encoding = encoding;
+    scene.textureSources.push_back(std::move(source));
+    return int(scene.textureSources.size()) - 1;
+}
+
 // The principled material's parameters (glTF metallic-roughness; docs/kiln-scene.md), its
 // base-colour texture a path relative to the .kiln file.
 void parsePrincipled(const std::string& file, pugi::xml_node n, Material& m, Scene& scene) {
@@ -232,15 +248,12 @@ void parsePrincipled(const std::string& file, pugi::xml_node n, Material& m, Sce
     m.clearcoatRoughness = unitNumber(file, n, "clearcoat-roughness", 0.03f);
     if (m.specular < 0 || !(m.ior >= 1))
         throw SceneError(file, "<material> needs specular >= 0 and ior >= 1");
-    if (pugi::xml_attribute tex = n.attribute("base-color-texture")) {
-        fs::path p = fs::path(file).parent_path() / tex.as_string();
-        if (!fs::is_regular_file(p))
-            throw SceneError(file, "<material> base-color-texture " + p.string() + " not found");
-        TextureSource source;
-        source.name = p.lexically_normal().string();
-        scene.textureSources.push_back(std::move(source));
-        m.albedoTexture = int(scene.textureSources.size()) - 1;
-    }
+    m.albedoTexture =
+        textureAttribute(file, n, "base-color-texture", TextureEncoding::Color, scene);
+    // glTF's layout: B metallic, G roughness, multiplying the factors above.
+    int mr = textureAttribute(file, n, "metallic-roughness-texture", TextureEncoding::Data, scene);
+    m.maps.metallicTexture = m.maps.roughnessTexture = mr;
+    m.maps.metallicChannel = 2, m.maps.roughnessChannel = 1;
 }
 
 Material parseMaterial(const std::string& file, pugi::xml_node n, Scene& scene) {
@@ -357,7 +370,7 @@ void applyOverride(const std::string& path, pugi::xml_node n,
     if (it == materials.end())
         throw SceneError(path, std::string("<override> names unknown material '") +
                                    o.attribute("material").as_string() + "'");
-    overrideMaterials(part, scene.materials[it->second]);
+    overrideMaterials(part, scene.materials[it->second], scene.textureSources);
 }
 
 void readCamera(const std::string& path, pugi::xml_node n, Scene& scene) {
@@ -486,8 +499,8 @@ void readKilnScene(const std::string& path, Scene& scene) {
         checkKnown(path, n,
                    {"name", "kind", "albedo", "reflectance", "ior", "alpha", "eta", "k",
                     // principled (docs/kiln-scene.md)
-                    "base-color", "base-color-texture", "metallic", "roughness", "specular",
-                    "clearcoat", "clearcoat-roughness", "emission"});
+                    "base-color", "base-color-texture", "metallic-roughness-texture", "metallic",
+                    "roughness", "specular", "clearcoat", "clearcoat-roughness", "emission"});
         materials[n.attribute("name").as_string()] = uint32_t(scene.materials.size());
         scene.materials.push_back(parseMaterial(path, n, scene));
     }

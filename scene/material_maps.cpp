@@ -41,6 +41,12 @@ const char* toString(AlphaMode mode) {
     return "unknown";
 }
 
+std::vector<int*> textureIds(Material& m) {
+    MaterialMaps& x = m.maps;
+    return {&m.albedoTexture,   &x.normalTexture,    &x.opacityTexture,
+            &x.metallicTexture, &x.roughnessTexture, &x.emissionTexture};
+}
+
 void uvAt(const TriangleMesh& mesh, uint32_t prim, float b1, float b2, float& u, float& v) {
     const uint32_t* idx = &mesh.indices[3 * size_t(prim)];
     const float* uv = mesh.uvs.data();

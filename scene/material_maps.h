@@ -5,13 +5,16 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
+#include "color/texture.h"
 #include "renderer/core/math.h"
 
 namespace kiln {
 
 struct TriangleMesh;
 struct Scene;
+struct Material;
 
 // Mesh UVs (v up, as OBJ and Assimp store them) to the texture lookup's (s, t) (t down the image):
 // s = a*u + b*v + c, t = d*u + e*v + f. The identity transform is s = u, t = 1 - v.
@@ -23,6 +26,9 @@ struct UvTransform {
     // How far one unit of mesh UV goes in (s, t): the footprint rule's scale (the mean of the two
     // axes' stretch, sqrt of the determinant).
     float areaScale() const { return std::sqrt(std::abs(a * e - b * d)); }
+    // How the lookup reads (s, t) outside [0, 1] (glTF sampler wrapS/wrapT), applied after the
+    // transform as glTF specifies.
+    WrapModes wrap;
     // glTF KHR_texture_transform (offset, rotation in radians, scale) applied in glTF's UV space
     // (v down): uv' = T * R * S * uv, R = [cos sin; -sin cos].
     static UvTransform gltf(float offsetU, float offsetV, float rotation, float scaleU,
@@ -49,8 +55,21 @@ struct MaterialMaps {
     int opacityTexture = -1;   // multiplies opacity: channel opacityChannel of this texture
     int opacityChannel = 3;    // 3: the base-colour texture's alpha; 0: a grey map (OBJ map_d)
     UvTransform opacityUv;
+    // Principled: the metallic and roughness factors times one channel each of these data
+    // textures (glTF metallicRoughnessTexture: one texture, B metallic and G roughness; FBX/OBJ
+    // metalness and roughness maps: a grey texture each, channel 0).
+    int metallicTexture = -1, metallicChannel = 2;
+    int roughnessTexture = -1, roughnessChannel = 1;
+    UvTransform metallicUv, roughnessUv;
+    // Multiplies Material::emission (glTF emissiveTexture, FBX/OBJ emissive maps): a colour map.
+    int emissionTexture = -1;
+    UvTransform emissionUv;
     bool hasAlpha() const { return alphaMode != AlphaMode::Opaque; }
 };
+
+// Every texture id a material holds (Material::albedoTexture and those of its maps), so code
+// that moves or renumbers texture ids (merging scenes, opening textures) misses none.
+std::vector<int*> textureIds(Material& m);
 
 // Barycentric interpolation of the mesh's UVs at triangle `prim` (b1, b2: weights of its vertices
 // 1 and 2). The mesh must have UVs.

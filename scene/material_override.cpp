@@ -29,10 +29,13 @@ bool parseAlbedo(const std::string& text, Color& albedo) {
     return true;
 }
 
-// The material named `name` (or the first) of a .kiln file, read with every check a scene gets.
-Material materialFromFile(const std::string& path, const std::string& name) {
+// The material named `name` (or the first) of a .kiln file, read with every check a scene gets,
+// and the file's texture sources its texture ids index.
+Material materialFromFile(const std::string& path, const std::string& name,
+                          std::vector<TextureSource>* textures) {
     Scene holder;
     readKilnScene(path, holder);
+    if (textures) *textures = holder.textureSources;
     for (const Material& m : holder.materials)
         if (name.empty() || m.name == name) return m;
     throw SceneError(path, name.empty() ? "has no <material> for --material-override"
@@ -41,7 +44,7 @@ Material materialFromFile(const std::string& path, const std::string& name) {
 
 }  // namespace
 
-Material parseMaterialOverride(const std::string& spec) {
+Material parseMaterialOverride(const std::string& spec, std::vector<TextureSource>* textures) {
     Material m;
     m.name = "override";
     if (spec == kDiffuseOverride) {  // applied per material by overrideMaterials(scene, spec)
@@ -70,7 +73,7 @@ Material parseMaterialOverride(const std::string& spec) {
             "or a .kiln file with a <material> (FILE or FILE:NAME)");
     if (lowerExtension(path) != ".kiln")
         throw SceneError(path, "a material override file must be a .kiln scene with <material>");
-    return materialFromFile(path, name);
+    return materialFromFile(path, name, textures);
 }
 
 namespace {
@@ -79,13 +82,30 @@ bool emits(const Material& m) {
 }
 }  // namespace
 
-void overrideMaterials(Scene& scene, const Material& m) {
+void overrideMaterials(Scene& scene, const Material& m,
+                       const std::vector<TextureSource>& textures) {
+    // m's textures join the scene's sources (once each), its ids moved to them.
+    Material placed = m;
+    std::vector<int> movedTo(textures.size(), -1);
+    for (int* id : textureIds(placed)) {
+        if (*id < 0) continue;
+        int& to = movedTo.at(size_t(*id));
+        if (to < 0) {
+            to = int(scene.textureSources.size());
+            scene.textureSources.push_back(textures[size_t(*id)]);
+        }
+        *id = to;
+    }
     for (Material& old : scene.materials)
-        if (!emits(old)) old = m;
+        if (!emits(old)) old = placed;
 }
 
 void overrideMaterials(Scene& scene, const std::string& spec) {
-    if (spec != kDiffuseOverride) return overrideMaterials(scene, parseMaterialOverride(spec));
+    if (spec != kDiffuseOverride) {
+        std::vector<TextureSource> textures;
+        Material m = parseMaterialOverride(spec, &textures);
+        return overrideMaterials(scene, m, textures);
+    }
     // Each surface keeps its base colour, textures, vertex colours and maps; only its reflection
     // becomes Lambert (a diffuse-only look, and exact Lambert shading for tests).
     for (Material& m : scene.materials)

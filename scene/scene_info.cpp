@@ -116,6 +116,9 @@ std::string sceneInfoText(const Scene& scene) {
         }
         // Maps (scene/material_maps.h).
         if (m.maps.normalTexture >= 0) os << " normal-map scale " << num(m.maps.normalScale);
+        if (m.maps.metallicTexture >= 0 || m.maps.roughnessTexture >= 0)
+            os << " metallic-roughness-map";
+        if (m.maps.emissionTexture >= 0) os << " emission-map";
         if (m.maps.hasAlpha())
             os << " alpha " << toString(m.maps.alphaMode) << " opacity " << num(m.maps.opacity)
                << (m.maps.alphaMode == AlphaMode::Mask ? " cutoff " + num(m.maps.alphaCutoff) : "")

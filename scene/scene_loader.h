@@ -35,11 +35,14 @@ struct EnumNames<LoadOptions::CameraRule> {
 // The material a --material-override names: "clay" (Lambert grey 0.5), "diffuse" (see below),
 // "lambertian:G" or
 // "lambertian:R,G,B", or a .kiln file with a <material> (FILE, or FILE:NAME for one of several).
-// Throws SceneError naming the spec or file.
-Material parseMaterialOverride(const std::string& spec);
+// Throws SceneError naming the spec or file. `textures` (if given) receives a file's texture
+// sources, which the material's texture ids index.
+Material parseMaterialOverride(const std::string& spec,
+                               std::vector<TextureSource>* textures = nullptr);
 
-// Replaces every material of the scene that does not emit by `m` (emitters keep lighting it).
-void overrideMaterials(Scene& scene, const Material& m);
+// Replaces every material of the scene that does not emit by `m` (emitters keep lighting it); m's
+// texture ids index `textures`, which join the scene's sources.
+void overrideMaterials(Scene& scene, const Material& m, const std::vector<TextureSource>& textures);
 // The same for a spec; "diffuse" keeps every material's base colour, textures and maps and makes
 // it reflect as Lambert.
 void overrideMaterials(Scene& scene, const std::string& spec);

@@ -22,11 +22,8 @@ void openTextures(Scene& scene, float cacheMb) {
     auto remap = [&](int& id) {
         if (id >= 0) id = idOf[size_t(id)];
     };
-    for (Material& m : scene.materials) {
-        remap(m.albedoTexture);
-        remap(m.maps.normalTexture);
-        remap(m.maps.opacityTexture);
-    }
+    for (Material& m : scene.materials)
+        for (int* id : textureIds(m)) remap(*id);
     scene.textures = std::move(set);
 }
 

@@ -241,6 +241,75 @@ def vertex_colored():
     return g
 
 
+# metal_rough_texture: the metallicRoughnessTexture's two halves as (metallic, roughness) 8-bit
+# codes (glTF: B metallic, G roughness), the left half first.
+MR_LEFT = (255, 128)  # metal, roughness 128/255
+MR_RIGHT = (0, 204)   # dielectric, roughness 204/255
+MR_BASE = (0.9, 0.6, 0.2)
+
+
+@scene("metal_rough_texture")
+def metal_rough_texture():
+    """The textured quad's layout (x, y in [-1.25, 1.25], sun at 30 degrees) with a principled
+    material of base colour MR_BASE, metallicFactor and roughnessFactor 1, and a 64 x 64
+    metallicRoughnessTexture whose left half (image x < 0: pixel columns 0..31 of a 64 x 64
+    render) holds MR_LEFT and right half MR_RIGHT: each half shades as the constant material with
+    those factors."""
+    g = Gltf()
+
+    def halves(path):
+        write_png(path, 64, 64, lambda x, y: (0, (MR_LEFT if x < 32 else MR_RIGHT)[1],
+                                              (MR_LEFT if x < 32 else MR_RIGHT)[0]))
+
+    texture = g.texture("metal_rough_halves.png", halves)
+    material = g.material("metal_rough", baseColorFactor=list(MR_BASE) + [1],
+                          metallicFactor=1.0, roughnessFactor=1.0,
+                          metallicRoughnessTexture={"index": texture})
+    positions, uvs, triangles = quad(-1.25, -1.25, 1.25, 1.25)
+    g.mesh("metal_rough_quad", positions, triangles, material, uvs=uvs)
+    g.camera(EYE, YFOV)
+    g.directional_light(3.0, rotation=SUN)
+    return g
+
+
+# emissive: the panel's emissive texture codes (sRGB, grey) in its top and bottom halves, its
+# emissiveFactor and KHR_materials_emissive_strength.
+EMISSIVE_TOP = 255
+EMISSIVE_BOTTOM = 128
+EMISSIVE_STRENGTH = 4.0
+
+
+@scene("emissive")
+def emissive():
+    """A white floor (x, y in [-1.25, 1.25], z = 0) lit only by an emitting panel above its right
+    side: x in [0.2, 1.25], y in [-1.25, 1.25], z = 0.5, facing the camera (and, emitters being
+    two-sided, the floor). The panel's base colour is black (it reflects next to nothing); its
+    64 x 64 emissive texture is EMISSIVE_TOP in its upper half (y > 0) and EMISSIVE_BOTTOM in its
+    lower half, times emissiveFactor 1 and KHR_materials_emissive_strength EMISSIVE_STRENGTH. Seen
+    from the camera (1.5 units away, 0.75 units a half image) the panel covers pixel columns 41..63
+    of a 64 x 64 render, its halves split at row 32; the floor fills columns 0..39."""
+    g = Gltf()
+
+    def halves(path):
+        write_png(path, 64, 64, lambda x, y: (EMISSIVE_TOP if y < 32 else EMISSIVE_BOTTOM,) * 3)
+
+    texture = g.texture("emissive_halves.png", halves)
+    floor = g.material("floor", baseColorFactor=[0.8, 0.8, 0.8, 1], metallicFactor=0.0,
+                       roughnessFactor=1.0)
+    panel = g.material("panel", baseColorFactor=[0, 0, 0, 1], metallicFactor=0.0,
+                       roughnessFactor=1.0,
+                       extra={"emissiveFactor": [1, 1, 1], "emissiveTexture": {"index": texture},
+                              "extensions": {"KHR_materials_emissive_strength":
+                                             {"emissiveStrength": EMISSIVE_STRENGTH}}})
+    g.doc.setdefault("extensionsUsed", []).append("KHR_materials_emissive_strength")
+    positions, uvs, triangles = quad(-1.25, -1.25, 1.25, 1.25)
+    g.mesh("floor", positions, triangles, floor, uvs=uvs)
+    positions, uvs, triangles = quad(0.2, -1.25, 1.25, 1.25, z=0.5)
+    g.mesh("panel", positions, triangles, panel, uvs=uvs)
+    g.camera(EYE, YFOV)
+    return g
+
+
 def main():
     here = os.path.dirname(os.path.abspath(__file__))
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])

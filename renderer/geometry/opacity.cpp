@@ -37,7 +37,7 @@ float alphaAt(const Scene& scene, const Material& material, const TriangleMesh& 
         uvAt(mesh, prim, b1, b2, u, v);
         const UvTransform& x = maps.opacityUv;
         alpha *= scene.textures->lookupChannel(maps.opacityTexture, maps.opacityChannel, x.s(u, v),
-                                               x.t(u, v), 0.0f);
+                                               x.t(u, v), 0.0f, x.wrap);
     }
     return alpha;
 }

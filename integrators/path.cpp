@@ -14,7 +14,7 @@ PathIntegrator::PathIntegrator(const Scene& scene, const Accelerator& accel,
       trace_(pathFor(plan)),
       opt_(options),
       lights_(scene) {
-    opt_.lightSamples = std::max(1, opt_.lightSamples);
+    opt_.lightSamples = resolvedLightSamples(options, plan);
     // Up to 64 delta lights, as the course does; beyond that (a many-light scene) a shadow ray per
     // light per vertex would swamp the render, and -l picks by power instead.
     constexpr size_t kMaxDeltaLightsTakenEach = 64;

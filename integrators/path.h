@@ -46,7 +46,7 @@ struct EnumNames<MisHeuristic> {
 
 struct PathOptions {
     int maxDepth = 5;
-    int lightSamples = 1;  // -l: light samples per shading point
+    int lightSamples = 0;  // -l: light samples per shading point; 0: the plan's default
     DirectSampling sampling = DirectSampling::Mis;
     MisHeuristic heuristic = MisHeuristic::Power;
     Roulette roulette = Roulette::Throughput;
@@ -59,6 +59,11 @@ struct PathOptions {
     MicrofacetModel microfacet = MicrofacetModel::Beckmann;
     float pixelSpread = 0;  // radians a camera pixel spans: the texture footprint (0: finest level)
 };
+
+// -l if given, else the render plan's default for the scene.
+inline int resolvedLightSamples(const PathOptions& options, const RenderPlan& plan) {
+    return options.lightSamples > 0 ? options.lightSamples : plan.defaultLightSamples;
+}
 
 struct SurfaceInteraction;
 

@@ -69,7 +69,9 @@ RenderPlan planFor(const Scene& scene, const Accelerator& accel, const AovReques
         p.deltaLightsOnly &= delta;
         p.areaLights |= l.kind == LightKind::Area || l.kind == LightKind::MeshEmitter;
         p.infiniteLights |= l.kind == LightKind::Environment || l.kind == LightKind::Ambient;
+        p.environmentMap |= l.kind == LightKind::Environment && l.environmentImage != nullptr;
     }
+    p.defaultLightSamples = p.environmentMap ? RenderPlan::kEnvironmentLightSamples : 1;
     p.spheres = !scene.spheres.empty();
     p.instances = !scene.instances.empty();
     p.caustics = p.deltaSpecular && anyDiffuse && !scene.lights.empty();
@@ -99,6 +101,10 @@ RenderPlan planFor(const Scene& scene, const Accelerator& accel, const AovReques
                                     : "no environment lookup on escape",
         p.infiniteLights ? "environment or ambient light present"
                          : "no environment or ambient light");
+    say(fmt::format("{} light sample{} per shading point unless -l is given", p.defaultLightSamples,
+                    p.defaultLightSamples > 1 ? "s" : ""),
+        p.environmentMap ? "an environment map lights the scene: measured faster to equal error"
+                         : "no environment map");
     say(p.spheres ? "sphere geometry registered" : "no sphere geometry registered",
         p.spheres ? std::to_string(scene.spheres.size()) + " analytic spheres"
                   : "no analytic spheres");

@@ -38,7 +38,10 @@ RenderJob::RenderJob(const Scene& scene, const Accelerator& accel, const RenderJ
       plan_(planFor(scene, accel, options.aovs, options.plan)),
       integrator_(
           makeIntegrator(options.integrator, scene, accel, withPixelSpread(scene, options), plan_)),
-      filmScaleExponent_(kiln::filmScaleExponent(scene.brightestEmission())) {}
+      filmScaleExponent_(kiln::filmScaleExponent(scene.brightestEmission())) {
+    // The number the integrator uses, for the EXR header and checkpoint fingerprints.
+    options_.path.lightSamples = resolvedLightSamples(options_.path, plan_);
+}
 
 RenderJob::RenderJob(const RenderJob& job, const Accelerator& accel)
     : scene_(job.scene_),

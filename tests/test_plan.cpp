@@ -2,6 +2,7 @@
 // path's image.
 #include "integrators/path.h"
 #include "integrators/render_plan.h"
+#include "renderer/render_job.h"
 #include "renderer/render_loop.h"
 #include "scene/scene_loader.h"
 #include "test_support.h"
@@ -107,6 +108,38 @@ TEST(SpecialisedPaths, DeltaLightsOnlySkipsTheUselessLastRay) {
     render(s, *accel, opt, PlanMode::General, {}, &general);
     EXPECT_LT(special,
               general);  // camera + shadow rays only; the general path also traces a continuation
+}
+
+// Without -l the plan picks the light samples: 4 where an environment map lights the scene, 1
+// elsewhere; -l wins. The job renders with the number it states (the same rays as -l 4).
+TEST(PlanLightSamples, FourForAnEnvironmentMapUnlessStated) {
+    Scene box = loadScene(test::cs184("sky/CBbunny.dae"));
+    auto boxAccel = makeEmbreeAccelerator(box);
+    EXPECT_EQ(planFor(box, *boxAccel, AovRequest{}).defaultLightSamples, 1);
+    EXPECT_EQ(RenderJob(box, *boxAccel, test::jobOptions(8, 6, 1)).options().path.lightSamples, 1);
+
+    LoadOptions load;
+    load.environmentMap = test::shared("envmaps/courtyard.exr");
+    Scene lit = loadScene(test::cs184("sky/CBbunny.dae"), load);
+    auto accel = makeEmbreeAccelerator(lit);
+    RenderPlan plan = planFor(lit, *accel, AovRequest{});
+    EXPECT_EQ(plan.defaultLightSamples, RenderPlan::kEnvironmentLightSamples);
+    EXPECT_NE(plan.text().find("4 light samples per shading point"), std::string::npos)
+        << plan.text();
+    RenderJob chosen(lit, *accel, test::jobOptions(16, 12, 2));
+    EXPECT_EQ(chosen.options().path.lightSamples, 4);
+    PathOptions two;
+    two.lightSamples = 2;
+    EXPECT_EQ(RenderJob(lit, *accel, test::jobOptions(16, 12, 2, two)).options().path.lightSamples,
+              2);
+    PathOptions four;
+    four.lightSamples = 4;
+    RenderStats byPlan, stated;
+    Film a = test::renderJob(lit, *accel, test::jobOptions(16, 12, 2), &byPlan);
+    Film b = test::renderJob(lit, *accel, test::jobOptions(16, 12, 2, four), &stated);
+    EXPECT_EQ(byPlan.rays, stated.rays);
+    for (int y = 0; y < 12; ++y)
+        for (int x = 0; x < 16; ++x) EXPECT_EQ(a.pixel(x, y), b.pixel(x, y)) << x << " " << y;
 }
 
 }  // namespace

@@ -38,7 +38,7 @@ double bruteForceSeconds(const Scene& scene, const RenderJobOptions& render) {
     const RenderSettings& s = render.settings;
     double pixels = double(s.filmWidth()) * double(s.filmHeight());
     double vertices = std::min(render.path.maxDepth, 4);
-    double rays = pixels * s.spp * (1 + vertices * (render.path.lightSamples + 1));
+    double rays = pixels * s.spp * (1 + vertices * (std::max(1, render.path.lightSamples) + 1));
     int threads =
         s.threads > 0 ? s.threads : int(std::max(1u, std::thread::hardware_concurrency()));
     return rays * double(bruteForcePrimitiveCount(scene)) * kBruteForceNsPerTest * 1e-9 / threads;

@@ -139,7 +139,7 @@ std::string sppFlags(const Shot& shot) {
 double workUnits(const RenderJobOptions& o) {
     double vertices = o.integrator == IntegratorKind::Normals ? 0 : std::min(o.path.maxDepth, 6);
     return double(o.settings.width) * o.settings.height * o.settings.spp *
-           (1 + vertices * (o.path.lightSamples + 1));
+           (1 + vertices * (std::max(1, o.path.lightSamples) + 1));
 }
 
 struct Size {

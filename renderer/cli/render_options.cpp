@@ -182,8 +182,11 @@ void addTransportOptions(ArgParser& parser, RenderJobArgs& a) {
                      "CS184 depth: 0 emission only, 1 direct lighting, >= 2 global illumination "
                      "(default 5)",
                      p.maxDepth, 0, 100000);
-    parser.intOption("light-samples", "l", "light samples per shading point (default 1)",
-                     p.lightSamples, 1, 65536);
+    parser.intOption(
+        "light-samples", "l",
+        "light samples per shading point (default 4 when an environment map lights the "
+        "scene, else 1)",
+        p.lightSamples, 1, 65536);
     parser.option(
         "hemisphere", "H", 0, "",
         "direct light by uniform hemisphere sampling (same as --sampling hemisphere)",

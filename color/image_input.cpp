@@ -40,6 +40,15 @@ float srgbToLinear(float v) {
     return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
 }
 
+void decodeSrgbTexels(float* texels, size_t count, int channels) {
+    const int colourChannels = std::min(channels, 3);
+    for (size_t i = 0; i < count; ++i)
+        for (int c = 0; c < colourChannels; ++c) {
+            float& v = texels[i * size_t(channels) + size_t(c)];
+            v = srgbToLinear(v);
+        }
+}
+
 bool isSrgbEncoded(const OIIO::ImageSpec& spec) {
     return spec.format.basetype == OIIO::TypeDesc::UINT8 ||
            OIIO::Strutil::iequals(spec.get_string_attribute("oiio:ColorSpace"), "sRGB");

@@ -35,6 +35,9 @@ struct ImageReadError : std::runtime_error {
 
 // The sRGB transfer function, decoded: the one place for that formula.
 float srgbToLinear(float encoded);
+// srgbToLinear on the colour channels (the first three) of `count` interleaved texels of
+// `channels` floats each; alpha stays as it is.
+void decodeSrgbTexels(float* texels, size_t count, int channels);
 
 // Whether an image's texels are sRGB-encoded: 8-bit, or stated sRGB (PNG, JPEG); else linear.
 bool isSrgbEncoded(const OIIO::ImageSpec& spec);

@@ -5,9 +5,13 @@
 #include <OpenImageIO/imageio.h>
 #include <OpenImageIO/texture.h>
 
+#include <chrono>
 #include <cstring>
+#include <filesystem>
 
 #include "color/image_input.h"
+#include "color/texture_convert.h"
+#include "renderer/core/log.h"
 
 namespace kiln {
 namespace {
@@ -44,12 +48,6 @@ class WorkingSpaceInput final : public OIIO::ImageInput {
         const OIIO::ParamValue* p = config.find_attribute(kSourceAttribute, OIIO::TypeDesc::PTR);
         if (!p) return false;
         source_ = *static_cast<TextureSource* const*>(p->data());
-        if (source_->pixels) {
-            m_spec = OIIO::ImageSpec(source_->pixels->width, source_->pixels->height, 3,
-                                     OIIO::TypeDesc::FLOAT);
-            spec = m_spec;
-            return true;
-        }
         inner_ = openTextureSource(*source_, proxy_);
         if (!inner_) return false;
         m_spec = inner_->spec();
@@ -64,11 +62,6 @@ class WorkingSpaceInput final : public OIIO::ImageInput {
         return true;
     }
     bool read_native_scanline(int, int, int y, int z, void* data) override {
-        if (source_->pixels) {
-            const RgbImage& image = *source_->pixels;
-            std::memcpy(data, &image.pixels[size_t(y) * image.width], size_t(image.width) * 12);
-            return true;
-        }
         // PNG and JPEG decode forwards only; an earlier row (the cache evicted it) starts over.
         if (y < nextRow_) {
             inner_.reset();  // before its proxy is replaced
@@ -79,11 +72,7 @@ class WorkingSpaceInput final : public OIIO::ImageInput {
         int nch = m_spec.nchannels;
         if (!inner_->read_scanlines(0, 0, y, y + 1, z, 0, nch, OIIO::TypeDesc::FLOAT, data))
             return false;
-        if (!decode_) return true;
-        auto* v = static_cast<float*>(data);
-        int colourChannels = std::min(nch, 3);  // alpha stays linear
-        for (int x = 0; x < m_spec.width; ++x)
-            for (int c = 0; c < colourChannels; ++c) v[x * nch + c] = srgbToLinear(v[x * nch + c]);
+        if (decode_) decodeSrgbTexels(static_cast<float*>(data), size_t(m_spec.width), nch);
         return true;
     }
 
@@ -101,6 +90,41 @@ bool isMipMapped(OIIO::ImageInput& in) {
     if (in.spec().tile_width == 0) return false;
     OIIO::ImageSpec level1;
     return in.seek_subimage(0, 1, level1);
+}
+
+// The tiled MIP-mapped file of a plain image in the texture cache directory: converted now, or
+// by an earlier render of the same content. Empty, with a note, when the directory cannot take it
+// (the image is then read whole through automip).
+std::string tiledMipFile(const TextureSource& source, OIIO::ImageInput& in, std::string* note) {
+    namespace fs = std::filesystem;
+    bool decode = source.encoding == TextureEncoding::Color && isSrgbEncoded(in.spec());
+    std::string dir = textureCacheDir();
+    try {
+        std::string identity;
+        if (source.bytes) {
+            identity.assign(source.bytes->begin(), source.bytes->end());
+        } else {
+            fs::path path = fs::absolute(source.name);
+            identity = path.string() + "\n" + std::to_string(fs::file_size(path)) + "\n" +
+                       std::to_string(fs::last_write_time(path).time_since_epoch().count());
+        }
+        std::string target = (fs::path(dir) / convertedTextureName(identity, decode)).string();
+        if (fs::exists(target)) {
+            logDebug("texture {}: reusing {}", source.name, target);
+            return target;
+        }
+        fs::create_directories(dir);
+        auto start = std::chrono::steady_clock::now();
+        convertToTiledMip(in, decode, target);
+        logInfo("texture {}: converted to the tiled MIP-mapped {} ({:.2f} s)", source.name, target,
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        return target;
+    } catch (const std::exception& e) {
+        if (note)
+            *note = std::string("not converted to a tiled MIP-mapped file in ") + dir + " (" +
+                    e.what() + "): read whole, outside --texture-cache-mb";
+        return "";
+    }
 }
 
 }  // namespace
@@ -127,26 +151,31 @@ TextureSet::TextureSet(float cacheMb) : impl_(std::make_unique<Impl>()), cacheMb
     impl_->system->attribute("automip", 1);
     impl_->system->attribute("autotile", 64);
     impl_->system->attribute("accept_untiled", 1);
+    // Converted files keep straight (unassociated) alpha, as the sources do.
+    impl_->system->attribute("unassociatedalpha", 1);
 }
 
 TextureSet::~TextureSet() = default;
 
 int TextureSet::add(const TextureSource& source, std::string* note) {
-    bool asStored = false;
-    if (!source.pixels) {
-        std::unique_ptr<OIIO::Filesystem::IOMemReader> proxy;
-        auto in = openTextureSource(source, proxy);
-        if (!in) throw ImageReadError(source.name, "cannot read texture: " + OIIO::geterror());
-        asStored = !source.bytes && isMipMapped(*in);
-        if (asStored && note && source.encoding == TextureEncoding::Color &&
-            isSrgbEncoded(in->spec()))
+    std::unique_ptr<OIIO::Filesystem::IOMemReader> proxy;
+    auto in = openTextureSource(source, proxy);
+    if (!in) throw ImageReadError(source.name, "cannot read texture: " + OIIO::geterror());
+    std::string file;  // what the cache reads; empty: the source through automip
+    if (!source.bytes && isMipMapped(*in)) {
+        file = source.name;
+        if (note && source.encoding == TextureEncoding::Color && isSrgbEncoded(in->spec()))
             *note =
                 "8-bit MIP-mapped texture used as stored (taken as linear; convert it with "
                 "maketx --colorconvert sRGB linear)";
+    } else {
+        file = tiledMipFile(source, *in, note);
     }
+    in.reset();  // before its proxy
+    bool asStored = !file.empty();
     sources_.push_back(std::make_unique<TextureSource>(source));
     const TextureSource* stored = sources_.back().get();
-    std::string key = source.name;
+    std::string key = file;
     if (!asStored) {
         // A name of its own per source and encoding: the cache keys files by name.
         key = "kiln-texture:" + std::to_string(sources_.size()) + ":" + source.name;
@@ -203,16 +232,6 @@ float TextureSet::lookupChannel(int id, int channel, float s, float t, float wid
     impl_->system->texture(impl_->handles[size_t(id)], nullptr, opt, s, t, width, 0, 0, width, 1,
                            &value);
     return value;
-}
-
-Color TextureSet::lookupLatLong(int id, float s, float t) const {
-    OIIO::TextureOpt opt;
-    opt.swrap = OIIO::TextureOpt::WrapPeriodic;
-    opt.twrap = OIIO::TextureOpt::WrapClamp;
-    opt.interpmode = OIIO::TextureOpt::InterpBilinear;
-    float rgb[3] = {0, 0, 0};
-    impl_->system->texture(impl_->handles[size_t(id)], nullptr, opt, s, t, 0, 0, 0, 0, 3, rgb);
-    return Color(rgb[0], rgb[1], rgb[2]);
 }
 
 }  // namespace kiln

@@ -16,13 +16,11 @@ namespace kiln {
 // Colour maps are decoded to the working space (sRGB-encoded texels to linear); data maps are raw.
 enum class TextureEncoding { Color, Data };
 
-// Where a texture's bytes come from: a file, bytes held in memory (an embedded glTF image) with
-// the image format's usual extension as a hint ("png", "jpg"), or pixels already decoded to the
-// working space (an environment map, whose importance sampling needs them in memory anyway).
+// Where a texture's bytes come from: a file, or bytes held in memory (an embedded glTF image) with
+// the image format's usual extension as a hint ("png", "jpg").
 struct TextureSource {
     std::string name;  // the path, or a label for embedded bytes (messages name it)
     std::shared_ptr<const std::vector<unsigned char>> bytes;  // null: read the file `name`
-    std::shared_ptr<const RgbImage> pixels;                   // set: use these, linear
     std::string formatHint;
     TextureEncoding encoding = TextureEncoding::Color;
 };
@@ -56,9 +54,6 @@ class TextureSet {
     // (an RGB texture is opaque).
     float lookupChannel(int id, int channel, float s, float t, float width,
                         WrapModes wrap = {}) const;
-    // Bilinear between texel centres of the finest level, s wrapping and t clamped: a lat-long
-    // environment map (s = longitude, t = polar angle, both in [0, 1]).
-    Color lookupLatLong(int id, float s, float t) const;
 
   private:
     struct Impl;

@@ -50,6 +50,11 @@ struct ScopedEnv {
         if (const char* old = std::getenv(name)) old_ = old, had_ = true;
         ::setenv(name, value.c_str(), 1);
     }
+    // Unset for the scope.
+    ScopedEnv(const char* name, std::nullptr_t) : name_(name) {
+        if (const char* old = std::getenv(name)) old_ = old, had_ = true;
+        ::unsetenv(name);
+    }
     ~ScopedEnv() { had_ ? (void)::setenv(name_, old_.c_str(), 1) : (void)::unsetenv(name_); }
     ScopedEnv(const ScopedEnv&) = delete;
     ScopedEnv& operator=(const ScopedEnv&) = delete;

@@ -1,6 +1,7 @@
 // Textures through OpenImageIO's TextureSystem: one per scene, its tile cache bounded in memory,
-// MIP-mapped filtered lookups. Plain images (JPEG, PNG, EXR, embedded glTF bytes) are MIP-mapped
-// on the fly (automip) after their texels are decoded to the working space; tiled MIP-mapped files
+// MIP-mapped filtered lookups. Plain images (JPEG, PNG, EXR, embedded glTF bytes) are decoded to
+// the working space and converted into tiled MIP-mapped files in the texture cache directory
+// (texture_convert.h; OIIO's automip when that directory is unusable); tiled MIP-mapped files
 // (maketx output) are read as they are stored.
 #pragma once
 

@@ -4,8 +4,9 @@
 Writes COUNT half-float EXR textures of SIZE x SIZE RGB, tiled and MIP-mapped as maketx writes them
 (default 22 x 4096^2: 2.06 GiB of texels at level 0, 2.75 GiB with the MIP levels), with oiiotool
 into a scratch directory, an OBJ of COUNT quads each with its own texture, and the same OBJ
-untextured. --untiled writes plain scanline float EXRs instead, which kiln MIP-maps on the fly
-(OIIO's automip). Renders both with
+untextured. --untiled writes plain scanline float EXRs instead, which kiln converts into tiled MIP
+files in its texture cache directory at load (set KILN_TEXTURE_CACHE to choose it; a second run
+reuses them). Renders both with
 `kiln render --json --texture-cache-mb MB` and prints each peak resident memory (getrusage of the
 kiln process) and the textured peak minus the untextured one, which the cache bounds.
 

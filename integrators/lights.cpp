@@ -5,6 +5,7 @@
 
 #include "integrators/surface_albedo.h"
 #include "renderer/core/warp.h"
+#include "renderer/geometry/opacity.h"
 
 namespace kiln {
 namespace {
@@ -160,6 +161,7 @@ LightSet::LightSet(const Scene& scene) : scene_(&scene) {
                 e.triangleArea = Distribution1D(areas);
                 if (!proto[l.mesh]) meshLight_[l.mesh] = int(lights_.size());
                 e.emissionTextured = hasEmissionTexture(scene, l.mesh);
+                e.alphaCut = meshHasAlpha(scene, l.mesh);
             } else {
                 // The CGL rectangle: two triangles spanning position +- dimX/2 +- dimY/2.
                 Vec3 p00 = l.position - l.dimX * 0.5f - l.dimY * 0.5f;
@@ -172,7 +174,7 @@ LightSet::LightSet(const Scene& scene) : scene_(&scene) {
                 Vec3 n = cross(e.triangles[t + 1], e.triangles[t + 2]);
                 e.normals.push_back(dot(n, n) > 0 ? normalize(n) : Vec3(0, 1, 0));
             }
-            if (!e.emissionTextured) findParallelogram(e);
+            if (!e.emissionTextured && !e.alphaCut) findParallelogram(e);
             e.oneSided = l.kind == LightKind::Area;
             e.side = normalize(l.direction);
         } else if (l.kind == LightKind::Environment) {
@@ -273,6 +275,7 @@ bool LightSet::sample(size_t i, const Vec3& ref, float u1, float u2, LightSample
                     texel = emissionTexelAt(*scene_,
                                             scene_->materials[scene_->meshes[l.mesh].materialOf(t)],
                                             l.mesh, uint32_t(t), b1, b2);
+                if (e.alphaCut) texel *= coverageAt(*scene_, l.mesh, uint32_t(t), b1, b2);
             }
             Vec3 d = p - ref;
             // A one-sided light sends nothing to points behind (or in) its plane.

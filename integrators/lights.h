@@ -83,6 +83,9 @@ class LightSet {
         Vec3 side;  // emitting side for one-sided lights
         // A mesh with an emission texture: sampled by triangle (the point's UVs read the texture).
         bool emissionTextured = false;
+        // A mesh whose material cuts it out (alpha mask or blend): a sampled point emits only as
+        // much as rays hitting it see (coverageAt), so it too is sampled by triangle.
+        bool alphaCut = false;
         EnvironmentMap env;
     };
     float power(const Entry& e, float sceneRadius) const;

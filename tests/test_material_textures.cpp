@@ -172,6 +172,46 @@ TEST(EmissiveTexture, NeeAndMisAgreeOnATexturedEmitter) {
     EXPECT_GT(upper, 1.5 * lower);
 }
 
+// The panel of emissive.gltf made half transparent (glTF BLEND, alpha 0.5): rays hitting it stop
+// with probability 0.5, so a light sample on it must carry half its radiance. With light sampling
+// alone and direct light only, every floor pixel draws the same points as the opaque panel's render
+// and must be exactly half as bright (to float rounding); MIS agrees with light sampling.
+TEST(EmissiveTexture, ABlendedEmitterLightsByItsCoverage) {
+    auto dir = test::scratchDir();
+    std::filesystem::copy_file(assetScene("emissive_halves.png"), dir / "emissive_halves.png");
+    nlohmann::json doc = nlohmann::json::parse(std::ifstream(assetScene("emissive.gltf")));
+    for (auto& m : doc["materials"])
+        if (m["name"] == "panel") {
+            m["alphaMode"] = "BLEND";
+            m["pbrMetallicRoughness"]["baseColorFactor"][3] = 0.5;
+        }
+    Scene blended = loadScene(test::writeFile(dir / "blended.gltf", doc.dump()));
+    Scene opaque = loadScene(assetScene("emissive.gltf"));
+    PathOptions o;
+    o.maxDepth = 1;
+    o.sampling = DirectSampling::Light;
+    Film half = render(blended, 16, o), whole = render(opaque, 16, o);
+    double worst = 0, level = 0;
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < 38; ++x) {
+            double h = luminance(half.pixel(x, y)), w = luminance(whole.pixel(x, y));
+            worst = std::max(worst, std::abs(h - 0.5 * w) / std::max(w, 1e-3));
+            level += w / (kSize * 38);
+        }
+    EXPECT_GT(level, 0.05) << "the panel lights the floor";
+    EXPECT_LT(worst, 1e-5) << "the floor lit by a half-covered panel is half as bright";
+    o.sampling = DirectSampling::Mis;
+    Paired p = paired(render(blended, 32, o),
+                      render(blended, 32,
+                             [&] {
+                                 PathOptions l = o;
+                                 l.sampling = DirectSampling::Light;
+                                 return l;
+                             }()),
+                      0, 38);
+    EXPECT_NEAR(p.mean, 0.0, 5 * p.se + 1e-6);
+}
+
 // glTF occlusionTexture (Assimp 5.2's LIGHTMAP slot) and FBX ambient occlusion: a path tracer
 // computes occlusion, so the map is named in one warning per material that has one.
 TEST(OcclusionTexture, NamedOncePerMaterial) {

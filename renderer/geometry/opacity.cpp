@@ -42,6 +42,16 @@ float alphaAt(const Scene& scene, const Material& material, const TriangleMesh& 
     return alpha;
 }
 
+float coverageAt(const Scene& scene, uint32_t mesh, uint32_t prim, float b1, float b2) {
+    const TriangleMesh& m = scene.meshes[mesh];
+    const Material& material = scene.materials[m.materialOf(prim)];
+    if (material.maps.alphaMode == AlphaMode::Opaque) return 1.0f;
+    float alpha = alphaAt(scene, material, m, prim, b1, b2);
+    if (material.maps.alphaMode == AlphaMode::Mask)
+        return alpha >= material.maps.alphaCutoff ? 1.0f : 0.0f;
+    return std::clamp(alpha, 0.0f, 1.0f);
+}
+
 bool surfaceStopsRay(const Scene& scene, uint32_t mesh, uint32_t prim, float b1, float b2,
                      uint32_t instance, uint32_t seed) {
     const TriangleMesh& m = scene.meshes[mesh];

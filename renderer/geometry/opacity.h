@@ -22,6 +22,11 @@ uint32_t raySeed(const Ray& worldRay);
 float alphaAt(const Scene& scene, const Material& material, const TriangleMesh& mesh, uint32_t prim,
               float b1, float b2);
 
+// The probability that a ray meeting triangle `prim` of `mesh` at (b1, b2) stops there: 1 opaque,
+// 0 or 1 for a mask, alpha for blend (the expectation of surfaceStopsRay's coin). A light sample
+// on an emitter weighs its radiance by it, as rays hitting the emitter see it.
+float coverageAt(const Scene& scene, uint32_t mesh, uint32_t prim, float b1, float b2);
+
 // Whether a candidate hit on triangle `prim` of `mesh` (placed by `instance`, or kInvalidId)
 // stops the ray whose seed is `seed`.
 bool surfaceStopsRay(const Scene& scene, uint32_t mesh, uint32_t prim, float b1, float b2,

@@ -36,19 +36,6 @@ Color transform(const Mat3& m, const Color& c) {
 
 }  // namespace
 
-float srgbToLinear(float v) {
-    return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
-}
-
-void decodeSrgbTexels(float* texels, size_t count, int channels) {
-    const int colourChannels = std::min(channels, 3);
-    for (size_t i = 0; i < count; ++i)
-        for (int c = 0; c < colourChannels; ++c) {
-            float& v = texels[i * size_t(channels) + size_t(c)];
-            v = srgbToLinear(v);
-        }
-}
-
 bool isSrgbEncoded(const OIIO::ImageSpec& spec) {
     return spec.format.basetype == OIIO::TypeDesc::UINT8 ||
            OIIO::Strutil::iequals(spec.get_string_attribute("oiio:ColorSpace"), "sRGB");
@@ -73,11 +60,10 @@ RgbImage readWorkingSpaceImage(const std::string& path) {
     RgbImage image;
     image.width = spec.width, image.height = spec.height;
     image.pixels.resize(size_t(spec.width) * spec.height);
+    if (srgbEncoded) decodeSrgbTexels(data.data(), image.pixels.size(), spec.nchannels);
     for (size_t i = 0; i < image.pixels.size(); ++i) {
         const float* p = &data[i * size_t(spec.nchannels)];
-        Color c(p[0], p[1], p[2]);
-        if (srgbEncoded) c = Color(srgbToLinear(c.x), srgbToLinear(c.y), srgbToLinear(c.z));
-        image.pixels[i] = transform(toWorking, c);
+        image.pixels[i] = transform(toWorking, Color(p[0], p[1], p[2]));
     }
     return image;
 }

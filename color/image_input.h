@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "color/srgb_decode.h"
 #include "renderer/core/math.h"
 
 OIIO_NAMESPACE_BEGIN
@@ -32,12 +33,6 @@ struct ImageReadError : std::runtime_error {
         : std::runtime_error(file + ": " + reason), reason(reason) {}
     std::string reason;
 };
-
-// The sRGB transfer function, decoded: the one place for that formula.
-float srgbToLinear(float encoded);
-// srgbToLinear on the colour channels (the first three) of `count` interleaved texels of
-// `channels` floats each; alpha stays as it is.
-void decodeSrgbTexels(float* texels, size_t count, int channels);
 
 // Whether an image's texels are sRGB-encoded: 8-bit, or stated sRGB (PNG, JPEG); else linear.
 bool isSrgbEncoded(const OIIO::ImageSpec& spec);

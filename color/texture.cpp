@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 
+#include "color/color_config.h"
 #include "color/image_input.h"
 #include "color/texture_convert.h"
 #include "renderer/core/log.h"
@@ -107,6 +108,11 @@ std::string tiledMipFile(const TextureSource& source, OIIO::ImageInput& in, std:
             fs::path path = fs::absolute(source.name);
             identity = path.string() + "\n" + std::to_string(fs::file_size(path)) + "\n" +
                        std::to_string(fs::last_write_time(path).time_since_epoch().count());
+        }
+        if (decode) {  // decoded through the OCIO config: another config converts again
+            std::string config = colorConfigPath();
+            identity += "\n" + config + "\n" +
+                        std::to_string(fs::last_write_time(config).time_since_epoch().count());
         }
         std::string target = (fs::path(dir) / convertedTextureName(identity, decode)).string();
         if (fs::exists(target)) {

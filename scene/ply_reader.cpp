@@ -55,21 +55,24 @@ size_t typeSize(PlyType t) {
     }
 }
 
-// A colour component in the working space: integers are display codes (sRGB-encoded, as 8-bit
-// images are), floats linear as written.
-float vertexColour(double value, PlyType type) {
+// A colour component as stored: integers are display codes (sRGB-encoded, as 8-bit images are),
+// normalised to [0, 1] and decoded for the whole mesh at once (decodeSrgbTexels); floats are linear
+// as written.
+float storedColour(double value, PlyType type) {
     switch (type) {
         case PlyType::UInt8:
-            return srgbToLinear(float(value / 255.0));
+            return float(value / 255.0);
         case PlyType::UInt16:
-            return srgbToLinear(float(value / 65535.0));
+            return float(value / 65535.0);
         case PlyType::Float32:
         case PlyType::Float64:
             return float(value);
         default:
-            return srgbToLinear(std::clamp(float(value / 255.0), 0.0f, 1.0f));
+            return std::clamp(float(value / 255.0), 0.0f, 1.0f);
     }
 }
+
+bool isDisplayCode(PlyType type) { return type != PlyType::Float32 && type != PlyType::Float64; }
 
 struct Property {
     std::string name;
@@ -370,11 +373,13 @@ void readPly(const std::string& path, Scene& scene) {
                     mesh.uvs[2 * v + 1] = float(row[iv]);
                 }
                 if (colours) {
-                    mesh.colors[3 * v] = vertexColour(row[ir], e.props[size_t(ir)].type);
-                    mesh.colors[3 * v + 1] = vertexColour(row[ig], e.props[size_t(ig)].type);
-                    mesh.colors[3 * v + 2] = vertexColour(row[ib], e.props[size_t(ib)].type);
+                    mesh.colors[3 * v] = storedColour(row[ir], e.props[size_t(ir)].type);
+                    mesh.colors[3 * v + 1] = storedColour(row[ig], e.props[size_t(ig)].type);
+                    mesh.colors[3 * v + 2] = storedColour(row[ib], e.props[size_t(ib)].type);
                 }
             }
+            if (colours && isDisplayCode(e.props[size_t(ir)].type))
+                decodeSrgbTexels(mesh.colors.data(), size_t(e.count), 3);
         } else if (e.name == "face" || e.name == "tristrips") {
             bool strips = e.name == "tristrips";
             std::vector<uint32_t> poly;

@@ -1,0 +1,18 @@
+// sRGB-encoded colour (8-bit images, PNG/JPEG, files tagged sRGB, integer vertex colours) to kiln's
+// working space through OpenColorIO: the config kiln follows (color_config.h) converts from its
+// sRGB texture colour space to scene_linear, without approximations. A config that has no such
+// space, or cannot be loaded, falls back to the standard sRGB curve (a warning, once).
+#pragma once
+
+#include <cstddef>
+
+namespace kiln {
+
+// `count` interleaved texels of `channels` floats each: the first three are colour (one channel:
+// grey), the rest (alpha) stay as they are.
+void decodeSrgbTexels(float* texels, size_t count, int channels);
+
+// One value, as a grey (a run of values: decodeSrgbTexels).
+float srgbToLinear(float encoded);
+
+}  // namespace kiln

@@ -91,4 +91,20 @@ float srgbToLinear(float encoded) {
     return grey;
 }
 
+std::array<float, 256> srgb8Table() {
+    std::array<float, 256> table{};
+    for (size_t code = 0; code < table.size(); ++code) table[code] = float(code) / 255.0f;
+    decodeSrgbTexels(table.data(), table.size(), 1);
+    return table;
+}
+
+void decodeSrgb8Texels(const uint8_t* codes, float* out, size_t count, int channels) {
+    const std::array<float, 256> table = srgb8Table();
+    const int colour = std::min(channels, 3);
+    for (size_t i = 0; i < count * size_t(channels); i += size_t(channels))
+        for (int c = 0; c < channels; ++c)
+            out[i + size_t(c)] =
+                c < colour ? table[codes[i + size_t(c)]] : float(codes[i + size_t(c)]) / 255.0f;
+}
+
 }  // namespace kiln

@@ -4,13 +4,23 @@
 // space, or cannot be loaded, falls back to the standard sRGB curve (a warning, once).
 #pragma once
 
+#include <array>
 #include <cstddef>
+#include <cstdint>
 
 namespace kiln {
 
 // `count` interleaved texels of `channels` floats each: the first three are colour (one channel:
 // grey), the rest (alpha) stay as they are.
 void decodeSrgbTexels(float* texels, size_t count, int channels);
+
+// The 256 8-bit codes decoded (one pass through the processor): 8-bit colour is mapped through it,
+// which is exact and costs a table lookup a value.
+std::array<float, 256> srgb8Table();
+
+// `count` 8-bit texels of `channels` codes each to floats: the colour channels (the first three)
+// through srgb8Table, the others (alpha) code / 255.
+void decodeSrgb8Texels(const uint8_t* codes, float* out, size_t count, int channels);
 
 // One value, as a grey (a run of values: decodeSrgbTexels).
 float srgbToLinear(float encoded);

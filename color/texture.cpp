@@ -71,9 +71,18 @@ class WorkingSpaceInput final : public OIIO::ImageInput {
         }
         nextRow_ = y + 1;
         int nch = m_spec.nchannels;
+        auto* out = static_cast<float*>(data);
+        if (decode_ && inner_->spec().format == OIIO::TypeDesc::UINT8) {
+            codes_.resize(size_t(m_spec.width) * size_t(nch));
+            if (!inner_->read_scanlines(0, 0, y, y + 1, z, 0, nch, OIIO::TypeDesc::UINT8,
+                                        codes_.data()))
+                return false;
+            decodeSrgb8Texels(codes_.data(), out, size_t(m_spec.width), nch);
+            return true;
+        }
         if (!inner_->read_scanlines(0, 0, y, y + 1, z, 0, nch, OIIO::TypeDesc::FLOAT, data))
             return false;
-        if (decode_) decodeSrgbTexels(static_cast<float*>(data), size_t(m_spec.width), nch);
+        if (decode_) decodeSrgbTexels(out, size_t(m_spec.width), nch);
         return true;
     }
 
@@ -81,6 +90,7 @@ class WorkingSpaceInput final : public OIIO::ImageInput {
     std::unique_ptr<OIIO::ImageInput> inner_;
     std::unique_ptr<OIIO::Filesystem::IOMemReader> proxy_;
     const TextureSource* source_ = nullptr;
+    std::vector<uint8_t> codes_;  // an 8-bit scanline
     int nextRow_ = 0;
     bool decode_ = false;
 };

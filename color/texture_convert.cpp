@@ -44,10 +44,18 @@ std::string convertedTextureName(const std::string& identity, bool decodeSrgb) {
 void convertToTiledMip(OIIO::ImageInput& in, bool decodeSrgb, const std::string& target) {
     OIIO::ImageSpec spec = in.spec();
     const int nch = spec.nchannels;
-    std::vector<float> pixels(size_t(spec.width) * size_t(spec.height) * size_t(nch));
-    if (!in.read_image(0, 0, 0, nch, OIIO::TypeDesc::FLOAT, pixels.data()))
-        throw std::runtime_error(target + ": cannot read the source image: " + in.geterror());
-    if (decodeSrgb) decodeSrgbTexels(pixels.data(), pixels.size() / size_t(nch), nch);
+    const size_t texels = size_t(spec.width) * size_t(spec.height);
+    std::vector<float> pixels(texels * size_t(nch));
+    if (decodeSrgb && spec.format == OIIO::TypeDesc::UINT8) {  // 8-bit: through the code table
+        std::vector<uint8_t> codes(pixels.size());
+        if (!in.read_image(0, 0, 0, nch, OIIO::TypeDesc::UINT8, codes.data()))
+            throw std::runtime_error(target + ": cannot read the source image: " + in.geterror());
+        decodeSrgb8Texels(codes.data(), pixels.data(), texels, nch);
+    } else {
+        if (!in.read_image(0, 0, 0, nch, OIIO::TypeDesc::FLOAT, pixels.data()))
+            throw std::runtime_error(target + ": cannot read the source image: " + in.geterror());
+        if (decodeSrgb) decodeSrgbTexels(pixels.data(), texels, nch);
+    }
     spec.set_format(OIIO::TypeDesc::FLOAT);
     spec.tile_width = spec.tile_height = spec.tile_depth = 0;
     OIIO::ImageBuf image(spec, pixels.data());

@@ -378,8 +378,14 @@ void readPly(const std::string& path, Scene& scene) {
                     mesh.colors[3 * v + 2] = storedColour(row[ib], e.props[size_t(ib)].type);
                 }
             }
-            if (colours && isDisplayCode(e.props[size_t(ir)].type))
-                decodeSrgbTexels(mesh.colors.data(), size_t(e.count), 3);
+            if (colours && isDisplayCode(e.props[size_t(ir)].type)) {
+                if (e.props[size_t(ir)].type == PlyType::UInt8) {  // exact codes: the table
+                    const std::array<float, 256> table = srgb8Table();
+                    for (float& c : mesh.colors) c = table[size_t(std::lround(c * 255.0f))];
+                } else {
+                    decodeSrgbTexels(mesh.colors.data(), size_t(e.count), 3);
+                }
+            }
         } else if (e.name == "face" || e.name == "tristrips") {
             bool strips = e.name == "tristrips";
             std::vector<uint32_t> poly;

@@ -317,7 +317,12 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
                     float pmf = 1.0f, u1 = 0.5f, u2 = 0.5f;
                     size_t li = size_t(k);
                     if (!eachDeltaLightOnce_) {
-                        li = lights_.select(sampler.next1D(), pmf);
+                        if (lights_.size() == 1) {  // the one light: no choice to draw
+                            sampler.skip1D();
+                            li = 0, pmf = lights_.selectPmf(0);
+                        } else {
+                            li = lights_.select(sampler.next1D(), pmf);
+                        }
                         auto [a, b] = sampler.next2D();
                         u1 = a, u2 = b;
                     }
@@ -367,7 +372,11 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
             if constexpr (DeltaLightsOnly)
                 if (bounce + 1 >= opt_.maxDepth) continue;
             BsdfSample bs;
-            float uc = sampler.next1D();
+            float uc = 0.5f;  // the lobe choice: Lambert has one lobe
+            if constexpr (DiffuseOnly)
+                sampler.skip1D();
+            else
+                uc = sampler.next1D();
             auto [u1, u2] = sampler.next2D();
             if (!bsdf.sample(wo, uc, u1, u2, bs)) continue;
             if (bs.pdf <= 0 || maxComponent(bs.f) <= 0) continue;
@@ -383,15 +392,17 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
             st.prevPdf = bs.pdf;
             st.prevP = si.p;
 
-            // Russian roulette: unbiased, the survivors carry 1 / continuation.
-            float rr = sampler.next1D();
+            // Russian roulette: unbiased, the survivors carry 1 / continuation. Its dimension is
+            // spent at every vertex, played or not.
             if (opt_.roulette == Roulette::Throughput && bounce + 1 >= opt_.rouletteMinBounces) {
                 float q = std::min(1.0f, maxComponent(st.beta));
-                if (rr >= q) continue;
+                if (sampler.next1D() >= q) continue;
                 st.beta = st.beta / q;
             } else if (opt_.roulette == Roulette::Fixed && bounce >= 1) {
-                if (rr >= opt_.fixedContinuation) continue;
+                if (sampler.next1D() >= opt_.fixedContinuation) continue;
                 st.beta = st.beta / opt_.fixedContinuation;
+            } else {
+                sampler.skip1D();
             }
             if (!isFinite(st.beta) || maxComponent(st.beta) <= 0) continue;
             w.next.push_back(pi);

@@ -39,7 +39,12 @@ void addCameraSample(std::vector<CameraSample>& batch, const CameraModel& camera
     Sampler sampler(settings.seed, uint64_t(y) * uint64_t(settings.width) + uint64_t(x),
                     uint64_t(s), settings.sampler);
     float jx = sampler.next1D(), jy = sampler.next1D();
-    float lu = sampler.next1D(), lv = sampler.next1D();
+    float lu = 0.5f, lv = 0.5f;
+    if (camera.hasLens()) {
+        lu = sampler.next1D(), lv = sampler.next1D();
+    } else {
+        sampler.skip2D();
+    }
     CameraSample& cs = batch.emplace_back(camera.generateRay(float(x) + jx, float(y) + jy, lu, lv),
                                           sampler, SampleRecord{});
     cs.record.reset(aovs);

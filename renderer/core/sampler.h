@@ -42,11 +42,22 @@ class Sampler {
             return float(bits >> 40) * 0x1.0p-24f;  // [0, 1)
         }
         // Dimensions 1, 2 form pair 0; 3, 4 pair 1; ... The pair's second value is kept for
-        // the next call.
-        if (d % 2 == 0) return toUnit(pendingY_);
-        SobolPair p = shuffledScrambledSobol2D(reversedSample_, pairSeed(d / 2));
+        // the next call (computed then if the first was skipped).
+        if (d % 2 == 0 && pendingValid_) return toUnit(pendingY_);
+        SobolPair p = shuffledScrambledSobol2D(reversedSample_, pairSeed((d - 1) / 2));
         pendingY_ = p.y;
-        return toUnit(p.x);
+        pendingValid_ = true;
+        return toUnit(d % 2 == 0 ? p.y : p.x);
+    }
+    // Consumes a dimension without computing it: a value the caller would not use (the one light's
+    // choice, a pinhole's lens position). Every later value is what it would have been.
+    void skip1D() {
+        if (++dimension_ % 2 == 1) pendingValid_ = false;
+    }
+    void skip2D() {
+        if (kind_ == SamplerKind::Sobol && dimension_ % 2 == 1) ++dimension_;
+        skip1D();
+        skip1D();
     }
     // The two coordinates of one 2D sample (a light's or a BSDF's square). sobol: both from one
     // pair, so the points are stratified in 2D (a pair's leftover value is skipped); independent:
@@ -72,6 +83,7 @@ class Sampler {
     uint32_t reversedSample_;  // the Sobol index, bit-reversed (independent: mixed into key_)
     uint32_t dimension_ = 0;
     uint32_t pendingY_ = 0;
+    bool pendingValid_ = false;
     SamplerKind kind_;
 };
 

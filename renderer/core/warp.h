@@ -21,6 +21,15 @@ inline Vec3 uniformSphere(float u1, float u2) {
 }
 inline float uniformSpherePdf() { return 1.0f / (4 * kPi); }
 
+// sin and cos of t in [-pi/4, pi/4] by their Taylor polynomials (to t^9 and t^8: within 3e-8
+// there): the concentric map's angles never leave that range, and the library call was 2 % of a
+// diffuse render.
+inline void sinCosQuarterPi(float t, float& s, float& c) {
+    float t2 = t * t;
+    s = t * (1 + t2 * (-1.0f / 6 + t2 * (1.0f / 120 + t2 * (-1.0f / 5040 + t2 * (1.0f / 362880)))));
+    c = 1 + t2 * (-0.5f + t2 * (1.0f / 24 + t2 * (-1.0f / 720 + t2 * (1.0f / 40320))));
+}
+
 // Shirley-Chiu concentric map.
 inline void concentricDisk(float u1, float u2, float& x, float& y) {
     float a = 2 * u1 - 1, b = 2 * u2 - 1;
@@ -28,12 +37,14 @@ inline void concentricDisk(float u1, float u2, float& x, float& y) {
         x = y = 0;
         return;
     }
-    float r, phi;
-    if (std::abs(a) > std::abs(b))
-        r = a, phi = (kPi / 4) * (b / a);
-    else
-        r = b, phi = kPi / 2 - (kPi / 4) * (a / b);
-    x = r * std::cos(phi), y = r * std::sin(phi);
+    float s, c;
+    if (std::abs(a) > std::abs(b)) {  // phi = pi/4 (b/a)
+        sinCosQuarterPi((kPi / 4) * (b / a), s, c);
+        x = a * c, y = a * s;
+    } else {  // phi = pi/2 - pi/4 (a/b): cos and sin trade places
+        sinCosQuarterPi((kPi / 4) * (a / b), s, c);
+        x = b * s, y = b * c;
+    }
 }
 
 inline Vec3 cosineHemisphere(float u1, float u2) {

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "renderer/core/warp.h"
 #include "scene/framing.h"
 #include "scene/scene_error.h"
 #include "scene/scene_loader.h"
@@ -71,14 +72,9 @@ Ray CameraModel::generateRay(float px, float py, float lensU, float lensV) const
     ray.tMax = cam_.farClip * invCos;
     if (cam_.apertureRadius > 0) {
         // Thin lens: concentric disk sample, aim at the point on the plane of focus.
-        float a = 2 * lensU - 1, b = 2 * lensV - 1, r, phi;
-        if (a == 0 && b == 0)
-            r = 0, phi = 0;
-        else if (std::abs(a) > std::abs(b))
-            r = a, phi = (kPi / 4) * (b / a);
-        else
-            r = b, phi = kPi / 2 - (kPi / 4) * (a / b);
-        Vec3 lens = (right_ * std::cos(phi) + up_ * std::sin(phi)) * (r * cam_.apertureRadius);
+        float dx, dy;
+        concentricDisk(lensU, lensV, dx, dy);
+        Vec3 lens = (right_ * dx + up_ * dy) * cam_.apertureRadius;
         Vec3 focus = cam_.position + dir * (cam_.focalDistance * invCos);
         ray.origin = cam_.position + lens;
         Vec3 d = normalize(focus - ray.origin);

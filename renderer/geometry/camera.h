@@ -18,6 +18,8 @@ class CameraModel {
     float hFovDeg() const { return hFov_; }
     float vFovDeg() const { return vFov_; }
     bool orthographic() const { return cam_.orthographic(); }
+    // A thin lens (generateRay reads its lens sample); a pinhole ignores it.
+    bool hasLens() const { return cam_.apertureRadius > 0 && !cam_.orthographic(); }
     // Orthographic: half the view's width and height after the aspect fit, in scene units.
     float orthoHalfWidth() const { return tanX_; }
     float orthoHalfHeight() const { return tanY_; }

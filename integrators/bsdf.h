@@ -30,6 +30,7 @@ class Bsdf {
          MetallicRoughness mr);
     bool isDelta() const { return delta_; }
     bool isBlack() const { return m_.kind == MaterialKind::Emission; }
+    bool isDiffuse() const { return m_.kind == MaterialKind::Lambertian; }
     bool hasTransmission() const;
 
     Color eval(const Vec3& wo, const Vec3& wi) const;  // local directions; 0 for delta lobes

@@ -40,6 +40,22 @@ std::vector<float> samplingWeights(const EnvironmentMap& env) {
     return weight;
 }
 
+bool emits(const Scene& scene, uint32_t material) {
+    return maxComponent(scene.materials[material].emission) > 0;
+}
+
+// An emitting surface no light samples: a sphere, an instanced mesh or a mesh bound to no light.
+bool hasUnsampledEmitter(const Scene& scene, const std::vector<int>& meshLight) {
+    for (const Sphere& s : scene.spheres)
+        if (emits(scene, s.material)) return true;
+    for (size_t m = 0; m < scene.meshes.size(); ++m) {
+        if (meshLight[m] >= 0) continue;  // prototypes (instanced meshes) are bound to none
+        for (uint32_t id : scene.meshes[m].materialIds)
+            if (emits(scene, id)) return true;
+    }
+    return false;
+}
+
 EnvironmentMap loadEnvironment(const Light& l, const Scene& scene) {
     EnvironmentMap env;
     env.scale = l.environmentScale;
@@ -185,6 +201,7 @@ LightSet::LightSet(const Scene& scene) : scene_(&scene) {
         }
         lights_.push_back(std::move(e));
     }
+    everyEmitterSampled_ = !hasUnsampledEmitter(scene, meshLight_);
     std::vector<float> powers;
     for (const Entry& e : lights_) powers.push_back(power(e, radius));
     power_ = Distribution1D(powers);

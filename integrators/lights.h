@@ -67,6 +67,9 @@ class LightSet {
     const std::vector<size_t>& infiniteLights() const { return infinite_; }
     Color escaped(size_t i, const Vec3& dir, bool cameraRay) const;
     bool allDelta() const;
+    // Every emitting surface is a light NEE samples (no emissive sphere, instance or unbound mesh):
+    // light sampling alone then accounts for all the light a vertex receives.
+    bool everyEmitterSampled() const { return everyEmitterSampled_; }
 
   private:
     struct Entry {
@@ -95,6 +98,7 @@ class LightSet {
     std::vector<int> meshLight_;
     std::vector<size_t> infinite_;
     Distribution1D power_;
+    bool everyEmitterSampled_ = true;
 };
 
 }  // namespace kiln

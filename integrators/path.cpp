@@ -20,6 +20,11 @@ PathIntegrator::PathIntegrator(const Scene& scene, const Accelerator& accel,
     constexpr size_t kMaxDeltaLightsTakenEach = 64;
     eachDeltaLightOnce_ =
         lights_.size() > 0 && lights_.size() <= kMaxDeltaLightsTakenEach && lights_.allDelta();
+    // Only where light sampling sees every emitter and MIS would otherwise weigh what the last
+    // continuation finds (not with -H probes or BSDF-only direct light).
+    lightOnlyAtLastVertex_ =
+        lights_.size() > 0 && lights_.everyEmitterSampled() &&
+        (options.sampling == DirectSampling::Mis || options.sampling == DirectSampling::Light);
 }
 
 PathIntegrator::TraceFn PathIntegrator::pathFor(const RenderPlan& plan) {
@@ -79,6 +84,7 @@ class LambertBsdf {
         : albedo_(albedo), black_(m.kind == MaterialKind::Emission) {}
     bool isDelta() const { return false; }
     bool isBlack() const { return black_; }
+    bool isDiffuse() const { return true; }
     bool hasTransmission() const { return false; }
     Color eval(const Vec3& wo, const Vec3& wi) const {
         return wo.z * wi.z > 0 ? albedo_ * kInvPi : Color(0.0f);
@@ -305,6 +311,10 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
             if (dot(woWorld, si.ns) <= 0) shadingN = dot(si.ns, si.nsStored) >= 0 ? si.ng : -si.ng;
             Frame frame(shadingN);
             Vec3 wo = frame.toLocal(woWorld);
+            // A diffuse last vertex takes its direct light from light sampling alone: its
+            // continuation could only find emission, which MIS weighs low on a diffuse surface.
+            const bool lightOnly =
+                lightOnlyAtLastVertex_ && bounce + 1 == opt_.maxDepth && bsdf.isDiffuse();
 
             // Next-event estimation, shadow rays queued: -l lights chosen by power, or, when every
             // light is a delta light, each light once (CS184's "a point light gets one sample":
@@ -337,7 +347,7 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
                     float pl = pmf * ls.pdf;
                     float weight = 1.0f;
                     if constexpr (!DeltaLightsOnly)
-                        if (!ls.delta && opt_.sampling != DirectSampling::Light &&
+                        if (!ls.delta && opt_.sampling != DirectSampling::Light && !lightOnly &&
                             lights_.hittable(li))
                             weight = misWeight(nLight, pl, 1, bsdf.pdf(wo, wi));
                     w.shadowRays.push_back(ls.infinite ? spawnRay(si, ls.wi)
@@ -371,6 +381,7 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
             // bounce could find nothing: not traced.
             if constexpr (DeltaLightsOnly)
                 if (bounce + 1 >= opt_.maxDepth) continue;
+            if (lightOnly) continue;
             BsdfSample bs;
             float uc = 0.5f;  // the lobe choice: Lambert has one lobe
             if constexpr (DiffuseOnly)

@@ -100,7 +100,8 @@ class PathIntegrator final : public Integrator {
     }
     PathOptions opt_;
     LightSet lights_;
-    bool eachDeltaLightOnce_ = false;  // only (a few) delta lights: NEE takes each once
+    bool eachDeltaLightOnce_ = false;     // only (a few) delta lights: NEE takes each once
+    bool lightOnlyAtLastVertex_ = false;  // a diffuse last vertex: NEE alone, no continuation
 };
 
 // The integrator of that kind, complete: specialised for the plan, recording plan.aovs.

@@ -48,6 +48,22 @@ void expectLightMatchesPdf(const LightSet& lights, size_t i, const Vec3& ref,
     EXPECT_GT(r.pValue, 1e-4) << what << ": " << r.table;
 }
 
+TEST(LightSet, EveryEmitterSampledOnlyWhenNoEmitterIsOutsideTheLights) {
+    // A diffuse last vertex may skip its continuation only when NEE samples every emitter: the
+    // course scenes' lights and kiln's own scenes' mesh emitters are sampled; an emissive analytic
+    // sphere is not (a continuation is its only way to be found).
+    EXPECT_TRUE(LightSet(loadScene(test::cs184("sky/CBbunny.dae"))).everyEmitterSampled());
+    Scene cornell = loadScene(test::repo("scenes/cornell.dae"));
+    EXPECT_TRUE(LightSet(cornell).everyEmitterSampled());
+    Material glow;
+    glow.kind = MaterialKind::Emission;
+    glow.emission = Color(3.0f);
+    cornell.materials.push_back(glow);
+    cornell.spheres.push_back(
+        {"glow", Vec3(0, 1, 0), 0.1f, uint32_t(cornell.materials.size() - 1)});
+    EXPECT_FALSE(LightSet(cornell).everyEmitterSampled());
+}
+
 TEST(LightSampling, RectangleAreaLight) {
     Scene s;
     Light l;

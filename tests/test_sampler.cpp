@@ -93,6 +93,33 @@ TEST(Sampler, Next2DIsANetWhateverCameBeforeAndIndependentIsUnchanged) {
     }
 }
 
+TEST(Sampler, SkippedDimensionsLeaveEveryLaterValueUnchanged) {
+    // skip1D / skip2D consume dimensions without computing them (the one light's choice, a
+    // pinhole's lens): every value drawn after them equals the value a full draw would give, for
+    // either sampler and any pattern of skips.
+    const std::vector<std::vector<int>> patterns = {
+        {0, 1, 0, 0}, {1, 1, 0, 2}, {2, 0, 1, 1, 0}, {1, 2, 1, 0, 1}, {2, 2, 1}};
+    for (SamplerKind kind : {SamplerKind::Sobol, SamplerKind::Independent})
+        for (uint32_t i : {0u, 1u, 37u, 1000u})
+            for (const auto& pattern : patterns) {
+                Sampler full(3, 55, i, kind), skipping(3, 55, i, kind);
+                for (int step : pattern) {  // 0: next1D, 1: skip1D, 2: skip2D (then compare)
+                    if (step == 0) {
+                        ASSERT_EQ(skipping.next1D(), full.next1D());
+                    } else if (step == 1) {
+                        skipping.skip1D(), full.next1D();
+                    } else {
+                        skipping.skip2D(), full.next2D();
+                    }
+                    ASSERT_EQ(skipping.dimension(), full.dimension());
+                    auto [a, b] = full.next2D();
+                    auto [c, d] = skipping.next2D();
+                    ASSERT_EQ(a, c);
+                    ASSERT_EQ(b, d);
+                }
+            }
+}
+
 TEST(Sampler, SobolEveryDimensionIsUniform) {
     // One sample per pixel across many pixels: the scrambles are independent per pixel, so the
     // values are iid uniform; chi-square over 64 bins for each of the first 8 dimensions.

@@ -69,7 +69,7 @@ float Bsdf::pdf(const Vec3& wo, const Vec3& wi) const {
             if (dot(h, h) == 0) return 0.0f;
             h = normalize(h);
             float d = dot(o, h);
-            return d > 0 ? micro_.pdfH(h) / (4 * d) : 0.0f;
+            return d > 0 ? micro_.pdfVisible(o, h) / (4 * d) : 0.0f;
         }
         case MaterialKind::Glossy:
             return sameHemisphere(wo, wi) ? phongPdf(reflectLocal(wo), wi, m_.shininess) : 0.0f;
@@ -93,7 +93,7 @@ bool Bsdf::sample(const Vec3& wo, float uc, float u1, float u2, BsdfSample& out)
             return out.pdf > 0;
         }
         case MaterialKind::Microfacet: {
-            Vec3 h = micro_.sampleH(u1, u2);
+            Vec3 h = micro_.sampleVisible(wo.z < 0 ? -wo : wo, u1, u2);
             if (wo.z < 0) h = -h;
             // A microfacet facing away from wo cannot reflect it (its mirror image is counted by
             // -h).

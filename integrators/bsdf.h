@@ -31,6 +31,10 @@ class Bsdf {
     bool isDelta() const { return delta_; }
     bool isBlack() const { return m_.kind == MaterialKind::Emission; }
     bool isDiffuse() const { return m_.kind == MaterialKind::Lambertian; }
+    // sample() reads uc (a lobe to choose: glass, principled); else the caller skips drawing it.
+    bool usesLobeChoice() const {
+        return m_.kind == MaterialKind::Glass || m_.kind == MaterialKind::Principled;
+    }
     bool hasTransmission() const;
 
     Color eval(const Vec3& wo, const Vec3& wi) const;  // local directions; 0 for delta lobes

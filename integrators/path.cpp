@@ -92,7 +92,9 @@ class LambertBsdf {
     float pdf(const Vec3& wo, const Vec3& wi) const {
         return wo.z * wi.z > 0 ? std::abs(wi.z) * kInvPi : 0.0f;
     }
+    bool usesLobeChoice() const { return false; }
     bool sample(const Vec3& wo, float, float u1, float u2, BsdfSample& out) const {
+        if (wo.z == 0) return false;  // as Bsdf::sample
         out = BsdfSample{};
         out.wi = cosineHemisphere(u1, u2);
         if (wo.z < 0) out.wi.z = -out.wi.z;
@@ -300,124 +302,136 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
                 applyNormalMap(scene_, mat, hit, -normalize(ray.dir),
                                st.travelled * opt_.pixelSpread, si);
             }
-            std::conditional_t<DiffuseOnly, LambertBsdf, Bsdf> bsdf(mat, opt_.microfacet, albedo,
-                                                                    mr);
-            if (bsdf.isBlack()) continue;
-            // A shading normal bent so far that the viewer is below its tangent plane would make
-            // the surface black: shade such a vertex with the geometric normal instead (on the
-            // stored normal's side).
-            Vec3 woWorld = -normalize(ray.dir);
-            Vec3 shadingN = si.nsStored;
-            if (dot(woWorld, si.ns) <= 0) shadingN = dot(si.ns, si.nsStored) >= 0 ? si.ng : -si.ng;
-            Frame frame(shadingN);
-            Vec3 wo = frame.toLocal(woWorld);
-            // A diffuse last vertex takes its direct light from light sampling alone: its
-            // continuation could only find emission, which MIS weighs low on a diffuse surface.
-            const bool lightOnly =
-                lightOnlyAtLastVertex_ && bounce + 1 == opt_.maxDepth && bsdf.isDiffuse();
+            // The rest of the vertex, for its BSDF: a Lambertian surface takes the Lambert-only
+            // code in every scene (measured: the general BSDF's dispatch slowed the walls of a box
+            // holding one metal object by a third).
+            auto shade = [&](const auto& bsdf) {
+                if (bsdf.isBlack()) return;
+                // A shading normal bent so far that the viewer is below its tangent plane would
+                // make the surface black: shade such a vertex with the geometric normal instead (on
+                // the stored normal's side).
+                Vec3 woWorld = -normalize(ray.dir);
+                Vec3 shadingN = si.nsStored;
+                if (dot(woWorld, si.ns) <= 0)
+                    shadingN = dot(si.ns, si.nsStored) >= 0 ? si.ng : -si.ng;
+                Frame frame(shadingN);
+                Vec3 wo = frame.toLocal(woWorld);
+                // A diffuse last vertex takes its direct light from light sampling alone: its
+                // continuation could only find emission, which MIS weighs low on a diffuse surface.
+                const bool lightOnly =
+                    lightOnlyAtLastVertex_ && bounce + 1 == opt_.maxDepth && bsdf.isDiffuse();
 
-            // Next-event estimation, shadow rays queued: -l lights chosen by power, or, when every
-            // light is a delta light, each light once (CS184's "a point light gets one sample":
-            // more samples of a point would repeat the same ray).
-            if (useNee && !bsdf.isDelta() &&
-                (opt_.accumulateBounces || bounce + 1 == opt_.maxDepth)) {
-                const int samples = eachDeltaLightOnce_ ? int(lights_.size()) : opt_.lightSamples;
-                const float perSample = eachDeltaLightOnce_ ? 1.0f : nLight;
-                for (int k = 0; k < samples; ++k) {
-                    float pmf = 1.0f, u1 = 0.5f, u2 = 0.5f;
-                    size_t li = size_t(k);
-                    if (!eachDeltaLightOnce_) {
-                        if (lights_.size() == 1) {  // the one light: no choice to draw
-                            sampler.skip1D();
-                            li = 0, pmf = lights_.selectPmf(0);
-                        } else {
-                            li = lights_.select(sampler.next1D(), pmf);
+                // Next-event estimation, shadow rays queued: -l lights chosen by power, or, when
+                // every light is a delta light, each light once (CS184's "a point light gets one
+                // sample": more samples of a point would repeat the same ray).
+                if (useNee && !bsdf.isDelta() &&
+                    (opt_.accumulateBounces || bounce + 1 == opt_.maxDepth)) {
+                    const int samples =
+                        eachDeltaLightOnce_ ? int(lights_.size()) : opt_.lightSamples;
+                    const float perSample = eachDeltaLightOnce_ ? 1.0f : nLight;
+                    for (int k = 0; k < samples; ++k) {
+                        float pmf = 1.0f, u1 = 0.5f, u2 = 0.5f;
+                        size_t li = size_t(k);
+                        if (!eachDeltaLightOnce_) {
+                            if (lights_.size() == 1) {  // the one light: no choice to draw
+                                sampler.skip1D();
+                                li = 0, pmf = lights_.selectPmf(0);
+                            } else {
+                                li = lights_.select(sampler.next1D(), pmf);
+                            }
+                            auto [a, b] = sampler.next2D();
+                            u1 = a, u2 = b;
                         }
-                        auto [a, b] = sampler.next2D();
-                        u1 = a, u2 = b;
+                        LightSample ls;
+                        if (!lights_.sample(li, si.p, u1, u2, ls) || pmf == 0) continue;
+                        Vec3 wi = frame.toLocal(ls.wi);
+                        Color f = bsdf.eval(wo, wi) * std::abs(wi.z);
+                        // Geometric side check: no light from behind the actual surface through a
+                        // bent normal.
+                        if (maxComponent(f) <= 0 ||
+                            (dot(ls.wi, si.ng) <= 0 && !bsdf.hasTransmission()))
+                            continue;
+                        float pl = pmf * ls.pdf;
+                        float weight = 1.0f;
+                        if constexpr (!DeltaLightsOnly)
+                            if (!ls.delta && opt_.sampling != DirectSampling::Light && !lightOnly &&
+                                lights_.hittable(li))
+                                weight = misWeight(nLight, pl, 1, bsdf.pdf(wo, wi));
+                        w.shadowRays.push_back(ls.infinite ? spawnRay(si, ls.wi)
+                                                           : spawnRayTo(si, ls.p, ls.pError));
+                        w.pending.push_back({pi, bounce + 1,
+                                             bounce == 0 ? lobeOf(mat, false) : st.firstLobe,
+                                             st.beta * f * ls.Li * (weight / (pl * perSample))});
                     }
-                    LightSample ls;
-                    if (!lights_.sample(li, si.p, u1, u2, ls) || pmf == 0) continue;
-                    Vec3 wi = frame.toLocal(ls.wi);
-                    Color f = bsdf.eval(wo, wi) * std::abs(wi.z);
-                    // Geometric side check: no light from behind the actual surface through a bent
-                    // normal.
-                    if (maxComponent(f) <= 0 || (dot(ls.wi, si.ng) <= 0 && !bsdf.hasTransmission()))
-                        continue;
-                    float pl = pmf * ls.pdf;
-                    float weight = 1.0f;
-                    if constexpr (!DeltaLightsOnly)
-                        if (!ls.delta && opt_.sampling != DirectSampling::Light && !lightOnly &&
-                            lights_.hittable(li))
-                            weight = misWeight(nLight, pl, 1, bsdf.pdf(wo, wi));
-                    w.shadowRays.push_back(ls.infinite ? spawnRay(si, ls.wi)
-                                                       : spawnRayTo(si, ls.p, ls.pError));
-                    w.pending.push_back({pi, bounce + 1,
-                                         bounce == 0 ? lobeOf(mat, false) : st.firstLobe,
-                                         st.beta * f * ls.Li * (weight / (pl * perSample))});
                 }
-            }
 
-            // -H (CS184's estimate_direct_lighting_hemisphere): -l uniform hemisphere rays, each
-            // adding the emission it finds; the continuing path then counts none.
-            if (hemisphere && !bsdf.isDelta() &&
-                (opt_.accumulateBounces || bounce + 1 == opt_.maxDepth)) {
-                for (int k = 0; k < opt_.lightSamples; ++k) {
-                    Vec3 wi = uniformHemisphere(sampler.next1D(), sampler.next1D());
-                    if (wo.z < 0) wi.z = -wi.z;
-                    Vec3 wiWorld = frame.toWorld(wi);
-                    Color f = bsdf.eval(wo, wi) * std::abs(wi.z);
-                    if (maxComponent(f) <= 0 ||
-                        (dot(wiWorld, si.ng) > 0) != (dot(woWorld, si.ng) > 0))
-                        continue;
-                    w.probeRays.push_back(spawnRay(si, wiWorld));
-                    w.probes.push_back({pi, bounce + 1,
-                                        bounce == 0 ? lobeOf(mat, false) : st.firstLobe,
-                                        st.beta * f / (uniformHemispherePdf() * nLight)});
+                // -H (CS184's estimate_direct_lighting_hemisphere): -l uniform hemisphere rays,
+                // each adding the emission it finds; the continuing path then counts none.
+                if (hemisphere && !bsdf.isDelta() &&
+                    (opt_.accumulateBounces || bounce + 1 == opt_.maxDepth)) {
+                    for (int k = 0; k < opt_.lightSamples; ++k) {
+                        Vec3 wi = uniformHemisphere(sampler.next1D(), sampler.next1D());
+                        if (wo.z < 0) wi.z = -wi.z;
+                        Vec3 wiWorld = frame.toWorld(wi);
+                        Color f = bsdf.eval(wo, wi) * std::abs(wi.z);
+                        if (maxComponent(f) <= 0 ||
+                            (dot(wiWorld, si.ng) > 0) != (dot(woWorld, si.ng) > 0))
+                            continue;
+                        w.probeRays.push_back(spawnRay(si, wiWorld));
+                        w.probes.push_back({pi, bounce + 1,
+                                            bounce == 0 ? lobeOf(mat, false) : st.firstLobe,
+                                            st.beta * f / (uniformHemispherePdf() * nLight)});
+                    }
                 }
-            }
 
-            // Continue the path. With only delta lights and no emitters, a ray after the last
-            // bounce could find nothing: not traced.
-            if constexpr (DeltaLightsOnly)
-                if (bounce + 1 >= opt_.maxDepth) continue;
-            if (lightOnly) continue;
-            BsdfSample bs;
-            float uc = 0.5f;  // the lobe choice: Lambert has one lobe
-            if constexpr (DiffuseOnly)
-                sampler.skip1D();
+                // Continue the path. With only delta lights and no emitters, a ray after the last
+                // bounce could find nothing: not traced.
+                if constexpr (DeltaLightsOnly)
+                    if (bounce + 1 >= opt_.maxDepth) return;
+                if (lightOnly) return;
+                BsdfSample bs;
+                float uc = 0.5f;  // the lobe choice, for BSDFs with more than one lobe
+                if (bsdf.usesLobeChoice())
+                    uc = sampler.next1D();
+                else
+                    sampler.skip1D();
+                auto [u1, u2] = sampler.next2D();
+                if (!bsdf.sample(wo, uc, u1, u2, bs)) return;
+                if (bs.pdf <= 0 || maxComponent(bs.f) <= 0) return;
+                // With -H, what a non-delta bounce's ray finds at the last depth the probes
+                // counted.
+                if (hemisphere && !bs.delta && bounce + 1 >= opt_.maxDepth) return;
+                // The shading frame may send a reflection below the real surface, or a refraction
+                // back out of it: following either would leak light through thin walls.
+                Vec3 wiWorld = frame.toWorld(bs.wi);
+                if ((dot(wiWorld, si.ng) > 0) == bs.transmission) return;
+                if (bounce == 0) st.firstLobe = lobeOf(mat, bs.transmission);
+                st.beta *= bs.f * (std::abs(bs.wi.z) / bs.pdf);
+                st.specular = bs.delta;
+                st.prevPdf = bs.pdf;
+                st.prevP = si.p;
+
+                // Russian roulette: unbiased, the survivors carry 1 / continuation. Its dimension
+                // is spent at every vertex, played or not.
+                if (opt_.roulette == Roulette::Throughput &&
+                    bounce + 1 >= opt_.rouletteMinBounces) {
+                    float q = std::min(1.0f, maxComponent(st.beta));
+                    if (sampler.next1D() >= q) return;
+                    st.beta = st.beta / q;
+                } else if (opt_.roulette == Roulette::Fixed && bounce >= 1) {
+                    if (sampler.next1D() >= opt_.fixedContinuation) return;
+                    st.beta = st.beta / opt_.fixedContinuation;
+                } else {
+                    sampler.skip1D();
+                }
+                if (!isFinite(st.beta) || maxComponent(st.beta) <= 0) return;
+                w.next.push_back(pi);
+                w.nextRays.push_back(spawnRay(si, wiWorld));
+            };
+            if (DiffuseOnly || mat.kind == MaterialKind::Lambertian)
+                shade(LambertBsdf(mat, opt_.microfacet, albedo, mr));
             else
-                uc = sampler.next1D();
-            auto [u1, u2] = sampler.next2D();
-            if (!bsdf.sample(wo, uc, u1, u2, bs)) continue;
-            if (bs.pdf <= 0 || maxComponent(bs.f) <= 0) continue;
-            // With -H, what a non-delta bounce's ray finds at the last depth the probes counted.
-            if (hemisphere && !bs.delta && bounce + 1 >= opt_.maxDepth) continue;
-            // The shading frame may send a reflection below the real surface, or a refraction back
-            // out of it: following either would leak light through thin walls.
-            Vec3 wiWorld = frame.toWorld(bs.wi);
-            if ((dot(wiWorld, si.ng) > 0) == bs.transmission) continue;
-            if (bounce == 0) st.firstLobe = lobeOf(mat, bs.transmission);
-            st.beta *= bs.f * (std::abs(bs.wi.z) / bs.pdf);
-            st.specular = bs.delta;
-            st.prevPdf = bs.pdf;
-            st.prevP = si.p;
-
-            // Russian roulette: unbiased, the survivors carry 1 / continuation. Its dimension is
-            // spent at every vertex, played or not.
-            if (opt_.roulette == Roulette::Throughput && bounce + 1 >= opt_.rouletteMinBounces) {
-                float q = std::min(1.0f, maxComponent(st.beta));
-                if (sampler.next1D() >= q) continue;
-                st.beta = st.beta / q;
-            } else if (opt_.roulette == Roulette::Fixed && bounce >= 1) {
-                if (sampler.next1D() >= opt_.fixedContinuation) continue;
-                st.beta = st.beta / opt_.fixedContinuation;
-            } else {
-                sampler.skip1D();
-            }
-            if (!isFinite(st.beta) || maxComponent(st.beta) <= 0) continue;
-            w.next.push_back(pi);
-            w.nextRays.push_back(spawnRay(si, wiWorld));
+                shade(Bsdf(mat, opt_.microfacet, albedo, mr));
         }
 
         // The queued next-event estimates, traced together; in queue order, which is each path's

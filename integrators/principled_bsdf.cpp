@@ -25,10 +25,10 @@ float specularTerm(const Microfacet& m, const Vec3& wo, const Vec3& wi, const Ve
     return m.D(h) * m.G(wo, wi) / (4 * wo.z * wi.z);
 }
 
-// Density of wi when h is drawn with D(h) cos(theta_h) and wo reflected about it.
+// Density of wi when h is drawn among the normals visible from wo and wo reflected about it.
 float reflectedPdf(const Microfacet& m, const Vec3& wo, const Vec3& h) {
     float d = dot(wo, h);
-    return d > 0 ? m.pdfH(h) / (4 * d) : 0.0f;
+    return d > 0 ? m.pdfVisible(wo, h) / (4 * d) : 0.0f;
 }
 
 Vec3 upper(const Vec3& w, bool flip) { return flip ? Vec3(w.x, w.y, -w.z) : w; }
@@ -109,7 +109,7 @@ bool PrincipledBsdf::sample(const Vec3& woIn, float uc, float u1, float u2, Bsdf
         wi = cosineHemisphere(u1, u2);
     } else {
         const Microfacet& lobe = uc < c.diffuse + c.specular ? specular_ : coatLobe_;
-        Vec3 h = lobe.sampleH(u1, u2);
+        Vec3 h = lobe.sampleVisible(wo, u1, u2);
         float d = dot(wo, h);
         if (d <= 0) return false;
         wi = h * (2 * d) - wo;

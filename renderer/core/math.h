@@ -223,6 +223,38 @@ inline float nextFloatDown(float v) {
     return std::bit_cast<float>(bits);
 }
 
+// Inverse error function, Giles' single-precision approximation ("Approximating the erfinv
+// function", GPU Computing Gems, 2011): about 4e-7 relative on (-1, 1); x is clamped to
+// +-0.99999.
+inline float erfInv(float x) {
+    x = std::clamp(x, -0.99999f, 0.99999f);
+    float w = -std::log((1 - x) * (1 + x)), p;
+    if (w < 5) {
+        w -= 2.5f;
+        p = 2.81022636e-08f;
+        p = 3.43273939e-07f + p * w;
+        p = -3.5233877e-06f + p * w;
+        p = -4.39150654e-06f + p * w;
+        p = 0.00021858087f + p * w;
+        p = -0.00125372503f + p * w;
+        p = -0.00417768164f + p * w;
+        p = 0.246640727f + p * w;
+        p = 1.50140941f + p * w;
+    } else {
+        w = std::sqrt(w) - 3;
+        p = -0.000200214257f;
+        p = 0.000100950558f + p * w;
+        p = 0.00134934322f + p * w;
+        p = -0.00367342844f + p * w;
+        p = 0.00573950773f + p * w;
+        p = -0.0076224613f + p * w;
+        p = 0.00943887047f + p * w;
+        p = 1.00167406f + p * w;
+        p = 2.83297682f + p * w;
+    }
+    return p * x;
+}
+
 inline float radians(float deg) { return deg * (kPi / 180.0f); }
 inline float degrees(float rad) { return rad * (180.0f / kPi); }
 

@@ -51,7 +51,10 @@ struct PathOptions {
     MisHeuristic heuristic = MisHeuristic::Power;
     Roulette roulette = Roulette::Throughput;
     float fixedContinuation = 0.65f;  // CS184's constant continuation probability (Roulette::Fixed)
-    int rouletteMinBounces = 3;       // throughput roulette starts after this many bounces
+    // Throughput roulette starts once a path has bounced this many times: 5 measured best on the
+    // peer benchmark's closed box at -m 5 (earlier roulette added more variance than it saved time:
+    // docs/performance.md) and equal on the open and glossy scenes.
+    int rouletteMinBounces = 5;
     bool accumulateBounces = true;    // false: only light that bounced exactly maxDepth times
     // false (--emitters camera, the CS184 program): an emitter no light samples is seen by camera
     // rays and -H probes only, and lights nothing after a bounce.

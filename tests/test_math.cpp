@@ -92,3 +92,18 @@ TEST(Warp, QuarterTurnSinCosMatchTheLibraryToAFewUlps) {
 
 }  // namespace
 }  // namespace kiln
+
+namespace kiln {
+namespace {
+
+TEST(SpecialFunctions, ErfInvInvertsErf) {
+    // Giles' approximation: erf(erfInv(y)) within a few float ulps of y on (-1, 1), odd.
+    for (int i = -999; i <= 999; ++i) {
+        float y = float(i) / 1000;
+        ASSERT_NEAR(std::erf(double(erfInv(y))), y, 2e-6) << y;
+        ASSERT_EQ(erfInv(-y), -erfInv(y));
+    }
+}
+
+}  // namespace
+}  // namespace kiln

@@ -102,7 +102,10 @@ launched_alive() {
 # session (a harness killing its process group must not take the cluster
 # down) and with stdio detached (so `eval "$(... start)"` returns).
 # Our own pid file: it exists before the daemon can fail, which is what lets
-# wait_for notice a daemon that died at once (e.g. port already in use).
+# wait_for notice a daemon that died at once (e.g. port already in use). The
+# daemons write theirs to NAME.own.pid: sharing one file, a daemon rewriting it
+# (truncate, then write) left it empty for an instant, and a start-up check
+# that read it then took a live munged for dead (a CI failure).
 launch() {
     local name=$1
     shift
@@ -201,8 +204,8 @@ AuthInfo=socket=$MUNGE_SOCKET,cred_expire=$CRED_EXPIRE
 
 StateSaveLocation=$DIR/state
 SlurmdSpoolDir=$DIR/spool
-SlurmctldPidFile=$DIR/run/slurmctld.pid
-SlurmdPidFile=$DIR/run/slurmd.pid
+SlurmctldPidFile=$DIR/run/slurmctld.own.pid
+SlurmdPidFile=$DIR/run/slurmd.own.pid
 SlurmctldLogFile=$DIR/log/slurmctld.log
 SlurmdLogFile=$DIR/log/slurmd.log
 PlugStackConfig=$DIR/plugstack.conf
@@ -277,7 +280,7 @@ start_daemons() {
     # group-writable (e.g. a 0775 home); the key itself stays private (0400).
     # --foreground logs to stderr only, i.e. $DIR/log/munged.stderr.
     launch munged munged --foreground --force --socket="$MUNGE_SOCKET" \
-        --key-file="$DIR/munge/munge.key" --pid-file="$DIR/run/munged.pid" \
+        --key-file="$DIR/munge/munge.key" --pid-file="$DIR/run/munged.own.pid" \
         --seed-file="$DIR/munge/munged.seed"
     wait_for munged munge_ok
     # -c: never recover jobs from an earlier cluster's state.

@@ -205,7 +205,7 @@ void addTransportOptions(ArgParser& parser, RenderJobArgs& a) {
                           throw UsageError("--rr-continue must be in (0, 1]");
                   });
     parser.intOption("rr-start", "",
-                     "--rr throughput plays roulette once a path has bounced N times (default 3)",
+                     "--rr throughput plays roulette once a path has bounced N times (default 5)",
                      p.rouletteMinBounces, 1, 100000);
     parser.option("bounce-only", "", 0, "",
                   "keep only light that bounced exactly -m times (accumulate bounces off)",

@@ -93,16 +93,19 @@ bool Bsdf::sample(const Vec3& wo, float uc, float u1, float u2, BsdfSample& out)
             return out.pdf > 0;
         }
         case MaterialKind::Microfacet: {
-            Vec3 h = micro_.sampleVisible(wo.z < 0 ? -wo : wo, u1, u2);
-            if (wo.z < 0) h = -h;
-            // A microfacet facing away from wo cannot reflect it (its mirror image is counted by
-            // -h).
-            if (dot(wo, h) <= 0) return false;
-            Vec3 wi = reflectAbout(wo, h);
-            if (!sameHemisphere(wo, wi)) return false;
-            out.wi = wi;
-            out.pdf = pdf(wo, wi);
-            out.f = eval(wo, wi);
+            // Metal is opaque from both sides: work above the surface, flip back at the end.
+            Vec3 o = wo.z < 0 ? -wo : wo;
+            Vec3 h = micro_.sampleVisible(o, u1, u2);
+            float oh = dot(o, h);
+            if (oh <= 0) return false;
+            Vec3 i = reflectAbout(o, h);
+            if (i.z <= 0) return false;
+            // eval() and pdf() at i, sharing D and Lambda(o): pdf = G1(o) D / (4 cos_o).
+            float D = micro_.D(h), lo = micro_.lambda(o), li = micro_.lambda(i);
+            Color F = fresnelConductor(dot(i, h), m_.eta, m_.k);
+            out.wi = wo.z < 0 ? -i : i;
+            out.pdf = D / (4 * o.z * (1 + lo));
+            out.f = F * (D / (4 * o.z * i.z * (1 + lo + li)));
             return out.pdf > 0;
         }
         case MaterialKind::Glossy: {

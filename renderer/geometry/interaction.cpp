@@ -23,20 +23,16 @@ float traversalError(const Vec3& p) {
 }
 
 // Both spawn origins: p pushed off along ng by the error bound projected on it (never below the
-// traversal error), rounded away from p so the offset survives the addition.
+// traversal error). Adding the offset rounds each coordinate by at most half an ulp of the largest
+// one, which moves the origin along ng by under sqrt(3) / 2 ulps: the offset carries 2 ulps more,
+// so the origin always ends at least the bound away from p along ng (pbrt nudges each coordinate
+// one ulp instead, a branch per axis on the offset's sign).
 void setSpawnOrigins(SurfaceInteraction& si) {
-    float d = std::max(dot(abs(si.ng), si.pError), traversalError(si.p));
+    float largest = maxComponent(abs(si.p));
+    float d = std::max(dot(abs(si.ng), si.pError), traversalError(si.p)) +
+              2 * std::numeric_limits<float>::epsilon() * largest;
     Vec3 offset = si.ng * d;
     si.originFront = si.p + offset, si.originBack = si.p - offset;
-    for (int i = 0; i < 3; ++i) {
-        if (offset[i] > 0) {
-            si.originFront[i] = nextFloatUp(si.originFront[i]);
-            si.originBack[i] = nextFloatDown(si.originBack[i]);
-        } else if (offset[i] < 0) {
-            si.originFront[i] = nextFloatDown(si.originFront[i]);
-            si.originBack[i] = nextFloatUp(si.originBack[i]);
-        }
-    }
 }
 
 }  // namespace
@@ -110,8 +106,8 @@ SurfaceInteraction makeInteraction(const Scene& scene, const Ray& ray, const Hit
     si.p = p;
     si.pError = err;
     si.ng = normalize(ng);
-    si.ns = normalize(ns);
     if (!isFinite(si.ng)) si.ng = -normalize(ray.dir);  // zero-area triangle: face the ray
+    si.ns = mesh.normals.empty() ? si.ng : normalize(ns);
     if (!isFinite(si.ns)) si.ns = si.ng;
     si.material = mesh.materialOf(hit.prim);
     faceForward(si, ray.dir);

@@ -30,7 +30,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.dont_write_bytecode = True  # no __pycache__ in the checkout
 sys.path.insert(0, os.path.join(ROOT, "tools"))
-from peer_bench import rel_mse, time_at  # noqa: E402
+from peer_bench import REF_SEED, rel_mse, time_at  # noqa: E402
 
 
 def child_cpu():
@@ -63,11 +63,12 @@ def crop_window(a):
     return [x0 / 800, (x0 + w) / 800, y0 / 600, (y0 + h) / 600]
 
 
-def run_kiln(kiln, scene, spp, a, png):
+def run_kiln(kiln, scene, spp, a, png, seed=0):
     # the preview PNG of a crop holds the window alone, as the course program's image
     cmd = [kiln, "render", scene, "-r", "800", "600", "--crop"] + ["%.6g" % f for f in crop_window(a)] + [
         "-s", str(spp), "-l", str(a.light_samples), "-m", str(a.max_depth), "-t", str(a.threads),
-        "--sampler", a.sampler, "--aov", "none", "-q", "--view", "CS184", "-o", png[:-4], "-f", png]
+        "--sampler", a.sampler, "--seed", str(seed), "--aov", "none", "-q", "--view", "CS184",
+        "-o", png[:-4], "-f", png]
     err = subprocess.run(cmd, capture_output=True, text=True, check=True).stderr
     m = re.search(r"build ([0-9.]+)s, render ([0-9.]+)s", err)
     return float(m.group(1)) + float(m.group(2))
@@ -107,12 +108,15 @@ def main():
 
     # references are reused by a later run only when they were made at the same size and spp
     size = "%dx%d" % tuple(a.size)
+    # kiln's reference has a seed of its own: sharing its first samples with the test renders (a
+    # sample is a pure function of the seed and its index) would understate their error.
     refs = {"course": os.path.join(a.out, "ref%d.%s.course.png" % (a.course_ref_spp, size)),
-            "kiln": os.path.join(a.out, "ref%d.%s.kiln.png" % (a.kiln_ref_spp, size))}
+            "kiln": os.path.join(a.out, "ref%d.%s.seed%d.kiln.png" % (a.kiln_ref_spp, size,
+                                                                    REF_SEED))}
     if not os.path.exists(refs["course"]):
         run_course(course, scene, a.course_ref_spp, a, refs["course"])
     if not os.path.exists(refs["kiln"]):
-        run_kiln(a.kiln, scene, a.kiln_ref_spp, a, refs["kiln"])
+        run_kiln(a.kiln, scene, a.kiln_ref_spp, a, refs["kiln"], REF_SEED)
     ref_exr = {k: code_values(v) for k, v in refs.items()}
 
     rows = []  # (program, spp, median seconds, relMSE, median CPU seconds)

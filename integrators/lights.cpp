@@ -109,6 +109,9 @@ void LightSet::findParallelogram(Entry& e) {
     e.parallelogram = true;
     e.origin = x, e.edgeX = s1 - x, e.edgeY = s2 - x;
     e.originError = deviation;  // how far a sampled point may lie from the real triangles
+    // Rounding of origin + edgeX u1 + edgeY u2 for any (u1, u2) in [0, 1]^2, and that deviation:
+    // one bound for every sampled point.
+    e.pointError = (abs(e.origin) + abs(e.edgeX) + abs(e.edgeY)) * gamma(7) + deviation;
 }
 
 Vec3 EnvironmentMap::direction(float u, float v) const {
@@ -267,8 +270,7 @@ bool LightSet::sample(size_t i, const Vec3& ref, float u1, float u2, LightSample
             Color texel(1.0f);
             if (e.parallelogram) {
                 p = e.origin + e.edgeX * u1 + e.edgeY * u2;
-                pError = (abs(e.origin) + abs(e.edgeX * u1) + abs(e.edgeY * u2)) * gamma(7) +
-                         e.originError;
+                pError = e.pointError;
                 n = e.normals[0];
             } else {
                 // One number picks the triangle by area and, rescaled within its slice, the point.

@@ -80,7 +80,7 @@ class LightSet {
         Distribution1D triangleArea;
         // Two triangles tiling a parallelogram: sampled directly (findParallelogram).
         bool parallelogram = false;
-        Vec3 origin, edgeX, edgeY, originError;
+        Vec3 origin, edgeX, edgeY, originError, pointError;
         float area = 0;
         bool oneSided = false;
         Vec3 side;  // emitting side for one-sided lights

@@ -30,21 +30,19 @@ inline void sinCosQuarterPi(float t, float& s, float& c) {
     c = 1 + t2 * (-0.5f + t2 * (1.0f / 24 + t2 * (-1.0f / 720 + t2 * (1.0f / 40320))));
 }
 
-// Shirley-Chiu concentric map.
+// Shirley-Chiu concentric map. Written with selects, not a branch on which of |a|, |b| is larger:
+// that is a coin flip the predictor cannot learn.
 inline void concentricDisk(float u1, float u2, float& x, float& y) {
     float a = 2 * u1 - 1, b = 2 * u2 - 1;
     if (a == 0 && b == 0) {
         x = y = 0;
         return;
     }
-    float s, c;
-    if (std::abs(a) > std::abs(b)) {  // phi = pi/4 (b/a)
-        sinCosQuarterPi((kPi / 4) * (b / a), s, c);
-        x = a * c, y = a * s;
-    } else {  // phi = pi/2 - pi/4 (a/b): cos and sin trade places
-        sinCosQuarterPi((kPi / 4) * (a / b), s, c);
-        x = b * s, y = b * c;
-    }
+    // |a| > |b|: phi = pi/4 (b/a); else phi = pi/2 - pi/4 (a/b), where cos and sin trade places.
+    bool wide = std::abs(a) > std::abs(b);
+    float r = wide ? a : b, s, c;
+    sinCosQuarterPi((kPi / 4) * ((wide ? b : a) / r), s, c);
+    x = r * (wide ? c : s), y = r * (wide ? s : c);
 }
 
 inline Vec3 cosineHemisphere(float u1, float u2) {

@@ -11,7 +11,7 @@ shift || true
 mkdir -p "$out"
 start=$(date -u '+%Y-%m-%d %H:%M')
 for scene in lucy_env box_bunny box_metal; do
-  tools/peer_bench.py --scene "$scene" --resolution 160 120 --spp 16,64,256 --ref-spp 1024 \
+  tools/peer_bench.py --scene "$scene" --resolution 160 120 --spp 16,32,64,128,256 --ref-spp 1024 \
     --repeats 3 --samplers sobol --out "$out" "$@"
 done
 tools/peer/cs184_bench.py --course-spp 8,32,128 --kiln-spp 2,8,32 --repeats 2 --out "$out/cs184"

@@ -6,6 +6,7 @@
 #include "integrators/microfacet.h"
 #include "integrators/principled_bsdf.h"
 #include "renderer/core/warp.h"
+#include "renderer/geometry/interaction.h"
 #include "scene/scene.h"
 
 namespace kiln {
@@ -16,6 +17,9 @@ struct BsdfSample {
     float pdf = 0;  // solid angle; for delta lobes the discrete probability of the lobe
     bool delta = false;
     bool transmission = false;
+    // Where > 0, the density MIS weighs this direction by instead of pdf: it must be what pdf()
+    // gives light sampling's weights for the same direction (a guided bounce: its cosine part).
+    float misPdf = 0;
 };
 
 class Bsdf {
@@ -49,5 +53,13 @@ class Bsdf {
     PrincipledBsdf principled_;  // MaterialKind::Principled only
     bool delta_;
 };
+
+// The frame a vertex shades in, seen from woWorld. A shading normal bent so far that the viewer is
+// below its tangent plane would make the surface black: such a vertex shades with the geometric
+// normal instead (on the stored normal's side).
+inline Frame shadingFrame(const SurfaceInteraction& si, const Vec3& woWorld) {
+    if (dot(woWorld, si.ns) > 0) return Frame(si.nsStored);
+    return Frame(dot(si.ns, si.nsStored) >= 0 ? si.ng : -si.ng);
+}
 
 }  // namespace kiln

@@ -205,9 +205,17 @@ LightSet::LightSet(const Scene& scene) : scene_(&scene) {
         lights_.push_back(std::move(e));
     }
     everyEmitterSampled_ = !hasUnsampledEmitter(scene, meshLight_);
-    std::vector<float> powers;
-    for (const Entry& e : lights_) powers.push_back(power(e, radius));
+    std::vector<float> powers, emitterPowers;
+    for (size_t i = 0; i < lights_.size(); ++i) {
+        powers.push_back(power(lights_[i], radius));
+        LightKind k = lights_[i].light->kind;
+        if (k == LightKind::Area || k == LightKind::MeshEmitter) {
+            surfaceEmitters_.push_back(i);
+            emitterPowers.push_back(powers.back());
+        }
+    }
     power_ = Distribution1D(powers);
+    emitterPower_ = Distribution1D(emitterPowers);
 }
 
 float LightSet::power(const Entry& e, float r) const {
@@ -257,6 +265,52 @@ Color LightSet::emitted(size_t i, const Vec3& x, const Vec3& n, const Vec3& towa
     return e.light->radiance;
 }
 
+// Uniform by area. Written for few divisions and branches: this runs -l times at every path vertex.
+LightSet::SurfacePoint LightSet::samplePoint(const Entry& e, float u1, float u2) const {
+    if (e.parallelogram)
+        return {e.origin + e.edgeX * u1 + e.edgeY * u2, e.pointError, e.normals[0], Color(1.0f)};
+    // One number picks the triangle by area and, rescaled within its slice, the point.
+    size_t t = 0;
+    float v1 = u1;
+    if (e.triangleArea.size() > 1) {
+        float pdfUnused;
+        float x = e.triangleArea.sampleContinuous(u1, pdfUnused, t);
+        v1 = std::clamp(x * float(e.triangleArea.size()) - float(t), 0.0f, 1.0f - 1e-7f);
+    }
+    const Vec3* tri = &e.triangles[3 * t];
+    float b1, b2;
+    uniformTriangle(v1, u2, b1, b2);
+    SurfacePoint out{tri[0] + tri[1] * b1 + tri[2] * b2,
+                     // Rounding of p0 + e1 b1 + e2 b2 (pbrt's gamma bound for a barycentric
+                     // interpolation).
+                     (abs(tri[0]) + abs(tri[1] * b1) + abs(tri[2] * b2)) * gamma(7), e.normals[t],
+                     Color(1.0f)};
+    const uint32_t mesh = e.light->mesh;
+    if (e.emissionTextured)  // as a ray hitting this point sees it (path.cpp)
+        out.texel = emissionTexelAt(*scene_, scene_->materials[scene_->meshes[mesh].materialOf(t)],
+                                    mesh, uint32_t(t), b1, b2);
+    if (e.alphaCut) out.texel *= coverageAt(*scene_, mesh, uint32_t(t), b1, b2);
+    return out;
+}
+
+bool LightSet::sampleEmission(float uLight, float u1, float u2, float uSide, float u3, float u4,
+                              EmissionSample& out) const {
+    float pmf;
+    size_t i = surfaceEmitters_.empty() ? 0 : emitterPower_.sampleDiscrete(uLight, pmf);
+    if (surfaceEmitters_.empty() || pmf <= 0) return false;
+    const Entry& e = lights_[surfaceEmitters_[i]];
+    if (e.area <= 0) return false;
+    SurfacePoint sp = samplePoint(e, u1, u2);
+    // A one-sided light emits along its side; a two-sided one from either, picked evenly.
+    Vec3 n = e.oneSided ? (dot(sp.n, e.side) < 0 ? -sp.n : sp.n) : (uSide < 0.5f ? sp.n : -sp.n);
+    float sides = e.oneSided ? 1.0f : 2.0f;
+    out.from = surfacePoint(sp.p, sp.pError, n);
+    out.dir = Frame(n).toWorld(cosineHemisphere(u3, u4));
+    // Le cos / (pdf of the point, 1 / area, times the direction's, cos / pi, over the sides).
+    out.power = e.light->radiance * sp.texel * (e.area * kPi * sides / pmf);
+    return maxComponent(out.power) > 0;
+}
+
 bool LightSet::sample(size_t i, const Vec3& ref, float u1, float u2, LightSample& out) const {
     const Entry& e = lights_[i];
     const Light& l = *e.light;
@@ -264,38 +318,7 @@ bool LightSet::sample(size_t i, const Vec3& ref, float u1, float u2, LightSample
     switch (l.kind) {
         case LightKind::Area:
         case LightKind::MeshEmitter: {
-            // Uniform by area. Written for few divisions and branches: this runs -l times at every
-            // path vertex.
-            Vec3 p, pError, n;
-            Color texel(1.0f);
-            if (e.parallelogram) {
-                p = e.origin + e.edgeX * u1 + e.edgeY * u2;
-                pError = e.pointError;
-                n = e.normals[0];
-            } else {
-                // One number picks the triangle by area and, rescaled within its slice, the point.
-                size_t t = 0;
-                float v1 = u1;
-                if (e.triangleArea.size() > 1) {
-                    float pdfUnused;
-                    float x = e.triangleArea.sampleContinuous(u1, pdfUnused, t);
-                    v1 =
-                        std::clamp(x * float(e.triangleArea.size()) - float(t), 0.0f, 1.0f - 1e-7f);
-                }
-                const Vec3* tri = &e.triangles[3 * t];
-                float b1, b2;
-                uniformTriangle(v1, u2, b1, b2);
-                p = tri[0] + tri[1] * b1 + tri[2] * b2;
-                // Rounding of p0 + e1 b1 + e2 b2 (pbrt's gamma bound for a barycentric
-                // interpolation).
-                pError = (abs(tri[0]) + abs(tri[1] * b1) + abs(tri[2] * b2)) * gamma(7);
-                n = e.normals[t];
-                if (e.emissionTextured)  // as a ray hitting this point sees it (path.cpp)
-                    texel = emissionTexelAt(*scene_,
-                                            scene_->materials[scene_->meshes[l.mesh].materialOf(t)],
-                                            l.mesh, uint32_t(t), b1, b2);
-                if (e.alphaCut) texel *= coverageAt(*scene_, l.mesh, uint32_t(t), b1, b2);
-            }
+            auto [p, pError, n, texel] = samplePoint(e, u1, u2);
             Vec3 d = p - ref;
             // A one-sided light sends nothing to points behind (or in) its plane.
             if (e.oneSided && dot(d, e.side) >= 0) return false;

@@ -9,6 +9,14 @@
 
 namespace kiln {
 
+// Light leaving an emitting surface (a photon): where it starts, where it goes, and its power
+// (the light's radiance over the densities of the point, the direction and the light's choice).
+struct EmissionSample {
+    SurfaceInteraction from;
+    Vec3 dir;
+    Color power;
+};
+
 struct LightSample {
     Color Li;       // radiance arriving at the reference point (before visibility)
     Vec3 wi;        // unit direction towards the light
@@ -67,6 +75,10 @@ class LightSet {
     const std::vector<size_t>& infiniteLights() const { return infinite_; }
     Color escaped(size_t i, const Vec3& dir, bool cameraRay) const;
     bool allDelta() const;
+    // Light leaving an area light or emitting mesh, chosen by power: a point by area, a
+    // cosine-weighted direction on a side it emits from. False where the scene has none.
+    bool sampleEmission(float uLight, float u1, float u2, float uSide, float u3, float u4,
+                        EmissionSample& out) const;
     // Every emitting surface is a light NEE samples (no emissive sphere, instance or unbound mesh):
     // light sampling alone then accounts for all the light a vertex receives.
     bool everyEmitterSampled() const { return everyEmitterSampled_; }
@@ -91,6 +103,11 @@ class LightSet {
         bool alphaCut = false;
         EnvironmentMap env;
     };
+    struct SurfacePoint {
+        Vec3 p, pError, n;
+        Color texel;  // the emission texture and alpha coverage there
+    };
+    SurfacePoint samplePoint(const Entry& e, float u1, float u2) const;
     float power(const Entry& e, float sceneRadius) const;
     static void findParallelogram(Entry& e);
     const Scene* scene_;  // emission textures of mesh lights
@@ -98,6 +115,8 @@ class LightSet {
     std::vector<int> meshLight_;
     std::vector<size_t> infinite_;
     Distribution1D power_;
+    std::vector<size_t> surfaceEmitters_;  // area lights and emitting meshes, by index
+    Distribution1D emitterPower_;          // over surfaceEmitters_
     bool everyEmitterSampled_ = true;
 };
 

@@ -108,6 +108,54 @@ class LambertBsdf {
     bool black_;
 };
 
+// A Lambertian vertex at x whose bounce draws kGuideFraction of its directions from the guide
+// field's leaf (guiding.h) and the rest by cosine: the same reflectance, the mixture's density for
+// the throughput. MIS against light sampling weighs by the cosine density alone, on both sides
+// (pdf() and BsdfSample::misPdf): any one function used on both sides keeps the weights summing to
+// one, and the guide aims at glossy surfaces, not at lights, so its density towards a light is
+// nearly always zero and not worth a sum over the leaf's cones per light sample.
+class GuidedLambert {
+  public:
+    GuidedLambert(const LambertBsdf& lambert, const GuideLeaf& leaf, const Vec3& x,
+                  const Frame& frame)
+        : lambert_(lambert), leaf_(leaf), x_(x), frame_(frame) {}
+    bool isDelta() const { return false; }
+    bool isBlack() const { return lambert_.isBlack(); }
+    bool isDiffuse() const { return true; }
+    bool hasTransmission() const { return false; }
+    Color eval(const Vec3& wo, const Vec3& wi) const { return lambert_.eval(wo, wi); }
+    float pdf(const Vec3& wo, const Vec3& wi) const { return lambert_.pdf(wo, wi); }
+    bool usesLobeChoice() const { return true; }
+    bool sample(const Vec3& wo, float uc, float u1, float u2, BsdfSample& out) const {
+        if (uc >= kGuideFraction) {
+            if (!lambert_.sample(wo, uc, u1, u2, out)) return false;
+            out.misPdf = out.pdf;
+            out.pdf = mixture(out.pdf, leaf_.pdf(x_, frame_.toWorld(out.wi)));
+            return true;
+        }
+        if (wo.z == 0) return false;
+        float guidePdf;
+        // uc, rescaled to [0, 1), picks the cone.
+        Vec3 wi = frame_.toLocal(leaf_.sample(x_, uc / kGuideFraction, u1, u2, guidePdf));
+        if (wi.z * wo.z <= 0) return false;  // below the surface: the sample reflects nothing
+        out = BsdfSample{};
+        out.wi = wi;
+        out.f = lambert_.eval(wo, wi);
+        out.misPdf = lambert_.pdf(wo, wi);
+        out.pdf = mixture(out.misPdf, guidePdf);
+        return out.pdf > 0;
+    }
+
+  private:
+    static float mixture(float cosinePdf, float guidePdf) {
+        return (1 - kGuideFraction) * cosinePdf + kGuideFraction * guidePdf;
+    }
+    const LambertBsdf& lambert_;
+    const GuideLeaf& leaf_;
+    const Vec3& x_;
+    const Frame& frame_;
+};
+
 }  // namespace
 
 // Light that bounced `bounce` times; with accumulation off only the maxDepth-th bounce is kept.
@@ -305,16 +353,10 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
             // The rest of the vertex, for its BSDF: a Lambertian surface takes the Lambert-only
             // code in every scene (measured: the general BSDF's dispatch slowed the walls of a box
             // holding one metal object by a third).
+            const Vec3 woWorld = -normalize(ray.dir);
+            const Frame frame = shadingFrame(si, woWorld);
             auto shade = [&](const auto& bsdf) {
                 if (bsdf.isBlack()) return;
-                // A shading normal bent so far that the viewer is below its tangent plane would
-                // make the surface black: shade such a vertex with the geometric normal instead (on
-                // the stored normal's side).
-                Vec3 woWorld = -normalize(ray.dir);
-                Vec3 shadingN = si.nsStored;
-                if (dot(woWorld, si.ns) <= 0)
-                    shadingN = dot(si.ns, si.nsStored) >= 0 ? si.ng : -si.ng;
-                Frame frame(shadingN);
                 Vec3 wo = frame.toLocal(woWorld);
                 // A diffuse last vertex takes its direct light from light sampling alone: its
                 // continuation could only find emission, which MIS weighs low on a diffuse surface.
@@ -408,7 +450,7 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
                 if (bounce == 0) st.firstLobe = lobeOf(mat, bs.transmission);
                 st.beta *= bs.f * (std::abs(bs.wi.z) / bs.pdf);
                 st.specular = bs.delta;
-                st.prevPdf = bs.pdf;
+                st.prevPdf = bs.misPdf > 0 ? bs.misPdf : bs.pdf;
                 st.prevP = si.p;
 
                 // Russian roulette: unbiased, the survivors carry 1 / continuation. Its dimension
@@ -428,10 +470,18 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
                 w.next.push_back(pi);
                 w.nextRays.push_back(spawnRay(si, wiWorld));
             };
-            if (DiffuseOnly || mat.kind == MaterialKind::Lambertian)
-                shade(LambertBsdf(mat, opt_.microfacet, albedo, mr));
-            else
+            if (DiffuseOnly || mat.kind == MaterialKind::Lambertian) {
+                LambertBsdf lambert(mat, opt_.microfacet, albedo, mr);
+                // Guided where the bounce is traced (not at a light-only last vertex).
+                const bool bounces = !(lightOnlyAtLastVertex_ && bounce + 1 == opt_.maxDepth);
+                const GuideLeaf* leaf = guide_ && bounces ? guide_->leafAt(si.p) : nullptr;
+                if (leaf)
+                    shade(GuidedLambert(lambert, *leaf, si.p, frame));
+                else
+                    shade(lambert);
+            } else {
                 shade(Bsdf(mat, opt_.microfacet, albedo, mr));
+            }
         }
 
         // The queued next-event estimates, traced together; in queue order, which is each path's

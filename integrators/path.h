@@ -3,7 +3,11 @@
 // illumination).
 #pragma once
 
+#include <memory>
+#include <vector>
+
 #include "integrators/bsdf.h"
+#include "integrators/guiding.h"
 #include "integrators/integrator.h"
 #include "integrators/lights.h"
 #include "integrators/render_plan.h"
@@ -19,6 +23,8 @@ enum class DirectSampling { Hemisphere, Light, Mis, Bsdf };
 enum class Roulette { Off, Throughput, Fixed };
 enum class IntegratorKind { Path, Normals };
 enum class MisHeuristic { Power, Balance };
+// Path guiding of diffuse bounces (guiding.h): auto leaves it to the render plan.
+enum class GuideMode { Auto, On, Off };
 
 template <>
 struct EnumNames<DirectSampling> {
@@ -39,6 +45,11 @@ struct EnumNames<IntegratorKind> {
         {IntegratorKind::Path, "path"}, {IntegratorKind::Normals, "normals"}};
 };
 template <>
+struct EnumNames<GuideMode> {
+    static constexpr std::pair<GuideMode, const char*> table[] = {
+        {GuideMode::Auto, "auto"}, {GuideMode::On, "on"}, {GuideMode::Off, "off"}};
+};
+template <>
 struct EnumNames<MisHeuristic> {
     static constexpr std::pair<MisHeuristic, const char*> table[] = {
         {MisHeuristic::Power, "power"}, {MisHeuristic::Balance, "balance"}};
@@ -55,11 +66,12 @@ struct PathOptions {
     // peer benchmark's closed box at -m 5 (earlier roulette added more variance than it saved time:
     // docs/performance.md) and equal on the open and glossy scenes.
     int rouletteMinBounces = 5;
-    bool accumulateBounces = true;    // false: only light that bounced exactly maxDepth times
+    bool accumulateBounces = true;  // false: only light that bounced exactly maxDepth times
     // false (--emitters camera, the CS184 program): an emitter no light samples is seen by camera
     // rays and -H probes only, and lights nothing after a bounce.
     bool unsampledEmittersLight = true;
     MicrofacetModel microfacet = MicrofacetModel::Beckmann;
+    GuideMode guiding = GuideMode::Auto;
     float pixelSpread = 0;  // radians a camera pixel spans: the texture footprint (0: finest level)
 };
 
@@ -85,6 +97,15 @@ class PathIntegrator final : public Integrator {
     const PathOptions& options() const { return opt_; }
     const LightSet& lights() const { return lights_; }
 
+    // Traces photons [first, first + count) of the guide's training (seeded by seed) from the
+    // area lights and emitting meshes, and appends a record where one lands on a Lambertian
+    // surface after a glossy or specular bounce: the caustics cosine sampling rarely finds.
+    void traceCausticPhotons(uint64_t first, size_t count, uint64_t seed,
+                             std::vector<GuideRecord>& records) const;
+    // Diffuse bounces from now on follow this field (nullptr: cosine sampling alone).
+    void setGuide(std::shared_ptr<const GuideField> guide) { guide_ = std::move(guide); }
+    const std::shared_ptr<const GuideField>& guide() const { return guide_; }
+
   private:
     static TraceFn pathFor(const RenderPlan& plan);
     template <bool DiffuseOnly, bool Infinite, bool DeltaLightsOnly, bool SplitLight>
@@ -105,6 +126,7 @@ class PathIntegrator final : public Integrator {
     LightSet lights_;
     bool eachDeltaLightOnce_ = false;     // only (a few) delta lights: NEE takes each once
     bool lightOnlyAtLastVertex_ = false;  // a diffuse last vertex: NEE alone, no continuation
+    std::shared_ptr<const GuideField> guide_;
 };
 
 // The integrator of that kind, complete: specialised for the plan, recording plan.aovs.

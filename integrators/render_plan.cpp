@@ -75,6 +75,9 @@ RenderPlan planFor(const Scene& scene, const Accelerator& accel, const AovReques
     p.spheres = !scene.spheres.empty();
     p.instances = !scene.instances.empty();
     p.caustics = p.deltaSpecular && anyDiffuse && !scene.lights.empty();
+    // Photons leave area lights and emitting meshes only (an environment's caustics stay
+    // cosine-sampled).
+    p.guiding = anyDiffuse && (p.roughConductor || p.glossy || p.deltaSpecular) && p.areaLights;
     p.thinLens = scene.camera.apertureRadius > 0;
     p.escapeFraction = escapeFraction(scene, accel);
     p.closed = p.escapeFraction < 0.01f;
@@ -114,6 +117,12 @@ RenderPlan planFor(const Scene& scene, const Accelerator& accel, const AovReques
         say("caustics reachable only by BSDF sampling",
             "specular (mirror/glass) surfaces and diffuse receivers: "
             "expect noise there, more samples clear it");
+    say(p.guiding ? "path guiding of diffuse bounces (unless --guiding off)"
+                  : "no path guiding (unless --guiding on)",
+        p.guiding ? "glossy or specular surfaces reflect area lights onto diffuse ones: cosine "
+                    "sampling alone rarely finds that light; photons show where it lands"
+                  : "no glossy or specular surface carries an area light's light onto a diffuse "
+                    "one");
     say(p.thinLens ? "thin-lens camera sampling" : "pinhole camera",
         p.thinLens ? "aperture > 0" : "no aperture");
     say(p.aovs.splitsLight() || general ? "light AOVs accumulated" : "no light AOVs accumulated",
@@ -148,6 +157,7 @@ std::string RenderPlan::compact() const {
     flag(spheres, "spheres");
     flag(instances, "instances");
     flag(caustics, "caustics");
+    flag(guiding, "guiding");
     flag(thinLens, "thin-lens");
     flag(closed, "closed");
     return out;

@@ -41,6 +41,9 @@ struct RenderPlan {
     bool emitters = false;  // surfaces with emission
     bool spheres = false, instances = false;
     bool caustics = false;  // light can reach a diffuse surface through a specular chain
+    // Diffuse bounces follow a trained guide field (guiding.h) unless --guiding says otherwise:
+    // where glossy or specular surfaces can carry light onto diffuse ones.
+    bool guiding = false;
     bool thinLens = false;
     bool closed = false;  // probe rays from visible surfaces almost never escape
     float escapeFraction = 0;

@@ -230,6 +230,7 @@ Fingerprint checkpointFingerprint(const RenderJob& job, const std::string& scene
                          std::to_string(p.rouletteMinBounces)},
         {"accumulate_bounces", p.accumulateBounces ? "yes" : "no"},
         {"microfacet", toString(p.microfacet)},
+        {"guiding", job.guided() ? "on" : "off"},
         {"aovs", std::to_string(o.aovs.mask) + " bounces " + std::to_string(o.aovs.bounceLayers) +
                      " depth " + toString(o.aovs.depth) +
                      (o.aovs.transparent ? " transparent" : "")},

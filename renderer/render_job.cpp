@@ -2,9 +2,11 @@
 
 #include <tbb/info.h>
 
+#include <chrono>
 #include <string>
 
 #include "renderer/geometry/camera.h"
+#include "renderer/guide_training.h"
 
 namespace kiln {
 namespace {
@@ -29,6 +31,14 @@ std::string joinedWarnings(const std::vector<std::string>& warnings) {
     return text;
 }
 
+// --guiding on or off, else the plan's choice; never with -H, whose probes stand for the bounce
+// CS184 defines.
+bool wantsGuide(const RenderJobOptions& o, const RenderPlan& plan) {
+    if (o.integrator != IntegratorKind::Path || o.path.sampling == DirectSampling::Hemisphere)
+        return false;
+    return o.path.guiding == GuideMode::On || (o.path.guiding == GuideMode::Auto && plan.guiding);
+}
+
 }  // namespace
 
 RenderJob::RenderJob(const Scene& scene, const Accelerator& accel, const RenderJobOptions& options)
@@ -41,6 +51,7 @@ RenderJob::RenderJob(const Scene& scene, const Accelerator& accel, const RenderJ
       filmScaleExponent_(kiln::filmScaleExponent(scene.brightestEmission())) {
     // The number the integrator uses, for the EXR header and checkpoint fingerprints.
     options_.path.lightSamples = resolvedLightSamples(options_.path, plan_);
+    guided_ = wantsGuide(options_, plan_);
 }
 
 RenderJob::RenderJob(const RenderJob& job, const Accelerator& accel)
@@ -50,7 +61,31 @@ RenderJob::RenderJob(const RenderJob& job, const Accelerator& accel)
       plan_(job.plan_),
       integrator_(makeIntegrator(options_.integrator, scene_, accel,
                                  withPixelSpread(scene_, options_), plan_)),
-      filmScaleExponent_(job.filmScaleExponent_) {}
+      filmScaleExponent_(job.filmScaleExponent_),
+      guided_(job.guided_) {
+    // The same field, not a second training.
+    job.trainGuideOnce();
+    guide_ = job.guide_;
+    std::call_once(guideTrained_, [] {});
+    if (guide_) static_cast<PathIntegrator&>(*integrator_).setGuide(guide_);
+}
+
+void RenderJob::trainGuideOnce() const {
+    std::call_once(guideTrained_, [this] {
+        if (!guided_) return;
+        auto start = std::chrono::steady_clock::now();
+        auto& path = static_cast<PathIntegrator&>(*integrator_);
+        guide_ = trainGuide(path, options_.settings);
+        path.setGuide(guide_);
+        guideSeconds_ =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    });
+}
+
+std::string RenderJob::guidingText() const {
+    if (!guided_) return "off";
+    return guide_ ? GuideTraining::describe(*guide_) : "on";
+}
 
 Film RenderJob::makeFilm() const {
     const RenderSettings& s = options_.settings;
@@ -61,10 +96,15 @@ Film RenderJob::makeFilm() const {
 }
 
 RenderStats RenderJob::render(Film& film, const RenderControl& control) const {
-    return renderImage(scene_, *integrator_, options_.settings, film, control);
+    const double trainedBefore = guideSeconds_;
+    trainGuideOnce();
+    RenderStats stats = renderImage(scene_, *integrator_, options_.settings, film, control);
+    stats.seconds += guideSeconds_ - trainedBefore;  // this call's training, if it trained
+    return stats;
 }
 
 SampleRecord RenderJob::traceSample(int x, int y, int sample, RayCounter& counter) const {
+    trainGuideOnce();
     return kiln::traceSample(scene_, *integrator_, options_.settings, x, y, sample, counter);
 }
 
@@ -94,6 +134,7 @@ Metadata RenderJob::metadata(const RenderStats& stats, const Film& film) const {
         {"adaptive", s.adaptiveText()},
         {"mis_heuristic", toString(p.heuristic)},
         {"microfacet", toString(p.microfacet)},
+        {"guiding", guidingText()},
         {"camera", scene_.framedByCourseRule ? "cs184-framing"
                    : scene_.hasFileCamera    ? "file"
                                              : "default-framing"},

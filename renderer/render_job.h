@@ -5,6 +5,8 @@
 #pragma once
 
 #include <memory>
+#include <mutex>
+#include <string>
 
 #include "color/image_output.h"
 #include "integrators/path.h"
@@ -34,6 +36,14 @@ class RenderJob {
     const RenderPlan& plan() const { return plan_; }
     const Integrator& integrator() const { return *integrator_; }
     int filmScaleExponent() const { return filmScaleExponent_; }
+    // Whether diffuse bounces follow a guide field (--guiding, else the plan). The field is
+    // trained by the first render or traced sample, so a job refused for its inputs (a foreign
+    // checkpoint, say) costs no training. The checkpoint fingerprint takes guided() alone: the
+    // training follows from the rest of it.
+    bool guided() const { return guided_; }
+    // "off", or what the training found (the EXR header); its seconds count in the render's.
+    std::string guidingText() const;
+    double guideTrainingSeconds() const { return guideSeconds_; }
 
     // A film of the render region's size, placed in the full image.
     Film makeFilm() const;
@@ -52,6 +62,11 @@ class RenderJob {
     RenderPlan plan_;
     std::unique_ptr<Integrator> integrator_;
     int filmScaleExponent_;  // from the scene's brightest emitter (fixed_sum.h)
+    void trainGuideOnce() const;
+    bool guided_ = false;
+    mutable std::once_flag guideTrained_;
+    mutable std::shared_ptr<const GuideField> guide_;
+    mutable double guideSeconds_ = 0;
 };
 
 }  // namespace kiln

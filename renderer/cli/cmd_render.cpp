@@ -522,6 +522,9 @@ int renderLong(const RenderCommand& c, const RenderJob& job,
                      heatPath);
     double writeTime = seconds(t2);
     printSummary(scenePath, out, heatPath, r.stats, loadTime, buildTime, writeTime);
+    if (job.guided())
+        logInfo("path guiding {}; trained in {:.3f}s (counted in the render time)",
+                job.guidingText(), job.guideTrainingSeconds());
     if (c.json)
         printJsonResult(c, job.scene(), out, heatPath, r.stats, r.film,
                         {loadTime, buildTime, writeTime});

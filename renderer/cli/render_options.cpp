@@ -212,6 +212,10 @@ void addTransportOptions(ArgParser& parser, RenderJobArgs& a) {
                   [&p](const std::vector<std::string>&) { p.accumulateBounces = false; });
     parser.enumOption("microfacet", "microfacet distribution (default beckmann, as CS184)",
                       p.microfacet);
+    parser.enumOption("guiding",
+                      "path guiding of diffuse bounces, learnt before the render (default auto: "
+                      "the render plan decides; not with -H)",
+                      p.guiding);
     parser.enumOption("plan",
                       "auto (default): the path specialised for what the scene holds; "
                       "general: every feature on (the baseline the specialisations are checked "
@@ -244,6 +248,11 @@ RenderJobOptions RenderJobArgs::finish() const {
             throw UsageError("--crop window holds no pixel at " + std::to_string(s.width) + "x" +
                              std::to_string(s.height));
     }
+    if (out.path.guiding == GuideMode::On &&
+        (out.path.sampling == DirectSampling::Hemisphere || out.integrator != IntegratorKind::Path))
+        throw UsageError(
+            "--guiding on guides the path integrator's bounces: not with -H or "
+            "the normals integrator");
     if (s.adaptiveBatch > 0 && s.noiseThreshold > 0)
         throw UsageError("-a and --noise-threshold are two adaptive sampling rules: give one");
     try {

@@ -61,6 +61,13 @@ inline void uniformTriangle(float u1, float u2, float& b1, float& b2) {
     b2 = lower ? u2 - h1 : h2;
 }
 
+// Uniform direction in the cone of half-angle acos(cosMax) around +z, and its solid-angle density.
+inline Vec3 uniformCone(float u1, float u2, float cosMax) {
+    float z = 1 - u1 * (1 - cosMax), r = std::sqrt(std::max(0.0f, 1 - z * z)), phi = 2 * kPi * u2;
+    return {r * std::cos(phi), r * std::sin(phi), z};
+}
+inline float uniformConePdf(float cosMax) { return 1 / (2 * kPi * (1 - cosMax)); }
+
 // Local shading frame around a unit normal.
 struct Frame {
     Vec3 s, t, n;

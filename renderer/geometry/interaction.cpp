@@ -52,6 +52,14 @@ void prefetchHitVertices(const Scene& scene, const Hit& hit) {
     }
 }
 
+SurfaceInteraction surfacePoint(const Vec3& p, const Vec3& pError, const Vec3& n) {
+    SurfaceInteraction si;
+    si.p = p, si.pError = pError;
+    si.ng = si.ns = si.nsStored = n;
+    setSpawnOrigins(si);
+    return si;
+}
+
 SurfaceInteraction makeInteraction(const Scene& scene, const Ray& ray, const Hit& hit) {
     SurfaceInteraction si;
     si.t = hit.t;

@@ -23,6 +23,9 @@ struct SurfaceInteraction {
 };
 
 SurfaceInteraction makeInteraction(const Scene& scene, const Ray& ray, const Hit& hit);
+// A point no ray found (on a light, leaving it): position, error bound and unit normal, with the
+// same spawn origins a hit there would have.
+SurfaceInteraction surfacePoint(const Vec3& p, const Vec3& pError, const Vec3& n);
 
 // What makeInteraction will read for a triangle hit, requested ahead from memory: on meshes far
 // larger than the caches each hit's indices and vertices are misses. Stage 1 fetches the index

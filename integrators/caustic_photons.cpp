@@ -24,6 +24,9 @@ void PathIntegrator::traceCausticPhotons(uint64_t first, size_t count, uint64_t 
         Ray ray = spawnRay(emitted.from, emitted.dir);
         Color power = emitted.power;
         Vec3 source;  // the glossy or specular point the photon last left
+        // A path from the landing point back to the light can end by hitting the light, or by
+        // light sampling at the photon's first bounce unless that was a delta one (a mirror).
+        bool reachable = emitted.hittable;
         for (int bounce = 0; bounce < maxBounces; ++bounce) {
             Hit hit;
             if (!accel_.intersect(ray, hit)) break;
@@ -32,8 +35,10 @@ void PathIntegrator::traceCausticPhotons(uint64_t first, size_t count, uint64_t 
             const Vec3 woWorld = -normalize(ray.dir);
             if (mat.kind == MaterialKind::Lambertian) {
                 // Landed (light straight from an emitter is next-event estimation's, not the
-                // guide's).
-                if (bounce > 0) records.push_back({si.p, source, luminance(power)});
+                // guide's; light no camera path could carry back is not guided towards; a black
+                // surface, such as an emitter's, reflects none of it).
+                if (bounce > 0 && reachable && maxComponent(mat.albedo) > 0)
+                    records.push_back({si.p, source, luminance(power)});
                 break;
             }
             if (mat.kind == MaterialKind::Emission) break;
@@ -48,6 +53,7 @@ void PathIntegrator::traceCausticPhotons(uint64_t first, size_t count, uint64_t 
             if (!isFinite(power) || maxComponent(power) <= 0) break;
             ray = spawnRay(si, wi);
             source = si.p;
+            if (bounce == 0) reachable |= !bs.delta;
         }
     }
 }

@@ -308,6 +308,7 @@ bool LightSet::sampleEmission(float uLight, float u1, float u2, float uSide, flo
     out.dir = Frame(n).toWorld(cosineHemisphere(u3, u4));
     // Le cos / (pdf of the point, 1 / area, times the direction's, cos / pi, over the sides).
     out.power = e.light->radiance * sp.texel * (e.area * kPi * sides / pmf);
+    out.hittable = hittable(surfaceEmitters_[i]);
     return maxComponent(out.power) > 0;
 }
 

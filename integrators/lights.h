@@ -15,6 +15,7 @@ struct EmissionSample {
     SurfaceInteraction from;
     Vec3 dir;
     Color power;
+    bool hittable = false;  // rays can hit the light (LightSet::hittable)
 };
 
 struct LightSample {

@@ -50,6 +50,8 @@ RenderPlan planFor(const Scene& scene, const Accelerator& accel, const AovReques
         used.insert(m.materialIds.begin(), m.materialIds.end());
     for (const Sphere& s : scene.spheres) used.insert(s.material);
     bool anyDiffuse = false;
+    // Mirrors and metals throw an area light's image onto walls.
+    bool mirror = false, glossyReflector = false;
     p.diffuseOnly = true;
     for (uint32_t id : used) {
         MaterialKind k = scene.materials[id].kind;
@@ -59,15 +61,21 @@ RenderPlan planFor(const Scene& scene, const Accelerator& accel, const AovReques
         p.roughConductor |= k == MaterialKind::Microfacet;
         p.glossy |= k == MaterialKind::Glossy || k == MaterialKind::Principled;
         anyDiffuse |= k == MaterialKind::Lambertian;
+        mirror |= k == MaterialKind::Mirror;
+        glossyReflector |= k == MaterialKind::Microfacet || k == MaterialKind::Glossy ||
+                           (k == MaterialKind::Principled && scene.materials[id].metallic > 0);
         p.diffuseOnly &= k == MaterialKind::Lambertian || k == MaterialKind::Emission;
         p.emitters |= maxComponent(scene.materials[id].emission) > 0;
     }
+    bool hittableAreaLights = false;
     p.deltaLightsOnly = !scene.lights.empty();
     for (const Light& l : scene.lights) {
         bool delta = l.kind == LightKind::Point || l.kind == LightKind::Spot ||
                      l.kind == LightKind::Directional;
         p.deltaLightsOnly &= delta;
         p.areaLights |= l.kind == LightKind::Area || l.kind == LightKind::MeshEmitter;
+        hittableAreaLights |=
+            l.kind == LightKind::MeshEmitter || (l.kind == LightKind::Area && l.hasMesh);
         p.infiniteLights |= l.kind == LightKind::Environment || l.kind == LightKind::Ambient;
         p.environmentMap |= l.kind == LightKind::Environment && l.environmentImage != nullptr;
     }
@@ -76,8 +84,13 @@ RenderPlan planFor(const Scene& scene, const Accelerator& accel, const AovReques
     p.instances = !scene.instances.empty();
     p.caustics = p.deltaSpecular && anyDiffuse && !scene.lights.empty();
     // Photons leave area lights and emitting meshes only (an environment's caustics stay
-    // cosine-sampled).
-    p.guiding = anyDiffuse && (p.roughConductor || p.glossy || p.deltaSpecular) && p.areaLights;
+    // cosine-sampled). A scene whose only specular surfaces are glass is not guided: seen from
+    // where focused light lands, a lens spreads the light's image over much of itself, which
+    // cosine sampling finds anyway (docs/performance.md: guiding lost on CBgems and
+    // CBspheres_refract, won on every scene with a mirror or metal).
+    // A mirror's caustic reaches the camera only where its light can be hit (next-event estimation
+    // cannot pass a mirror); a metal's also through light sampling at the metal.
+    p.guiding = anyDiffuse && ((glossyReflector && p.areaLights) || (mirror && hittableAreaLights));
     p.thinLens = scene.camera.apertureRadius > 0;
     p.escapeFraction = escapeFraction(scene, accel);
     p.closed = p.escapeFraction < 0.01f;
@@ -119,10 +132,9 @@ RenderPlan planFor(const Scene& scene, const Accelerator& accel, const AovReques
             "expect noise there, more samples clear it");
     say(p.guiding ? "path guiding of diffuse bounces (unless --guiding off)"
                   : "no path guiding (unless --guiding on)",
-        p.guiding ? "glossy or specular surfaces reflect area lights onto diffuse ones: cosine "
+        p.guiding ? "mirrors or metals reflect area lights onto diffuse surfaces: cosine "
                     "sampling alone rarely finds that light; photons show where it lands"
-                  : "no glossy or specular surface carries an area light's light onto a diffuse "
-                    "one");
+                  : "no mirror or metal reflects an area light onto a diffuse surface");
     say(p.thinLens ? "thin-lens camera sampling" : "pinhole camera",
         p.thinLens ? "aperture > 0" : "no aperture");
     say(p.aovs.splitsLight() || general ? "light AOVs accumulated" : "no light AOVs accumulated",

@@ -41,7 +41,7 @@ INSTANTIATE_TEST_SUITE_P(
         PlanCase{"sky/CBbunny_microfacet_cu.dae", "rough-conductor,area-lights,guiding"},
         PlanCase{"sky/CBcoil.dae", "delta-specular,area-lights,caustics,guiding"},
         PlanCase{"sky/CBempty.dae", "diffuse-only,area-lights"},
-        PlanCase{"sky/CBgems.dae", "delta-specular,transmission,area-lights,caustics,guiding"},
+        PlanCase{"sky/CBgems.dae", "delta-specular,transmission,area-lights,caustics"},
         PlanCase{"sky/CBspheres.dae",
                  "delta-specular,transmission,area-lights,spheres,caustics,guiding"},
         PlanCase{"sky/CBspheres_lambertian.dae", "diffuse-only,area-lights,spheres"},
@@ -52,7 +52,7 @@ INSTANTIATE_TEST_SUITE_P(
         PlanCase{"variants/2018-2020/sky/CBspheres_glossy.dae",
                  "glossy,area-lights,spheres,guiding"},
         PlanCase{"variants/p3-2-sp23/sky/CBspheres_refract.dae",
-                 "delta-specular,transmission,area-lights,spheres,caustics,guiding"}),
+                 "delta-specular,transmission,area-lights,spheres,caustics"}),
     [](const auto& info) {
         std::string n = info.param.path;
         for (char& c : n)

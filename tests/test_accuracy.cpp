@@ -86,6 +86,27 @@ TEST(AccuracySweep, QuickRunErrorFallsWithSppAndReusesTheReference) {
     EXPECT_TRUE(second.referenceCached);
 }
 
+TEST(AccuracySweep, ComparesGuidedWithUnguidedWhereThePlanGuides) {
+    AccuracyOptions o;
+    o.scene = test::cs184("sky/CBspheres_microfacet_al_ag.dae");
+    o.outDir = (test::scratchDir() / "acc").string();
+    o.width = 24, o.height = 18, o.referenceSpp = 256, o.quick = true;
+    AccuracyResult r = runAccuracy(o);
+    int guided = 0, unguided = 0;
+    for (const AccuracyRun& a : r.runs) {
+        if (a.group == "spp") guided += a.guided;
+        if (a.group == "guiding") unguided += !a.guided;
+    }
+    EXPECT_GE(guided, 4);
+    EXPECT_GE(unguided, 2);
+    std::ifstream summary(std::filesystem::path(o.outDir) / "summary.md");
+    std::string text((std::istreambuf_iterator<char>(summary)), {});
+    EXPECT_NE(text.find("**Caustic guiding**"), std::string::npos) << text;
+    // The diffuse scene of the test above is not guided: no such sweep there.
+    o.scene = test::cs184("sky/CBspheres_lambertian.dae");
+    for (const AccuracyRun& a : runAccuracy(o).runs) EXPECT_NE(a.group, "guiding");
+}
+
 TEST(AccuracySweep, AovErrorsOnRequest) {
     AccuracyOptions o;
     o.scene = test::cs184("sky/CBspheres_lambertian.dae");

@@ -57,10 +57,11 @@ namespace kiln {
 
 // One measured setting of `kiln bench accuracy`.
 struct AccuracyRun {
-    std::string group;  // spp, sampler, strategy, light_samples, depth, adaptive, accel
+    std::string group;  // spp, sampler, guiding, strategy, light_samples, depth, adaptive, accel
     std::string label;  // e.g. "mis", "m=3 rr", "tol=0.05"
     int spp = 0, lightSamples = 1, maxDepth = 100;
     std::string sampling = "mis", roulette = "throughput", accel = "embree", sampler;
+    bool guided = false;  // diffuse bounces followed the caustic guide
     float adaptiveTolerance = 0;
     double seconds = 0, meanSpp = 0;
     uint64_t rays = 0;

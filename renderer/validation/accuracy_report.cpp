@@ -41,15 +41,14 @@ double timeAtError(const std::vector<AccuracyRun>& uniform, double relMse, bool&
     return 0;
 }
 
-// The other sampler's spp sweep against the default one's: efficiency at equal spp and the time
-// the default needs to reach the other's errors.
-void writeSamplerComparison(const AccuracyResult& r, const std::vector<AccuracyRun>& uniform,
-                            std::ostringstream& md) {
+// Another spp sweep (group: the other sampler, or unguided) against the defaults': efficiency at
+// equal spp and the time the defaults need to reach the other's errors, on one line.
+void writeSweepComparison(const AccuracyResult& r, const std::vector<AccuracyRun>& uniform,
+                          const std::string& group, const std::string& title,
+                          const std::string& which, std::ostringstream& md) {
     std::vector<double> efficiencyRatios, timeRatios;
-    std::string other;
     for (const AccuracyRun& a : r.runs) {
-        if (a.group != "sampler") continue;
-        other = a.sampler;
+        if (a.group != group) continue;
         for (const AccuracyRun& u : uniform)
             if (u.spp == a.spp && u.efficiency > 0)
                 efficiencyRatios.push_back(a.efficiency / u.efficiency);
@@ -62,13 +61,12 @@ void writeSamplerComparison(const AccuracyResult& r, const std::vector<AccuracyR
         std::sort(v.begin(), v.end());
         return v[v.size() / 2];
     };
-    md << "- **Sampler** (" << other << " against " << uniform.front().sampler
-       << ", path tracing, equal spp): efficiency ratio " << fmt(median(efficiencyRatios))
-       << " (median of " << efficiencyRatios.size() << " spp counts)";
+    md << "- **" << title << "** (" << which << ", path tracing, equal spp): efficiency ratio "
+       << fmt(median(efficiencyRatios)) << " (median of " << efficiencyRatios.size()
+       << " spp counts)";
     if (!timeRatios.empty())
-        md << "; time to equal error " << fmt(median(timeRatios)) << "x the "
-           << uniform.front().sampler << " sampler's (median over " << timeRatios.size()
-           << " spp counts >= 16)";
+        md << "; time to equal error " << fmt(median(timeRatios)) << "x the defaults' (median over "
+           << timeRatios.size() << " spp counts >= 16)";
     md << ".\n";
 }
 
@@ -77,7 +75,7 @@ void writeSamplerComparison(const AccuracyResult& r, const std::vector<AccuracyR
 void writeAccuracyReport(const AccuracyOptions& o, const AccuracyResult& r) {
     std::ostringstream csv;
     csv << "group,label,spp,mean_spp,light_samples,sampling,max_depth,roulette,adaptive_tolerance,"
-           "accel,sampler,seconds,rays,"
+           "accel,sampler,guided,seconds,rays,"
            "rmse,rel_mse,bias,efficiency";
     std::vector<std::string> layers;
     if (!r.runs.empty())
@@ -87,9 +85,9 @@ void writeAccuracyReport(const AccuracyOptions& o, const AccuracyResult& r) {
     for (const AccuracyRun& a : r.runs) {
         csv << a.group << "," << a.label << "," << a.spp << "," << a.meanSpp << ","
             << a.lightSamples << "," << a.sampling << "," << a.maxDepth << "," << a.roulette << ","
-            << a.adaptiveTolerance << "," << a.accel << "," << a.sampler << "," << a.seconds << ","
-            << a.rays << "," << a.error.rmse << "," << a.error.relMse << "," << a.error.bias << ","
-            << a.efficiency;
+            << a.adaptiveTolerance << "," << a.accel << "," << a.sampler << ","
+            << (a.guided ? "yes" : "no") << "," << a.seconds << "," << a.rays << "," << a.error.rmse
+            << "," << a.error.relMse << "," << a.error.bias << "," << a.efficiency;
         for (size_t k = 0; k < layers.size(); ++k)
             csv << "," << (k < a.aovErrors.size() ? a.aovErrors[k].second.relMse : 0.0);
         csv << "\n";
@@ -99,6 +97,7 @@ void writeAccuracyReport(const AccuracyOptions& o, const AccuracyResult& r) {
     std::vector<AccuracyRun> uniform;
     for (const AccuracyRun& a : r.runs) {
         std::string series = a.group == "spp" || a.group == "sampler" ? "path (GI), " + a.sampler
+                             : a.group == "guiding"                   ? "path (GI), unguided"
                              : a.group == "strategy"                  ? "direct: " + a.sampling
                                                                       : "";
         if (a.group == "adaptive") series = "adaptive (GI)";
@@ -209,7 +208,15 @@ void writeAccuracyReport(const AccuracyOptions& o, const AccuracyResult& r) {
                << (t > 0 ? fmt(t) + (extrapolated ? " (extrapolated)" : "") : "out of range")
                << " | " << (t > 0 ? fmt(t / a.seconds) + "x" : "-") << " |\n";
         }
-    writeSamplerComparison(r, uniform, md);
+    if (has("sampler")) {
+        std::string other;
+        for (const AccuracyRun& a : r.runs)
+            if (a.group == "sampler") other = a.sampler;
+        writeSweepComparison(r, uniform, "sampler", "Sampler",
+                             other + " against " + uniform.front().sampler, md);
+    }
+    writeSweepComparison(r, uniform, "guiding", "Caustic guiding",
+                         "unguided against the plan's guided diffuse bounces", md);
     if (has("light_samples")) md << "\n- **Light samples** (direct lighting, 16 spp): ";
     for (const AccuracyRun& a : r.runs)
         if (a.group == "light_samples")

@@ -32,6 +32,7 @@ struct Rendered {
     Image image;
     double seconds = 0, meanSpp = 0;
     uint64_t rays = 0;
+    bool guided = false;
 };
 
 Rendered render(const Scene& scene, const Accelerator& accel, const Setting& s, int w, int h,
@@ -48,7 +49,7 @@ Rendered render(const Scene& scene, const Accelerator& accel, const Setting& s, 
     Film film = job.makeFilm();
     RenderStats stats = job.render(film);
     return {Image::fromFilm(film), stats.seconds, double(stats.samples) / (double(w) * h),
-            stats.rays};
+            stats.rays, job.guided()};
 }
 
 uint64_t fnv(const std::string& s, uint64_t h = 1469598103934665603ull) {
@@ -113,7 +114,8 @@ AccuracyResult runAccuracy(const AccuracyOptions& o) {
     Image giRef = reference(scene, *embree, o, 100, result.referenceSeconds, cachedGi);
     Image directRef = reference(scene, *embree, o, 1, result.referenceSeconds, cachedDirect);
     result.referenceCached = cachedGi && cachedDirect;
-    result.caustics = planFor(scene, *embree, AovRequest{}).caustics;
+    const RenderPlan plan = planFor(scene, *embree, AovRequest{});
+    result.caustics = plan.caustics;
     double budgetStart = elapsed();
     AovRequest aovs = AovRequest::parse(o.aovs, 100);
 
@@ -140,6 +142,7 @@ AccuracyResult runAccuracy(const AccuracyOptions& o) {
         a.roulette = toString(s.path.roulette);
         a.accel = s.referenceAccel ? "reference" : "embree";
         a.sampler = toString(s.sampler);
+        a.guided = r.guided;
         a.adaptiveTolerance = s.adaptiveTolerance;
         a.seconds = r.seconds, a.meanSpp = r.meanSpp, a.rays = r.rays;
         a.error = compareImages(r.image, ref);
@@ -166,6 +169,14 @@ AccuracyResult runAccuracy(const AccuracyOptions& o) {
         s.sampler = other;
         run("sampler", std::string(toString(other)) + " " + std::to_string(spp), s, giRef);
     }
+    // Where the plan guides diffuse bounces, the same sweep unguided: what the guide buys.
+    if (plan.guiding)
+        for (int spp = 1; spp <= maxSpp; spp *= (o.quick ? 4 : 2)) {
+            Setting s;
+            s.spp = spp;
+            s.path.guiding = GuideMode::Off;
+            run("guiding", "unguided " + std::to_string(spp), s, giRef);
+        }
     for (DirectSampling d :
          {DirectSampling::Hemisphere, DirectSampling::Light, DirectSampling::Mis})
         for (int spp = 1; spp <= maxSpp; spp *= (o.quick ? 4 : 2)) {

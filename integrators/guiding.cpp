@@ -8,7 +8,7 @@
 namespace kiln {
 namespace {
 
-constexpr int kMaxDepth = 40;
+constexpr int kMaxDepth = 64;
 constexpr float kBoundsMargin = 0.25f;  // of a leaf's longest side, around its landing points
 constexpr float kGridCells = 32;        // along the longest side of the landing points' box
 
@@ -60,11 +60,6 @@ bool GuideLeaf::mayMeetCone(const Vec3& x, const Vec3& dir) const {
     return cosMax <= 0 || (c > 0 && c * c >= cosMax * cosMax * dist2);
 }
 
-bool GuideLeaf::covers(const Vec3& p) const {
-    return p.x >= bounds_.lo.x && p.y >= bounds_.lo.y && p.z >= bounds_.lo.z &&
-           p.x <= bounds_.hi.x && p.y <= bounds_.hi.y && p.z <= bounds_.hi.z;
-}
-
 Vec3 GuideLeaf::sample(const Vec3& x, float u, float u1, float u2, float& pdf) const {
     size_t j = size_t(std::upper_bound(cdf_.begin(), cdf_.end(), u) - cdf_.begin());
     j = std::min(j, cdf_.size() - 1);
@@ -109,6 +104,28 @@ GuideField::GuideField(std::vector<GuideRecord> records, size_t leafRecords) {
     buildGrid(landing);
 }
 
+// Where to split records [begin, end) along axis (whose extent is not zero): at the median, points
+// equal to it going right (treeLeaf's rule), unless more than half lie on the median's plane (a
+// wall), then just above that plane, so both sides keep points.
+float GuideField::medianSplit(std::vector<GuideRecord>& records, size_t begin, size_t end,
+                              int axis) {
+    size_t mid = begin + (end - begin) / 2;
+    auto byAxis = [axis](const GuideRecord& a, const GuideRecord& b) {
+        return a.p[axis] < b.p[axis];
+    };
+    std::nth_element(records.begin() + long(begin), records.begin() + long(mid),
+                     records.begin() + long(end), byAxis);
+    float split = records[mid].p[axis];
+    bool below = false;
+    float above = kInfinity;
+    for (size_t i = begin; i < end; ++i) {
+        float v = records[i].p[axis];
+        below |= v < split;
+        if (v > split) above = std::min(above, v);
+    }
+    return below ? split : above;
+}
+
 void GuideField::build(std::vector<GuideRecord>& records, size_t begin, size_t end,
                        size_t nodeIndex, size_t leafRecords, int depth) {
     Bounds3 bounds;
@@ -116,26 +133,17 @@ void GuideField::build(std::vector<GuideRecord>& records, size_t begin, size_t e
     Vec3 extent = bounds.diagonal();
     int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
     if (end - begin > leafRecords && depth < kMaxDepth && extent[axis] > 0) {
-        size_t mid = begin + (end - begin) / 2;
-        auto byAxis = [axis](const GuideRecord& a, const GuideRecord& b) {
-            return a.p[axis] < b.p[axis];
-        };
-        std::nth_element(records.begin() + long(begin), records.begin() + long(mid),
-                         records.begin() + long(end), byAxis);
-        float split = records[mid].p[axis];
-        // Points equal to the split go right (treeLeaf's rule): move them out of the left half.
-        auto leftEnd = std::partition(records.begin() + long(begin), records.begin() + long(mid),
+        float split = medianSplit(records, begin, end, axis);
+        auto leftEnd = std::partition(records.begin() + long(begin), records.begin() + long(end),
                                       [&](const GuideRecord& r) { return r.p[axis] < split; });
         size_t left = size_t(leftEnd - records.begin());
-        if (left > begin) {
-            uint32_t first = uint32_t(nodes_.size());
-            nodes_[nodeIndex] = Node{split, axis, first};
-            nodes_.emplace_back();
-            nodes_.emplace_back();
-            build(records, begin, left, first, leafRecords, depth + 1);
-            build(records, left, end, first + 1, leafRecords, depth + 1);
-            return;
-        }
+        uint32_t first = uint32_t(nodes_.size());
+        nodes_[nodeIndex] = Node{split, axis, first};
+        nodes_.emplace_back();
+        nodes_.emplace_back();
+        build(records, begin, left, first, leafRecords, depth + 1);
+        build(records, left, end, first + 1, leafRecords, depth + 1);
+        return;
     }
     // The landing points' box, grown: vertices on the same surface just beside them, and rounding
     // across a plane the points all lie in.
@@ -145,6 +153,7 @@ void GuideField::build(std::vector<GuideRecord>& records, size_t begin, size_t e
     nodes_[nodeIndex] = Node{0, -1, uint32_t(leaves_.size())};
     leaves_.emplace_back(&records[begin], end - begin, bounds);
     ++stats_.leaves;
+    stats_.largestLeaf = std::max(stats_.largestLeaf, end - begin);
 }
 
 const GuideLeaf* GuideField::leafAt(const Vec3& p) const {

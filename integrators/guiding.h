@@ -33,7 +33,7 @@ class GuideLeaf {
     // benchmark's chrome bunny (docs/performance.md).
     static constexpr float kConeCos = 0.998f;
     GuideLeaf(const GuideRecord* records, size_t count, const Bounds3& bounds);
-    bool covers(const Vec3& p) const;
+    bool covers(const Vec3& p) const { return bounds_.contains(p); }
     // A direction from x towards one photon's source (u picks the photon) and the mixture's
     // solid-angle density there.
     Vec3 sample(const Vec3& x, float u, float u1, float u2, float& pdf) const;
@@ -59,7 +59,7 @@ class GuideLeaf {
 class GuideField {
   public:
     struct Stats {
-        size_t records = 0, leaves = 0;
+        size_t records = 0, leaves = 0, largestLeaf = 0;
     };
     GuideField() = default;
     // A kd-tree over the records' landing points, split at the median of the longest side until
@@ -79,6 +79,7 @@ class GuideField {
     };
     void build(std::vector<GuideRecord>& records, size_t begin, size_t end, size_t nodeIndex,
                size_t leafRecords, int depth);
+    static float medianSplit(std::vector<GuideRecord>& records, size_t begin, size_t end, int axis);
     uint32_t treeLeaf(const Vec3& p) const;
     void buildGrid(const Bounds3& bounds);
     std::vector<Node> nodes_;

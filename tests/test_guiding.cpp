@@ -62,6 +62,24 @@ TEST(GuideField, GuidesOnlyNearItsPhotonsAndIsTheSameForTheSameRecords) {
     }
 }
 
+TEST(GuideField, SplitsPhotonsOnAWallAndTheFloorBesideIt) {
+    // Two thirds of the landings on the wall x = -1, a third on the floor y = 0: the median along x
+    // lies on the wall's plane, and the split must still cut the wall's photons into small regions
+    // (a region of thousands made every guided vertex sum over them all).
+    std::vector<GuideRecord> records;
+    Sampler s(5, 0, 0);
+    for (int i = 0; i < 3000; ++i) {
+        float a = 2 * s.next1D(), b = 2 * s.next1D() - 1;
+        Vec3 p = i % 3 ? Vec3(-1, a, b) : Vec3(a - 1, 0, b);
+        records.push_back({p, Vec3(0, 1, 0), 1});
+    }
+    GuideField field(records, 32);
+    EXPECT_LE(field.stats().largestLeaf, 32u);
+    EXPECT_GE(field.stats().leaves, 3000u / 32);
+    EXPECT_NE(field.leafAt(Vec3(-1, 1, 0)), nullptr);
+    EXPECT_NE(field.leafAt(Vec3(0, 0, 0)), nullptr);
+}
+
 // A small emitter at y = 1 (both sides emit), a mirror floor at y = 0 below it and a diffuse
 // ceiling at y = 2: the only caustic is light -> mirror -> ceiling.
 std::string mirrorScene() {

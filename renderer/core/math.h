@@ -107,6 +107,10 @@ struct Bounds3T {
     Vec3T<T> hi{std::numeric_limits<T>::lowest()};
 
     constexpr bool empty() const { return lo.x > hi.x || lo.y > hi.y || lo.z > hi.z; }
+    constexpr bool contains(const Vec3T<T>& p) const {
+        return p.x >= lo.x && p.y >= lo.y && p.z >= lo.z && p.x <= hi.x && p.y <= hi.y &&
+               p.z <= hi.z;
+    }
     constexpr void extend(const Vec3T<T>& p) { lo = min(lo, p), hi = max(hi, p); }
     constexpr void extend(const Bounds3T& b) { lo = min(lo, b.lo), hi = max(hi, b.hi); }
     constexpr Vec3T<T> diagonal() const { return hi - lo; }

@@ -86,7 +86,7 @@ RenderPlan planFor(const Scene& scene, const Accelerator& accel, const AovReques
     // Photons leave area lights and emitting meshes only (an environment's caustics stay
     // cosine-sampled). A scene whose only specular surfaces are glass is not guided: seen from
     // where focused light lands, a lens spreads the light's image over much of itself, which
-    // cosine sampling finds anyway (docs/performance.md: guiding lost on CBgems and
+    // cosine sampling finds anyway (docs/light-transport.md: guiding lost on CBgems and
     // CBspheres_refract, won on every scene with a mirror or metal).
     // A mirror's caustic reaches the camera only where its light can be hit (next-event estimation
     // cannot pass a mirror); a metal's also through light sampling at the metal.

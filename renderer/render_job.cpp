@@ -63,23 +63,25 @@ RenderJob::RenderJob(const RenderJob& job, const Accelerator& accel)
                                  withPixelSpread(scene_, options_), plan_)),
       filmScaleExponent_(job.filmScaleExponent_),
       guided_(job.guided_) {
-    // The same field, not a second training.
+    // The same field, not a second training: the original's, this job's marked as trained.
     job.trainGuideOnce();
     guide_ = job.guide_;
     std::call_once(guideTrained_, [] {});
     if (guide_) static_cast<PathIntegrator&>(*integrator_).setGuide(guide_);
 }
 
-void RenderJob::trainGuideOnce() const {
-    std::call_once(guideTrained_, [this] {
+double RenderJob::trainGuideOnce() const {
+    double seconds = 0;
+    std::call_once(guideTrained_, [&] {
         if (!guided_) return;
         auto start = std::chrono::steady_clock::now();
         auto& path = static_cast<PathIntegrator&>(*integrator_);
         guide_ = trainGuide(path, options_.settings);
         path.setGuide(guide_);
-        guideSeconds_ =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        guideSeconds_ = seconds;
     });
+    return seconds;
 }
 
 std::string RenderJob::guidingText() const {
@@ -96,10 +98,9 @@ Film RenderJob::makeFilm() const {
 }
 
 RenderStats RenderJob::render(Film& film, const RenderControl& control) const {
-    const double trainedBefore = guideSeconds_;
-    trainGuideOnce();
+    const double training = trainGuideOnce();
     RenderStats stats = renderImage(scene_, *integrator_, options_.settings, film, control);
-    stats.seconds += guideSeconds_ - trainedBefore;  // this call's training, if it trained
+    stats.seconds += training;
     return stats;
 }
 

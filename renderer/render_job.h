@@ -62,7 +62,8 @@ class RenderJob {
     RenderPlan plan_;
     std::unique_ptr<Integrator> integrator_;
     int filmScaleExponent_;  // from the scene's brightest emitter (fixed_sum.h)
-    void trainGuideOnce() const;
+    // Trains the guide field if this job is guided and has none yet: the seconds this call took.
+    double trainGuideOnce() const;
     bool guided_ = false;
     mutable std::once_flag guideTrained_;
     mutable std::shared_ptr<const GuideField> guide_;

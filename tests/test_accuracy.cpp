@@ -50,11 +50,22 @@ TEST(AccuracyStats, SvgPlotHasSeriesAndTheSlopeLine) {
     EXPECT_NE(svg.find("slope -1"), std::string::npos);
 }
 
-TEST(AccuracySweep, QuickRunErrorFallsWithSppAndReusesTheReference) {
+// A quick sweep of a CS184 scene at w x h, into the test's scratch directory.
+AccuracyOptions quickSweep(const char* scene, int w, int h, int referenceSpp) {
     AccuracyOptions o;
-    o.scene = test::cs184("sky/CBspheres_lambertian.dae");
+    o.scene = test::cs184(scene);
     o.outDir = (test::scratchDir() / "acc").string();
-    o.width = 32, o.height = 24, o.referenceSpp = 512, o.quick = true;
+    o.width = w, o.height = h, o.referenceSpp = referenceSpp, o.quick = true;
+    return o;
+}
+
+std::string summaryOf(const AccuracyOptions& o) {
+    std::ifstream summary(std::filesystem::path(o.outDir) / "summary.md");
+    return std::string((std::istreambuf_iterator<char>(summary)), {});
+}
+
+TEST(AccuracySweep, QuickRunErrorFallsWithSppAndReusesTheReference) {
+    AccuracyOptions o = quickSweep("sky/CBspheres_lambertian.dae", 32, 24, 512);
     AccuracyResult first = runAccuracy(o);
     EXPECT_FALSE(first.referenceCached);
     std::vector<double> spp, rel;
@@ -72,8 +83,7 @@ TEST(AccuracySweep, QuickRunErrorFallsWithSppAndReusesTheReference) {
         }
     ASSERT_GE(otherSpp.size(), 2u);
     EXPECT_LT(logLogSlope(otherSpp, otherRel), -0.6);
-    std::ifstream summary(std::filesystem::path(o.outDir) / "summary.md");
-    std::string text((std::istreambuf_iterator<char>(summary)), {});
+    std::string text = summaryOf(o);
     EXPECT_NE(text.find("**Sampler**"), std::string::npos) << text;
     for (const char* f : {"accuracy.csv", "error_vs_time.svg", "spp.svg", "summary.md"})
         EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(o.outDir) / f)) << f;
@@ -87,10 +97,7 @@ TEST(AccuracySweep, QuickRunErrorFallsWithSppAndReusesTheReference) {
 }
 
 TEST(AccuracySweep, ComparesGuidedWithUnguidedWhereThePlanGuides) {
-    AccuracyOptions o;
-    o.scene = test::cs184("sky/CBspheres_microfacet_al_ag.dae");
-    o.outDir = (test::scratchDir() / "acc").string();
-    o.width = 24, o.height = 18, o.referenceSpp = 256, o.quick = true;
+    AccuracyOptions o = quickSweep("sky/CBspheres_microfacet_al_ag.dae", 24, 18, 256);
     AccuracyResult r = runAccuracy(o);
     int guided = 0, unguided = 0;
     for (const AccuracyRun& a : r.runs) {
@@ -99,8 +106,7 @@ TEST(AccuracySweep, ComparesGuidedWithUnguidedWhereThePlanGuides) {
     }
     EXPECT_GE(guided, 4);
     EXPECT_GE(unguided, 2);
-    std::ifstream summary(std::filesystem::path(o.outDir) / "summary.md");
-    std::string text((std::istreambuf_iterator<char>(summary)), {});
+    std::string text = summaryOf(o);
     EXPECT_NE(text.find("**Caustic guiding**"), std::string::npos) << text;
     // The diffuse scene of the test above is not guided: no such sweep there.
     o.scene = test::cs184("sky/CBspheres_lambertian.dae");
@@ -108,10 +114,8 @@ TEST(AccuracySweep, ComparesGuidedWithUnguidedWhereThePlanGuides) {
 }
 
 TEST(AccuracySweep, AovErrorsOnRequest) {
-    AccuracyOptions o;
-    o.scene = test::cs184("sky/CBspheres_lambertian.dae");
-    o.outDir = (test::scratchDir() / "acc").string();
-    o.width = 24, o.height = 18, o.referenceSpp = 256, o.quick = true, o.aovs = "direct,indirect";
+    AccuracyOptions o = quickSweep("sky/CBspheres_lambertian.dae", 24, 18, 256);
+    o.aovs = "direct,indirect";
     AccuracyResult r = runAccuracy(o);
     ASSERT_FALSE(r.runs.empty());
     std::vector<double> direct;

@@ -1,10 +1,6 @@
 #include "integrators/integrator.h"
 
-#include <stdexcept>
-
 #include "integrators/fresnel.h"
-#include "integrators/normals.h"
-#include "integrators/path.h"
 #include "integrators/surface_albedo.h"
 #include "renderer/geometry/interaction.h"
 
@@ -60,14 +56,6 @@ void Integrator::recordSurface(const Ray& ray, const Hit& hit, const SurfaceInte
     r.objectId = float(hit.shape == kSphereShape ? scene_.meshes.size() + hit.prim : hit.shape);
     if (aovs_.has(AovKind::CryptoObject)) r.cryptoObject = cryptoIds_.object(hit);
     if (aovs_.has(AovKind::CryptoMaterial)) r.cryptoMaterial = cryptoIds_.material(si.material);
-}
-
-std::unique_ptr<Integrator> makeIntegrator(IntegratorKind kind, const Scene& scene,
-                                           const Accelerator& accel, const PathOptions& options,
-                                           const RenderPlan& plan) {
-    if (kind == IntegratorKind::Normals)
-        return std::make_unique<NormalsIntegrator>(scene, accel, plan.aovs);
-    return std::make_unique<PathIntegrator>(scene, accel, options, plan);
 }
 
 }  // namespace kiln

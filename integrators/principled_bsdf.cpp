@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "integrators/bsdf.h"
+#include "integrators/fresnel.h"
 
 namespace kiln {
 namespace {

@@ -12,12 +12,11 @@
 // sample MIS over the lobes), so sample, pdf and eval agree (tests/test_principled.cpp).
 #pragma once
 
+#include "integrators/bsdf_sample.h"
 #include "integrators/microfacet.h"
 #include "scene/scene.h"
 
 namespace kiln {
-
-struct BsdfSample;
 
 // Metallic and perceptual roughness at a point: the material's factors times its
 // metallic-roughness texture there (surface_albedo.h).

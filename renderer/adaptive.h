@@ -4,7 +4,7 @@
 #pragma once
 
 #include "renderer/film/film.h"
-#include "renderer/render_loop.h"
+#include "renderer/render_settings.h"
 
 namespace kiln {
 

@@ -5,6 +5,8 @@
 #include <chrono>
 #include <string>
 
+#include "integrators/make_integrator.h"
+#include "integrators/path.h"
 #include "renderer/geometry/camera.h"
 #include "renderer/guide_training.h"
 

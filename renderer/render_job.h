@@ -9,11 +9,13 @@
 #include <string>
 
 #include "color/image_output.h"
-#include "integrators/path.h"
+#include "integrators/path_options.h"
 #include "integrators/render_plan.h"
 #include "renderer/render_loop.h"
 
 namespace kiln {
+
+class GuideField;
 
 struct RenderJobOptions {
     IntegratorKind integrator = IntegratorKind::Path;

@@ -2,6 +2,7 @@
 // glossy and specular bounces to the first diffuse surface they land on.
 #include "integrators/path.h"
 #include "renderer/geometry/interaction.h"
+#include "scene/material_kinds.h"
 
 namespace kiln {
 namespace {
@@ -33,7 +34,8 @@ void PathIntegrator::traceCausticPhotons(uint64_t first, size_t count, uint64_t 
             SurfaceInteraction si = makeInteraction(scene_, ray, hit);
             const Material& mat = scene_.materials[si.material];
             const Vec3 woWorld = -normalize(ray.dir);
-            if (mat.kind == MaterialKind::Lambertian) {
+            const MaterialKindSpec& kind = specOf(mat.kind);
+            if (kind.lambertian) {
                 // Landed (light straight from an emitter is next-event estimation's, not the
                 // guide's; light no camera path could carry back is not guided towards; a black
                 // surface, such as an emitter's, reflects none of it).
@@ -41,8 +43,8 @@ void PathIntegrator::traceCausticPhotons(uint64_t first, size_t count, uint64_t 
                     records.push_back({si.p, source, luminance(power)});
                 break;
             }
-            if (mat.kind == MaterialKind::Emission) break;
-            Bsdf bsdf(mat, opt_.microfacet, mat.albedo, MetallicRoughness::of(mat));
+            if (kind.black) break;
+            Bsdf bsdf(mat, opt_.microfacet, SurfaceInputs::of(mat));
             Frame frame = shadingFrame(si, woWorld);
             float uc = s.next1D(), v1 = s.next1D(), v2 = s.next1D();
             BsdfSample bs;

@@ -1,8 +1,8 @@
 #include "integrators/integrator.h"
 
-#include "integrators/fresnel.h"
-#include "integrators/surface_albedo.h"
+#include "integrators/bsdf.h"
 #include "renderer/geometry/interaction.h"
+#include "renderer/geometry/material_lookup.h"
 
 namespace kiln {
 
@@ -22,28 +22,10 @@ void Integrator::recordSurface(const Ray& ray, const Hit& hit, const SurfaceInte
                                SampleRecord& r) const {
     const Material& m = scene_.materials[si.material];
     if (aovs_.has(AovKind::Albedo)) {
-        switch (m.kind) {
-            case MaterialKind::Lambertian:
-            case MaterialKind::Principled:  // its base colour
-                r.albedo = colourVaries_
-                               ? albedoAt(scene_, m, hit, hit.t * length(ray.dir), pixelSpread_)
-                               : m.albedo;
-                break;
-            case MaterialKind::Mirror:
-            case MaterialKind::Glossy:
-                r.albedo = m.reflectance;
-                break;
-            case MaterialKind::Microfacet:
-                r.albedo = fresnelConductor(1.0f, m.eta, m.k);
-                break;
-            case MaterialKind::Glass:
-            case MaterialKind::Refraction:
-                r.albedo = m.transmittance;
-                break;
-            case MaterialKind::Emission:
-                r.albedo = Color(0.0f);
-                break;
-        }
+        Color base = colourVaries_
+                         ? baseColourAt(scene_, m, hit, hit.t * length(ray.dir) * pixelSpread_)
+                         : m.albedo;
+        r.albedo = Bsdf::aovAlbedo(m, base);
     }
     r.normal = si.ns;
     r.position = Vec3(Vec3d(si.p) + scene_.origin);  // world coordinates

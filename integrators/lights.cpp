@@ -3,8 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "integrators/surface_albedo.h"
 #include "renderer/core/warp.h"
+#include "renderer/geometry/material_lookup.h"
 #include "renderer/geometry/opacity.h"
 
 namespace kiln {
@@ -288,7 +288,7 @@ LightSet::SurfacePoint LightSet::samplePoint(const Entry& e, float u1, float u2)
     const uint32_t mesh = e.light->mesh;
     if (e.emissionTextured)  // as a ray hitting this point sees it (path.cpp)
         out.texel = emissionTexelAt(*scene_, scene_->materials[scene_->meshes[mesh].materialOf(t)],
-                                    mesh, uint32_t(t), b1, b2);
+                                    {mesh, uint32_t(t), b1, b2});
     if (e.alphaCut) out.texel *= coverageAt(*scene_, mesh, uint32_t(t), b1, b2);
     return out;
 }

@@ -2,9 +2,10 @@
 
 #include <type_traits>
 
-#include "integrators/normal_map.h"
-#include "integrators/surface_albedo.h"
 #include "renderer/geometry/interaction.h"
+#include "renderer/geometry/material_lookup.h"
+#include "renderer/geometry/normal_map.h"
+#include "scene/material_kinds.h"
 
 namespace kiln {
 
@@ -14,6 +15,7 @@ PathIntegrator::PathIntegrator(const Scene& scene, const Accelerator& accel,
       trace_(pathFor(plan)),
       opt_(options),
       lights_(scene) {
+    for (const Material& m : scene.materials) lambertian_.push_back(specOf(m.kind).lambertian);
     opt_.lightSamples = resolvedLightSamples(options, plan);
     // Up to 64 delta lights, as the course does; beyond that (a many-light scene) a shadow ray per
     // light per vertex would swamp the render, and -l picks by power instead.
@@ -71,42 +73,9 @@ namespace {
 // The lobe AOVs split by material: a principled surface counts as diffuse unless fully metallic.
 Lobe lobeOf(const Material& m, bool transmission) {
     if (transmission) return Lobe::Transmission;
-    bool diffuse = m.kind == MaterialKind::Lambertian ||
-                   (m.kind == MaterialKind::Principled && m.metallic < 1);
-    return diffuse ? Lobe::Diffuse : Lobe::Specular;
+    const MaterialKindSpec& k = specOf(m.kind);
+    return k.countsAsDiffuse && k.countsAsDiffuse(m) ? Lobe::Diffuse : Lobe::Specular;
 }
-
-// The BSDF of a diffuse-only scene: Lambert or black (emitters), no Fresnel or specular code at
-// all.
-class LambertBsdf {
-  public:
-    LambertBsdf(const Material& m, MicrofacetModel, const Color& albedo, MetallicRoughness)
-        : albedo_(albedo), black_(m.kind == MaterialKind::Emission) {}
-    bool isDelta() const { return false; }
-    bool isBlack() const { return black_; }
-    bool isDiffuse() const { return true; }
-    bool hasTransmission() const { return false; }
-    Color eval(const Vec3& wo, const Vec3& wi) const {
-        return wo.z * wi.z > 0 ? albedo_ * kInvPi : Color(0.0f);
-    }
-    float pdf(const Vec3& wo, const Vec3& wi) const {
-        return wo.z * wi.z > 0 ? std::abs(wi.z) * kInvPi : 0.0f;
-    }
-    bool usesLobeChoice() const { return false; }
-    bool sample(const Vec3& wo, float, float u1, float u2, BsdfSample& out) const {
-        if (wo.z == 0) return false;  // as Bsdf::sample
-        out = BsdfSample{};
-        out.wi = cosineHemisphere(u1, u2);
-        if (wo.z < 0) out.wi.z = -out.wi.z;
-        out.pdf = std::abs(out.wi.z) * kInvPi;
-        out.f = albedo_ * kInvPi;
-        return out.pdf > 0;
-    }
-
-  private:
-    Color albedo_;
-    bool black_;
-};
 
 // A Lambertian vertex at x whose bounce draws kGuideFraction of its directions from the guide
 // field's leaf (guiding.h) and the rest by cosine: the same reflectance, the mixture's density for
@@ -184,7 +153,7 @@ Color PathIntegrator::emissionAt(const Ray& ray, const Hit& hit, const SurfaceIn
     const Material& m = scene_.materials[si.material];
     Color Le = li >= 0 ? lights_.emitted(size_t(li), si.p, si.ng, ray.origin) : m.emission;
     if (m.maps.emissionTexture >= 0 && hit.shape != kSphereShape)
-        Le = Le * emissionTexelAt(scene_, m, hit.shape, hit.prim, hit.u, hit.v);
+        Le = Le * emissionTexelAt(scene_, m, MeshPoint::of(hit));
     return Le;
 }
 
@@ -341,14 +310,12 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
                     st.firstLobe);
             }
             if (bounce >= opt_.maxDepth) continue;
-            Color albedo = mat.albedo;
-            MetallicRoughness mr = MetallicRoughness::of(mat);
+            SurfaceInputs in = SurfaceInputs::of(mat);
             if (colourVaries_) {
                 st.travelled += hit.t * length(ray.dir);
-                albedo = albedoAt(scene_, mat, hit, st.travelled, opt_.pixelSpread);
-                mr = metallicRoughnessAt(scene_, mat, hit, st.travelled, opt_.pixelSpread);
-                applyNormalMap(scene_, mat, hit, -normalize(ray.dir),
-                               st.travelled * opt_.pixelSpread, si);
+                const float footprint = st.travelled * opt_.pixelSpread;
+                in = surfaceInputsAt(scene_, mat, hit, footprint);
+                applyNormalMap(scene_, mat, hit, -normalize(ray.dir), footprint, si);
             }
             // The rest of the vertex, for its BSDF: a Lambertian surface takes the Lambert-only
             // code in every scene (measured: the general BSDF's dispatch slowed the walls of a box
@@ -470,8 +437,8 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
                 w.next.push_back(pi);
                 w.nextRays.push_back(spawnRay(si, wiWorld));
             };
-            if (DiffuseOnly || mat.kind == MaterialKind::Lambertian) {
-                LambertBsdf lambert(mat, opt_.microfacet, albedo, mr);
+            if (DiffuseOnly || lambertian_[si.material]) {
+                LambertBsdf lambert(in.baseColour, !lambertian_[si.material]);
                 // Guided where the bounce is traced (not at a light-only last vertex).
                 const bool bounces = !(lightOnlyAtLastVertex_ && bounce + 1 == opt_.maxDepth);
                 const GuideLeaf* leaf = guide_ && bounces ? guide_->leafAt(si.p) : nullptr;
@@ -480,7 +447,7 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
                 else
                     shade(lambert);
             } else {
-                shade(Bsdf(mat, opt_.microfacet, albedo, mr));
+                shade(Bsdf(mat, opt_.microfacet, in));
             }
         }
 

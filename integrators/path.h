@@ -68,6 +68,7 @@ class PathIntegrator final : public Integrator {
     bool eachDeltaLightOnce_ = false;     // only (a few) delta lights: NEE takes each once
     bool lightOnlyAtLastVertex_ = false;  // a diffuse last vertex: NEE alone, no continuation
     std::shared_ptr<const GuideField> guide_;
+    std::vector<uint8_t> lambertian_;  // per material: shaded by the Lambert-only code
 };
 
 }  // namespace kiln

@@ -14,26 +14,28 @@
 
 #include "integrators/bsdf_sample.h"
 #include "integrators/microfacet.h"
+#include "renderer/geometry/material_lookup.h"
 #include "scene/scene.h"
 
 namespace kiln {
 
-// Metallic and perceptual roughness at a point: the material's factors times its
-// metallic-roughness texture there (surface_albedo.h).
-struct MetallicRoughness {
-    float metallic = 0, roughness = 1;
-    static MetallicRoughness of(const Material& m) { return {m.metallic, m.roughness}; }
-};
-
 class PrincipledBsdf {
   public:
-    PrincipledBsdf() = default;
-    // baseColour: the material's albedo at this point (textures, vertex colours); mr: its
-    // metallic and roughness there (else the material's factors).
+    static bool handles(MaterialKind k) { return k == MaterialKind::Principled; }
+    static Color aovAlbedo(const Material&, const Color& baseColour) { return baseColour; }
+    // in: the material's base colour, metallic and roughness at this point (textures, vertex
+    // colours: material_lookup.h), else its factors.
+    PrincipledBsdf(const Material& material, MicrofacetModel, const SurfaceInputs& in)
+        : PrincipledBsdf(material, in.baseColour, in.mr) {}
     PrincipledBsdf(const Material& material, const Color& baseColour)
         : PrincipledBsdf(material, baseColour, MetallicRoughness::of(material)) {}
     PrincipledBsdf(const Material& material, const Color& baseColour, MetallicRoughness mr);
 
+    bool isDelta() const { return false; }
+    bool isBlack() const { return false; }
+    bool isDiffuse() const { return false; }
+    bool hasTransmission() const { return false; }
+    bool usesLobeChoice() const { return true; }
     Color eval(const Vec3& wo, const Vec3& wi) const;
     float pdf(const Vec3& wo, const Vec3& wi) const;
     bool sample(const Vec3& wo, float uc, float u1, float u2, BsdfSample& out) const;

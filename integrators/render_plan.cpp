@@ -8,6 +8,7 @@
 #include "renderer/core/warp.h"
 #include "renderer/geometry/camera.h"
 #include "renderer/geometry/interaction.h"
+#include "scene/material_kinds.h"
 
 namespace kiln {
 namespace {
@@ -54,18 +55,17 @@ RenderPlan planFor(const Scene& scene, const Accelerator& accel, const AovReques
     bool mirror = false, glossyReflector = false;
     p.diffuseOnly = true;
     for (uint32_t id : used) {
-        MaterialKind k = scene.materials[id].kind;
-        p.deltaSpecular |=
-            k == MaterialKind::Mirror || k == MaterialKind::Glass || k == MaterialKind::Refraction;
-        p.transmission |= k == MaterialKind::Glass || k == MaterialKind::Refraction;
-        p.roughConductor |= k == MaterialKind::Microfacet;
-        p.glossy |= k == MaterialKind::Glossy || k == MaterialKind::Principled;
-        anyDiffuse |= k == MaterialKind::Lambertian;
-        mirror |= k == MaterialKind::Mirror;
-        glossyReflector |= k == MaterialKind::Microfacet || k == MaterialKind::Glossy ||
-                           (k == MaterialKind::Principled && scene.materials[id].metallic > 0);
-        p.diffuseOnly &= k == MaterialKind::Lambertian || k == MaterialKind::Emission;
-        p.emitters |= maxComponent(scene.materials[id].emission) > 0;
+        const Material& m = scene.materials[id];
+        const MaterialKindSpec& k = specOf(m.kind);
+        p.deltaSpecular |= k.deltaSpecular;
+        p.transmission |= k.transmission;
+        p.roughConductor |= k.roughConductor;
+        p.glossy |= k.glossy;
+        anyDiffuse |= k.lambertian;
+        mirror |= k.mirror;
+        glossyReflector |= k.reflectsGlossily && k.reflectsGlossily(m);
+        p.diffuseOnly &= k.lambertian || k.black;
+        p.emitters |= maxComponent(m.emission) > 0;
     }
     bool hittableAreaLights = false;
     p.deltaLightsOnly = !scene.lights.empty();

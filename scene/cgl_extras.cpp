@@ -5,6 +5,7 @@
 #include <pugixml.hpp>
 #include <sstream>
 
+#include "scene/material_kinds.h"
 #include "scene/scene_error.h"
 
 namespace kiln {
@@ -164,44 +165,22 @@ class Parser {
         pugi::xml_node kind = tech.first_child();
         if (!kind) return m;
         std::string k = kind.name();
-        if (k == "emission") {
-            m.kind = MaterialKind::Emission;
-            m.emission = expectColor(file_, kind, "radiance");
-        } else if (k == "mirror") {
-            m.kind = MaterialKind::Mirror;
-            m.reflectance = expectColor(file_, kind, "reflectance");
-        } else if (k == "glass") {
-            m.kind = MaterialKind::Glass;
-            m.reflectance = expectColor(file_, kind, "reflectance");
-            m.transmittance = expectColor(file_, kind, "transmittance");
-            m.roughness = expectScalar(file_, kind, "roughness");
-            m.ior = expectScalar(file_, kind, "ior");
-        } else if (k == "refraction") {
-            m.kind = MaterialKind::Refraction;
-            m.transmittance = expectColor(file_, kind, "transmittance");
-            m.roughness = expectScalar(file_, kind, "roughness");
-            m.ior = expectScalar(file_, kind, "ior");
-        } else if (k == "microfacet") {
-            m.kind = MaterialKind::Microfacet;
-            m.alpha = expectScalar(file_, kind, "alpha");
-            m.eta = expectColor(file_, kind, "eta");
-            m.k = expectColor(file_, kind, "k");
-        } else if (k == "glossy") {
-            m.kind = MaterialKind::Glossy;
-            m.reflectance = expectColor(file_, kind, "reflectance");
-            m.shininess = expectScalar(file_, kind, "shininess");
-        } else {
+        const MaterialKindSpec* spec = findMaterialKind(k);
+        if (!spec || !spec->inCgl)
             throw SceneError(file_, "unknown CGL material <" + k + "> in effect '" +
                                         effect.attribute("id").as_string() + "'");
+        m.kind = spec->kind;
+        for (const MaterialParam& p : spec->params) {
+            if (p.colour) {
+                m.*p.colour = expectColor(file_, kind, p.name);
+                continue;
+            }
+            float v = expectScalar(file_, kind, p.name);
+            if (!inRange(p.range, v))
+                throw SceneError(file_, "CGL <" + k + "> has " + p.name + " " + std::to_string(v) +
+                                            " (must be " + rangeText(p.range) + ")");
+            m.*p.scalar = v;
         }
-        if (m.kind == MaterialKind::Glass || m.kind == MaterialKind::Refraction) {
-            if (!(m.ior > 0))
-                throw SceneError(
-                    file_, "CGL <" + k + "> has ior " + std::to_string(m.ior) + " (must be > 0)");
-        }
-        if (m.kind == MaterialKind::Microfacet && !(m.alpha > 0))
-            throw SceneError(
-                file_, "CGL <microfacet> has alpha " + std::to_string(m.alpha) + " (must be > 0)");
         return m;
     }
 

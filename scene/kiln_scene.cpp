@@ -11,6 +11,7 @@
 
 #include "renderer/core/memory.h"
 #include "scene/importers.h"
+#include "scene/material_kinds.h"
 #include "scene/scene_error.h"
 #include "scene/scene_loader.h"
 
@@ -206,18 +207,6 @@ void merge(Scene& dst, Scene& src, const Mat4& xf, int override, bool asPrototyp
     dst.warnings.insert(dst.warnings.end(), src.warnings.begin(), src.warnings.end());
 }
 
-float number(const std::string& file, pugi::xml_node n, const char* attr, float fallback) {
-    return n.attribute(attr) ? float(numbers(file, n, attr, 1)[0]) : fallback;
-}
-
-// A number in [0, 1] (a principled weight or roughness).
-float unitNumber(const std::string& file, pugi::xml_node n, const char* attr, float fallback) {
-    float v = number(file, n, attr, fallback);
-    if (v < 0 || v > 1)
-        throw SceneError(file, "<material> " + std::string(attr) + " must be in [0, 1]");
-    return v;
-}
-
 // The texture an attribute names (a path relative to the .kiln file) as a source of the scene, or
 // -1 when the attribute is absent.
 int textureAttribute(const std::string& file, pugi::xml_node n, const char* attr,
@@ -234,23 +223,25 @@ int textureAttribute(const std::string& file, pugi::xml_node n, const char* attr
     return int(scene.textureSources.size()) - 1;
 }
 
-// The principled material's parameters (glTF metallic-roughness; docs/kiln-scene.md), its
-// base-colour texture a path relative to the .kiln file.
-void parsePrincipled(const std::string& file, pugi::xml_node n, Material& m, Scene& scene) {
-    m.kind = MaterialKind::Principled;
-    m.albedo = Color(0.8f);
-    if (n.attribute("base-color")) m.albedo = Color(vec3(file, n, "base-color"));
-    m.metallic = unitNumber(file, n, "metallic", 0.0f);
-    m.roughness = unitNumber(file, n, "roughness", 0.5f);
-    m.specular = number(file, n, "specular", 1.0f);
-    m.ior = number(file, n, "ior", 1.5f);
-    m.clearcoat = unitNumber(file, n, "clearcoat", 0.0f);
-    m.clearcoatRoughness = unitNumber(file, n, "clearcoat-roughness", 0.03f);
-    if (m.specular < 0 || !(m.ior >= 1))
-        throw SceneError(file, "<material> needs specular >= 0 and ior >= 1");
+// One parameter of the kind (material_kinds.h): absent, the kind's default unless required.
+void readParam(const std::string& file, pugi::xml_node n, const MaterialParam& p, Material& m) {
+    if (!n.attribute(p.name) && !p.requiredInKiln) return;
+    if (p.colour) {
+        m.*p.colour = Color(vec3(file, n, p.name));
+        return;
+    }
+    float v = float(numbers(file, n, p.name, 1)[0]);
+    if (!inRange(p.range, v))
+        throw SceneError(file,
+                         "<material> " + std::string(p.name) + " must be " + rangeText(p.range));
+    m.*p.scalar = v;
+}
+
+// A principled material's textures (glTF metallic-roughness), paths relative to the .kiln file.
+void readPrincipledTextures(const std::string& file, pugi::xml_node n, Material& m, Scene& scene) {
     m.albedoTexture =
         textureAttribute(file, n, "base-color-texture", TextureEncoding::Color, scene);
-    // glTF's layout: B metallic, G roughness, multiplying the factors above.
+    // glTF's layout: B metallic, G roughness, multiplying the factors.
     int mr = textureAttribute(file, n, "metallic-roughness-texture", TextureEncoding::Data, scene);
     m.maps.metallicTexture = m.maps.roughnessTexture = mr;
     m.maps.metallicChannel = 2, m.maps.roughnessChannel = 1;
@@ -260,29 +251,22 @@ Material parseMaterial(const std::string& file, pugi::xml_node n, Scene& scene) 
     Material m;
     m.name = n.attribute("name").as_string();
     std::string kind = n.attribute("kind").as_string("lambertian");
-    if (kind == "lambertian") {
-        if (n.attribute("albedo")) m.albedo = Color(vec3(file, n, "albedo"));
-    } else if (kind == "principled") {
-        parsePrincipled(file, n, m, scene);
-    } else if (kind == "mirror") {
-        m.kind = MaterialKind::Mirror;
-        if (n.attribute("reflectance")) m.reflectance = Color(vec3(file, n, "reflectance"));
-    } else if (kind == "glass") {
-        m.kind = MaterialKind::Glass;
-        m.ior = float(numbers(file, n, "ior", 1)[0]);
-    } else if (kind == "microfacet") {
-        m.kind = MaterialKind::Microfacet;
-        m.alpha = float(numbers(file, n, "alpha", 1)[0]);
-        m.eta = Color(vec3(file, n, "eta"));
-        m.k = Color(vec3(file, n, "k"));
-    } else {
-        throw SceneError(file, "unknown material kind '" + kind +
-                                   "' (lambertian, principled, mirror, glass, microfacet)");
-    }
+    const MaterialKindSpec* spec = findMaterialKind(kind);
+    if (!spec || !spec->inKiln)
+        throw SceneError(
+            file, "unknown material kind '" + kind + "' (" +
+                      materialKindNames([](const MaterialKindSpec& s) { return s.inKiln; }) + ")");
+    m.kind = spec->kind;
+    if (spec->kilnDefaults) spec->kilnDefaults(m);
+    for (const MaterialParam& p : spec->params) readParam(file, n, p, m);
+    if (m.kind == MaterialKind::Principled) readPrincipledTextures(file, n, m, scene);
     // Emission is added to what the surface reflects (an emitting mesh is also a light).
     if (n.attribute("emission")) {
-        if (m.kind != MaterialKind::Lambertian && m.kind != MaterialKind::Principled)
-            throw SceneError(file, "<material> emission needs kind lambertian or principled");
+        if (!spec->addsEmission)
+            throw SceneError(file, "<material> emission needs kind " +
+                                       materialKindNames([](const MaterialKindSpec& s) {
+                                           return s.addsEmission;
+                                       }));
         m.emission = max(Color(vec3(file, n, "emission")), Color(0.0f));
     }
     return m;

@@ -5,28 +5,6 @@
 
 namespace kiln {
 
-const char* toString(MaterialKind kind) {
-    switch (kind) {
-        case MaterialKind::Lambertian:
-            return "lambertian";
-        case MaterialKind::Mirror:
-            return "mirror";
-        case MaterialKind::Glass:
-            return "glass";
-        case MaterialKind::Microfacet:
-            return "microfacet";
-        case MaterialKind::Refraction:
-            return "refraction";
-        case MaterialKind::Glossy:
-            return "glossy";
-        case MaterialKind::Emission:
-            return "emission";
-        case MaterialKind::Principled:
-            return "principled";
-    }
-    return "unknown";
-}
-
 const char* toString(LightKind kind) {
     switch (kind) {
         case LightKind::Area:

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "renderer/core/json.h"
+#include "scene/material_kinds.h"
 
 namespace kiln {
 namespace {
@@ -82,38 +83,9 @@ std::string sceneInfoText(const Scene& scene) {
     for (uint32_t id : used) {
         const Material& m = scene.materials[id];
         os << "  " << toString(m.kind) << " '" << m.name << "'";
-        switch (m.kind) {
-            case MaterialKind::Lambertian:
-                os << " albedo " << vec(m.albedo);
-                break;
-            case MaterialKind::Mirror:
-                os << " reflectance " << vec(m.reflectance);
-                break;
-            case MaterialKind::Glass:
-                os << " ior " << num(m.ior) << " reflectance " << vec(m.reflectance)
-                   << " transmittance " << vec(m.transmittance);
-                break;
-            case MaterialKind::Refraction:
-                os << " ior " << num(m.ior) << " transmittance " << vec(m.transmittance);
-                break;
-            case MaterialKind::Microfacet:
-                os << " alpha " << num(m.alpha) << " eta " << vec(m.eta) << " k " << vec(m.k);
-                break;
-            case MaterialKind::Glossy:
-                os << " reflectance " << vec(m.reflectance) << " shininess " << num(m.shininess);
-                break;
-            case MaterialKind::Emission:
-                os << " radiance " << vec(m.emission);
-                break;
-            case MaterialKind::Principled:
-                os << " base " << vec(m.albedo) << " metallic " << num(m.metallic) << " roughness "
-                   << num(m.roughness) << " specular " << num(m.specular);
-                if (m.clearcoat > 0)
-                    os << " clearcoat " << num(m.clearcoat) << " clearcoat-roughness "
-                       << num(m.clearcoatRoughness);
-                if (maxComponent(m.emission) > 0) os << " emission " << vec(m.emission);
-                break;
-        }
+        os << " " << describeParams(m);
+        if (specOf(m.kind).addsEmission && maxComponent(m.emission) > 0)
+            os << " emission " << vec(m.emission);
         // Maps (scene/material_maps.h).
         if (m.maps.normalTexture >= 0) os << " normal-map scale " << num(m.maps.normalScale);
         if (m.maps.metallicTexture >= 0 || m.maps.roughnessTexture >= 0)

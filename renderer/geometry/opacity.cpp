@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "renderer/core/sampler.h"
+#include "renderer/geometry/material_lookup.h"
 
 namespace kiln {
 
@@ -28,25 +29,11 @@ uint32_t raySeed(const Ray& r) {
     return uint32_t(h);
 }
 
-float alphaAt(const Scene& scene, const Material& material, const TriangleMesh& mesh, uint32_t prim,
-              float b1, float b2) {
-    const MaterialMaps& maps = material.maps;
-    float alpha = maps.opacity;
-    if (maps.opacityTexture >= 0 && scene.textures && !mesh.uvs.empty()) {
-        float u, v;
-        uvAt(mesh, prim, b1, b2, u, v);
-        const UvTransform& x = maps.opacityUv;
-        alpha *= scene.textures->lookupChannel(maps.opacityTexture, maps.opacityChannel, x.s(u, v),
-                                               x.t(u, v), 0.0f, x.wrap);
-    }
-    return alpha;
-}
-
 float coverageAt(const Scene& scene, uint32_t mesh, uint32_t prim, float b1, float b2) {
     const TriangleMesh& m = scene.meshes[mesh];
     const Material& material = scene.materials[m.materialOf(prim)];
     if (material.maps.alphaMode == AlphaMode::Opaque) return 1.0f;
-    float alpha = alphaAt(scene, material, m, prim, b1, b2);
+    float alpha = alphaAt(scene, material, {mesh, prim, b1, b2});
     if (material.maps.alphaMode == AlphaMode::Mask)
         return alpha >= material.maps.alphaCutoff ? 1.0f : 0.0f;
     return std::clamp(alpha, 0.0f, 1.0f);
@@ -60,12 +47,12 @@ bool surfaceStopsRay(const Scene& scene, uint32_t mesh, uint32_t prim, float b1,
         case AlphaMode::Opaque:
             return true;
         case AlphaMode::Mask:
-            return alphaAt(scene, material, m, prim, b1, b2) >= material.maps.alphaCutoff;
+            return alphaAt(scene, material, {mesh, prim, b1, b2}) >= material.maps.alphaCutoff;
         case AlphaMode::Blend: {
             uint64_t h = mix64(uint64_t(seed) << 32 ^ uint64_t(mesh) << 20 ^ prim ^
                                uint64_t(instance) * 0x9e3779b97f4a7c15ull);
             float coin = float(h >> 40) * 0x1p-24f;  // uniform in [0, 1)
-            return coin < alphaAt(scene, material, m, prim, b1, b2);
+            return coin < alphaAt(scene, material, {mesh, prim, b1, b2});
         }
     }
     return true;

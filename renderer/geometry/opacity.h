@@ -17,11 +17,6 @@ bool sceneHasAlpha(const Scene& scene);
 // The coin of a world-space ray: a hash of its origin and direction bits.
 uint32_t raySeed(const Ray& worldRay);
 
-// Alpha at barycentrics (b1, b2) of triangle `prim`: the material's opacity times its opacity
-// texture, looked up at the finest MIP level (no footprint is known during traversal).
-float alphaAt(const Scene& scene, const Material& material, const TriangleMesh& mesh, uint32_t prim,
-              float b1, float b2);
-
 // The probability that a ray meeting triangle `prim` of `mesh` at (b1, b2) stops there: 1 opaque,
 // 0 or 1 for a mask, alpha for blend (the expectation of surfaceStopsRay's coin). A light sample
 // on an emitter weighs its radiance by it, as rays hitting the emitter see it.

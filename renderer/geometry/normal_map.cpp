@@ -1,8 +1,8 @@
-#include "integrators/normal_map.h"
+#include "renderer/geometry/normal_map.h"
 
 #include <cmath>
 
-#include "integrators/surface_albedo.h"
+#include "renderer/geometry/material_lookup.h"
 
 namespace kiln {
 namespace {
@@ -22,17 +22,9 @@ Vec3 interpolate3(const std::vector<float>& a, size_t stride, const uint32_t* id
 
 void applyNormalMap(const Scene& scene, const Material& material, const Hit& hit,
                     const Vec3& woWorld, float worldWidth, SurfaceInteraction& si) {
-    const MaterialMaps& maps = material.maps;
-    if (maps.normalTexture < 0 || hit.shape == kSphereShape || !scene.textures) return;
+    Vec3 m;
+    if (!normalMapAt(scene, material, hit, worldWidth, m)) return;
     const TriangleMesh& mesh = scene.meshes[hit.shape];
-    if (mesh.tangents.empty() || mesh.uvs.empty()) return;
-    float u, v;
-    uvAt(mesh, hit.prim, hit.u, hit.v, u, v);
-    const UvTransform& x = maps.normalUv;
-    Color texel = scene.textures->lookup(maps.normalTexture, x.s(u, v), x.t(u, v),
-                                         textureWidth(scene, hit, x, worldWidth), x.wrap);
-    Vec3 m((2 * texel.x - 1) * maps.normalScale, (2 * texel.y - 1) * maps.normalScale,
-           2 * texel.z - 1);
     if (m.x == 0 && m.y == 0 && m.z > 0) return;  // the map says: the normal as it is
 
     // The tangent frame in world space, around the stored (file-oriented) shading normal.

@@ -17,11 +17,9 @@ PathIntegrator::PathIntegrator(const Scene& scene, const Accelerator& accel,
       lights_(scene) {
     for (const Material& m : scene.materials) lambertian_.push_back(specOf(m.kind).lambertian);
     opt_.lightSamples = resolvedLightSamples(options, plan);
-    // Up to 64 delta lights, as the course does; beyond that (a many-light scene) a shadow ray per
-    // light per vertex would swamp the render, and -l picks by power instead.
-    constexpr size_t kMaxDeltaLightsTakenEach = 64;
-    eachDeltaLightOnce_ =
-        lights_.size() > 0 && lights_.size() <= kMaxDeltaLightsTakenEach && lights_.allDelta();
+    rules_ = Cs184Rules(options, lights_.size(), lights_.allDelta());
+    // Without next-event estimation (hemisphere, bsdf) emission found by the path counts in full.
+    useNee_ = !rules_.hemisphere && options.sampling != DirectSampling::Bsdf && lights_.size() > 0;
     // Only where light sampling sees every emitter and MIS would otherwise weigh what the last
     // continuation finds (not with -H probes or BSDF-only direct light).
     lightOnlyAtLastVertex_ =
@@ -30,28 +28,28 @@ PathIntegrator::PathIntegrator(const Scene& scene, const Accelerator& accel,
 }
 
 PathIntegrator::TraceFn PathIntegrator::pathFor(const RenderPlan& plan) {
-    if (plan.general) return &PathIntegrator::trace<false, true, false, true>;
+    if (plan.general) return &PathIntegrator::trace<Features<false, true, false, true>>;
     bool diffuse = plan.diffuseOnly, infinite = plan.infiniteLights;
     bool deltaOnly = plan.deltaLightsOnly && !plan.emitters && !plan.infiniteLights;
     bool split = plan.aovs.splitsLight();
     // Chosen once per render: each combination is its own instantiation.
     static constexpr TraceFn kTable[2][2][2][2] = {
-        {{{&PathIntegrator::trace<false, false, false, false>,
-           &PathIntegrator::trace<false, false, false, true>},
-          {&PathIntegrator::trace<false, false, true, false>,
-           &PathIntegrator::trace<false, false, true, true>}},
-         {{&PathIntegrator::trace<false, true, false, false>,
-           &PathIntegrator::trace<false, true, false, true>},
-          {&PathIntegrator::trace<false, true, true, false>,
-           &PathIntegrator::trace<false, true, true, true>}}},
-        {{{&PathIntegrator::trace<true, false, false, false>,
-           &PathIntegrator::trace<true, false, false, true>},
-          {&PathIntegrator::trace<true, false, true, false>,
-           &PathIntegrator::trace<true, false, true, true>}},
-         {{&PathIntegrator::trace<true, true, false, false>,
-           &PathIntegrator::trace<true, true, false, true>},
-          {&PathIntegrator::trace<true, true, true, false>,
-           &PathIntegrator::trace<true, true, true, true>}}}};
+        {{{&PathIntegrator::trace<Features<false, false, false, false>>,
+           &PathIntegrator::trace<Features<false, false, false, true>>},
+          {&PathIntegrator::trace<Features<false, false, true, false>>,
+           &PathIntegrator::trace<Features<false, false, true, true>>}},
+         {{&PathIntegrator::trace<Features<false, true, false, false>>,
+           &PathIntegrator::trace<Features<false, true, false, true>>},
+          {&PathIntegrator::trace<Features<false, true, true, false>>,
+           &PathIntegrator::trace<Features<false, true, true, true>>}}},
+        {{{&PathIntegrator::trace<Features<true, false, false, false>>,
+           &PathIntegrator::trace<Features<true, false, false, true>>},
+          {&PathIntegrator::trace<Features<true, false, true, false>>,
+           &PathIntegrator::trace<Features<true, false, true, true>>}},
+         {{&PathIntegrator::trace<Features<true, true, false, false>>,
+           &PathIntegrator::trace<Features<true, true, false, true>>},
+          {&PathIntegrator::trace<Features<true, true, true, false>>,
+           &PathIntegrator::trace<Features<true, true, true, true>>}}}};
     return kTable[diffuse][infinite][deltaOnly][split];
 }
 
@@ -132,7 +130,7 @@ class GuidedLambert {
 // beauty.
 template <bool SplitLight>
 void PathIntegrator::addLight(SampleRecord& rec, int bounce, const Color& c, Lobe lobe) const {
-    if (!opt_.accumulateBounces && bounce != opt_.maxDepth) return;
+    if (!rules_.keeps(bounce)) return;
     rec.L += c;
     if constexpr (!SplitLight) return;
     if (!aovs_.splitsLight()) return;
@@ -172,10 +170,8 @@ Color PathIntegrator::probeEmission(const Ray& ray, const Hit& hit) const {
     return emissionAt(ray, hit, si, li);
 }
 
-namespace {
-
-// What a path carries from one vertex to the next (its next ray waits in BatchScratch::nextRays).
-struct PathState {
+// What a path carries from one vertex to the next (its next ray waits in Scratch::nextRays).
+struct PathIntegrator::PathState {
     Color beta{1.0f};
     bool specular = true;  // the previous vertex was the camera or a delta lobe: nothing else could
                            // see the light
@@ -185,6 +181,8 @@ struct PathState {
     float travelled = 0;             // path length so far: the texture footprint grows with it
 };
 
+namespace {
+
 // A next-event estimate waiting for its shadow ray: added to its path's record if unoccluded.
 struct PendingLight {
     uint32_t path;
@@ -193,8 +191,10 @@ struct PendingLight {
     Color contribution;
 };
 
+}  // namespace
+
 // Scratch reused by every batch a thread traces.
-struct BatchScratch {
+struct PathIntegrator::Scratch {
     std::vector<PathState> paths;
     std::vector<uint32_t> active, next;  // live paths, and their rays in the same order
     std::vector<Ray> rays, nextRays, shadowRays;
@@ -208,18 +208,32 @@ struct BatchScratch {
     std::vector<PendingLight> probes;
 };
 
-}  // namespace
+// A surface vertex of one path, as its stages see it.
+struct PathIntegrator::Vertex {
+    uint32_t path;
+    int bounce;
+    PathState& st;
+    Sampler& sampler;
+    const SurfaceInteraction& si;
+    const Material& mat;
+    Vec3 woWorld;
+    Frame frame;
+    // The lobe the light gathered here is recorded under.
+    Lobe lobe(bool transmission = false) const {
+        return bounce == 0 ? lobeOf(mat, transmission) : st.firstLobe;
+    }
+};
 
 // Wavefront over a batch: every live path's next ray is traced together (Embree packets), then
 // every path is shaded, its next-event shadow rays queued; the queue is traced together and the
 // unoccluded estimates added. Each path still draws its random numbers and adds its light in the
 // same order as a path traced alone, so the image does not depend on how samples are batched.
-template <bool DiffuseOnly, bool Infinite, bool DeltaLightsOnly, bool SplitLight>
+template <class F>
 void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) const {
-    thread_local BatchScratch scratch;
-    BatchScratch& w = scratch;
+    thread_local Scratch scratch;
+    Scratch& w = scratch;
     w.paths.assign(batch.size(), PathState{});
-    size_t perVertex = eachDeltaLightOnce_ ? lights_.size() : size_t(opt_.lightSamples);
+    size_t perVertex = size_t(rules_.lightSamplesPerVertex(opt_.lightSamples, lights_.size()));
     w.pending.reserve(batch.size() * perVertex);
     w.shadowRays.reserve(batch.size() * perVertex);
     w.active.clear();
@@ -229,11 +243,6 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
         w.active.push_back(i);
         w.rays.push_back(batch[i].ray);
     }
-    const float nLight = float(opt_.lightSamples);
-    const bool hemisphere = opt_.sampling == DirectSampling::Hemisphere;
-    // Without next-event estimation (bsdf) emission found by the path counts in full (weight 1).
-    const bool useNee = !hemisphere && opt_.sampling != DirectSampling::Bsdf && lights_.size() > 0;
-
     for (int bounce = 0; !w.active.empty(); ++bounce) {
         w.hits.resize(w.rays.size());
         // Camera rays are coherent and go as packets; after a bounce, rays scatter and Embree's
@@ -264,219 +273,262 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
                 prefetchHitIndices(scene_, w.hits[j + kIndicesAhead]);
             if (j + kVerticesAhead < w.hits.size())
                 prefetchHitVertices(scene_, w.hits[j + kVerticesAhead]);
-            uint32_t pi = w.active[j];
-            PathState& st = w.paths[pi];
-            Sampler& sampler = batch[pi].sampler;
-            SampleRecord& rec = batch[pi].record;
-            const Ray& ray = w.rays[j];
-            const Hit& hit = w.hits[j];
-
-            // Weight of emission found by following the BSDF-sampled ray, against NEE having
-            // sampled light li.
-            auto emissionWeight = [&](int li, const Vec3& dir, const Vec3& x, const Vec3& n) {
-                if constexpr (DeltaLightsOnly)
-                    return 1.0f;  // no light can be hit: emission here is unweighted
-                if (hemisphere && !st.specular) return 0.0f;  // the probes counted it
-                if (st.specular || li < 0 || !useNee) return 1.0f;
-                if (opt_.sampling == DirectSampling::Light) return 0.0f;
-                float pl =
-                    lights_.selectPmf(size_t(li)) * lights_.pdf(size_t(li), st.prevP, dir, x, n);
-                return misWeight(1, st.prevPdf, nLight, pl);
-            };
-
-            if (!hit.valid()) {
-                if constexpr (Infinite) {
-                    Vec3 dir = normalize(ray.dir);
-                    for (size_t i : lights_.infiniteLights()) {
-                        Color Le = lights_.escaped(i, dir, bounce == 0);
-                        if (maxComponent(Le) > 0)
-                            addLight<SplitLight>(
-                                rec, bounce,
-                                st.beta * Le * emissionWeight(int(i), dir, Vec3(0.0f), Vec3(0.0f)),
-                                st.firstLobe);
-                    }
-                }
-                continue;
-            }
-            SurfaceInteraction si = makeInteraction(scene_, ray, hit);
-            const Material& mat = scene_.materials[si.material];
-            if (bounce == 0) recordSurface(ray, hit, si, rec);
-            if (maxComponent(mat.emission) > 0) {
-                int li = -1;
-                Color Le = emissionAt(ray, hit, si, li);
-                if (li < 0 && bounce > 0 && !opt_.unsampledEmittersLight) Le = Color(0.0f);
-                addLight<SplitLight>(
-                    rec, bounce, st.beta * Le * emissionWeight(li, normalize(ray.dir), si.p, si.ng),
-                    st.firstLobe);
-            }
-            if (bounce >= opt_.maxDepth) continue;
-            SurfaceInputs in = SurfaceInputs::of(mat);
-            if (colourVaries_) {
-                st.travelled += hit.t * length(ray.dir);
-                const float footprint = st.travelled * opt_.pixelSpread;
-                in = surfaceInputsAt(scene_, mat, hit, footprint);
-                applyNormalMap(scene_, mat, hit, -normalize(ray.dir), footprint, si);
-            }
-            // The rest of the vertex, for its BSDF: a Lambertian surface takes the Lambert-only
-            // code in every scene (measured: the general BSDF's dispatch slowed the walls of a box
-            // holding one metal object by a third).
-            const Vec3 woWorld = -normalize(ray.dir);
-            const Frame frame = shadingFrame(si, woWorld);
-            auto shade = [&](const auto& bsdf) {
-                if (bsdf.isBlack()) return;
-                Vec3 wo = frame.toLocal(woWorld);
-                // A diffuse last vertex takes its direct light from light sampling alone: its
-                // continuation could only find emission, which MIS weighs low on a diffuse surface.
-                const bool lightOnly =
-                    lightOnlyAtLastVertex_ && bounce + 1 == opt_.maxDepth && bsdf.isDiffuse();
-
-                // Next-event estimation, shadow rays queued: -l lights chosen by power, or, when
-                // every light is a delta light, each light once (CS184's "a point light gets one
-                // sample": more samples of a point would repeat the same ray).
-                if (useNee && !bsdf.isDelta() &&
-                    (opt_.accumulateBounces || bounce + 1 == opt_.maxDepth)) {
-                    const int samples =
-                        eachDeltaLightOnce_ ? int(lights_.size()) : opt_.lightSamples;
-                    const float perSample = eachDeltaLightOnce_ ? 1.0f : nLight;
-                    for (int k = 0; k < samples; ++k) {
-                        float pmf = 1.0f, u1 = 0.5f, u2 = 0.5f;
-                        size_t li = size_t(k);
-                        if (!eachDeltaLightOnce_) {
-                            if (lights_.size() == 1) {  // the one light: no choice to draw
-                                sampler.skip1D();
-                                li = 0, pmf = lights_.selectPmf(0);
-                            } else {
-                                li = lights_.select(sampler.next1D(), pmf);
-                            }
-                            auto [a, b] = sampler.next2D();
-                            u1 = a, u2 = b;
-                        }
-                        LightSample ls;
-                        if (!lights_.sample(li, si.p, u1, u2, ls) || pmf == 0) continue;
-                        Vec3 wi = frame.toLocal(ls.wi);
-                        Color f = bsdf.eval(wo, wi) * std::abs(wi.z);
-                        // Geometric side check: no light from behind the actual surface through a
-                        // bent normal.
-                        if (maxComponent(f) <= 0 ||
-                            (dot(ls.wi, si.ng) <= 0 && !bsdf.hasTransmission()))
-                            continue;
-                        float pl = pmf * ls.pdf;
-                        float weight = 1.0f;
-                        if constexpr (!DeltaLightsOnly)
-                            if (!ls.delta && opt_.sampling != DirectSampling::Light && !lightOnly &&
-                                lights_.hittable(li))
-                                weight = misWeight(nLight, pl, 1, bsdf.pdf(wo, wi));
-                        w.shadowRays.push_back(ls.infinite ? spawnRay(si, ls.wi)
-                                                           : spawnRayTo(si, ls.p, ls.pError));
-                        w.pending.push_back({pi, bounce + 1,
-                                             bounce == 0 ? lobeOf(mat, false) : st.firstLobe,
-                                             st.beta * f * ls.Li * (weight / (pl * perSample))});
-                    }
-                }
-
-                // -H (CS184's estimate_direct_lighting_hemisphere): -l uniform hemisphere rays,
-                // each adding the emission it finds; the continuing path then counts none.
-                if (hemisphere && !bsdf.isDelta() &&
-                    (opt_.accumulateBounces || bounce + 1 == opt_.maxDepth)) {
-                    for (int k = 0; k < opt_.lightSamples; ++k) {
-                        Vec3 wi = uniformHemisphere(sampler.next1D(), sampler.next1D());
-                        if (wo.z < 0) wi.z = -wi.z;
-                        Vec3 wiWorld = frame.toWorld(wi);
-                        Color f = bsdf.eval(wo, wi) * std::abs(wi.z);
-                        if (maxComponent(f) <= 0 ||
-                            (dot(wiWorld, si.ng) > 0) != (dot(woWorld, si.ng) > 0))
-                            continue;
-                        w.probeRays.push_back(spawnRay(si, wiWorld));
-                        w.probes.push_back({pi, bounce + 1,
-                                            bounce == 0 ? lobeOf(mat, false) : st.firstLobe,
-                                            st.beta * f / (uniformHemispherePdf() * nLight)});
-                    }
-                }
-
-                // Continue the path. With only delta lights and no emitters, a ray after the last
-                // bounce could find nothing: not traced.
-                if constexpr (DeltaLightsOnly)
-                    if (bounce + 1 >= opt_.maxDepth) return;
-                if (lightOnly) return;
-                BsdfSample bs;
-                float uc = 0.5f;  // the lobe choice, for BSDFs with more than one lobe
-                if (bsdf.usesLobeChoice())
-                    uc = sampler.next1D();
-                else
-                    sampler.skip1D();
-                auto [u1, u2] = sampler.next2D();
-                if (!bsdf.sample(wo, uc, u1, u2, bs)) return;
-                if (bs.pdf <= 0 || maxComponent(bs.f) <= 0) return;
-                // With -H, what a non-delta bounce's ray finds at the last depth the probes
-                // counted.
-                if (hemisphere && !bs.delta && bounce + 1 >= opt_.maxDepth) return;
-                // The shading frame may send a reflection below the real surface, or a refraction
-                // back out of it: following either would leak light through thin walls.
-                Vec3 wiWorld = frame.toWorld(bs.wi);
-                if ((dot(wiWorld, si.ng) > 0) == bs.transmission) return;
-                if (bounce == 0) st.firstLobe = lobeOf(mat, bs.transmission);
-                st.beta *= bs.f * (std::abs(bs.wi.z) / bs.pdf);
-                st.specular = bs.delta;
-                st.prevPdf = bs.misPdf > 0 ? bs.misPdf : bs.pdf;
-                st.prevP = si.p;
-
-                // Russian roulette: unbiased, the survivors carry 1 / continuation. Its dimension
-                // is spent at every vertex, played or not.
-                if (opt_.roulette == Roulette::Throughput &&
-                    bounce + 1 >= opt_.rouletteMinBounces) {
-                    float q = std::min(1.0f, maxComponent(st.beta));
-                    if (sampler.next1D() >= q) return;
-                    st.beta = st.beta / q;
-                } else if (opt_.roulette == Roulette::Fixed && bounce >= 1) {
-                    if (sampler.next1D() >= opt_.fixedContinuation) return;
-                    st.beta = st.beta / opt_.fixedContinuation;
-                } else {
-                    sampler.skip1D();
-                }
-                if (!isFinite(st.beta) || maxComponent(st.beta) <= 0) return;
-                w.next.push_back(pi);
-                w.nextRays.push_back(spawnRay(si, wiWorld));
-            };
-            if (DiffuseOnly || lambertian_[si.material]) {
-                LambertBsdf lambert(in.baseColour, !lambertian_[si.material]);
-                // Guided where the bounce is traced (not at a light-only last vertex).
-                const bool bounces = !(lightOnlyAtLastVertex_ && bounce + 1 == opt_.maxDepth);
-                const GuideLeaf* leaf = guide_ && bounces ? guide_->leafAt(si.p) : nullptr;
-                if (leaf)
-                    shade(GuidedLambert(lambert, *leaf, si.p, frame));
-                else
-                    shade(lambert);
-            } else {
-                shade(Bsdf(mat, opt_.microfacet, in));
-            }
+            shadePath<F>(batch, w, j, bounce);
         }
-
-        // The queued next-event estimates, traced together; in queue order, which is each path's
-        // own order.
-        if (!w.shadowRays.empty()) {
-            w.occluded.resize(w.shadowRays.size());
-            accel_.occluded(std::span<const Ray>(w.shadowRays), std::span<uint8_t>(w.occluded));
-            counter.rays += w.shadowRays.size();
-            for (size_t k = 0; k < w.pending.size(); ++k) {
-                if (w.occluded[k]) continue;
-                const PendingLight& p = w.pending[k];
-                addLight<SplitLight>(batch[p.path].record, p.bounce, p.contribution, p.lobe);
-            }
-        }
-        if (!w.probeRays.empty()) {
-            w.probeHits.resize(w.probeRays.size());
-            accel_.intersect(std::span<const Ray>(w.probeRays), std::span<Hit>(w.probeHits));
-            counter.rays += w.probeRays.size();
-            for (size_t k = 0; k < w.probes.size(); ++k) {
-                const PendingLight& p = w.probes[k];
-                Color Le = probeEmission<Infinite>(w.probeRays[k], w.probeHits[k]);
-                if (maxComponent(Le) > 0)
-                    addLight<SplitLight>(batch[p.path].record, p.bounce, p.contribution * Le,
-                                         p.lobe);
-            }
-        }
+        resolveShadowRays<F>(batch, w, counter);
+        resolveProbes<F>(batch, w, counter);
         w.active.swap(w.next);
         w.rays.swap(w.nextRays);
+    }
+}
+
+// One path at one bounce: light from where its ray went, then its vertex's BSDF (a Lambertian
+// surface takes the Lambert-only code in every scene: the general BSDF's dispatch slowed the walls
+// of a box holding one metal object by a third).
+template <class F>
+void PathIntegrator::shadePath(std::span<CameraSample> batch, Scratch& w, size_t j,
+                               int bounce) const {
+    const uint32_t pi = w.active[j];
+    PathState& st = w.paths[pi];
+    SampleRecord& rec = batch[pi].record;
+    const Ray& ray = w.rays[j];
+    const Hit& hit = w.hits[j];
+    if (!hit.valid()) {
+        addEscaped<F>(st, rec, ray, bounce);
+        return;
+    }
+    SurfaceInteraction si = makeInteraction(scene_, ray, hit);
+    const Material& mat = scene_.materials[si.material];
+    if (bounce == 0) recordSurface(ray, hit, si, rec);
+    if (maxComponent(mat.emission) > 0) addSurfaceEmission<F>(st, rec, ray, hit, si, bounce);
+    if (bounce >= opt_.maxDepth) return;
+    SurfaceInputs in = surfaceInputs(st, mat, ray, hit, si);
+    const Vec3 woWorld = -normalize(ray.dir);
+    const Vertex v{pi, bounce, st, batch[pi].sampler, si, mat, woWorld, shadingFrame(si, woWorld)};
+    const bool lambertian = lambertian_[si.material];
+    if (!F::diffuseOnly && !lambertian) {
+        shadeVertex<F>(v, Bsdf(mat, opt_.microfacet, in), w);
+        return;
+    }
+    LambertBsdf lambert(in.baseColour, !lambertian);
+    // Guided where the bounce is traced (not at a light-only last vertex).
+    const bool bounces = !(lightOnlyAtLastVertex_ && bounce + 1 == opt_.maxDepth);
+    const GuideLeaf* leaf = guide_ && bounces ? guide_->leafAt(v.si.p) : nullptr;
+    if (leaf)
+        shadeVertex<F>(v, GuidedLambert(lambert, *leaf, v.si.p, v.frame), w);
+    else
+        shadeVertex<F>(v, lambert, w);
+}
+
+// A ray that left the scene: the lights at infinity it sees.
+template <class F>
+void PathIntegrator::addEscaped(const PathState& st, SampleRecord& rec, const Ray& ray,
+                                int bounce) const {
+    if constexpr (F::infinite) {
+        Vec3 dir = normalize(ray.dir);
+        for (size_t i : lights_.infiniteLights()) {
+            Color Le = lights_.escaped(i, dir, bounce == 0);
+            if (maxComponent(Le) > 0)
+                addLight<F::splitLight>(
+                    rec, bounce,
+                    st.beta * Le * emissionWeight<F>(st, int(i), dir, Vec3(0.0f), Vec3(0.0f)),
+                    st.firstLobe);
+        }
+    }
+}
+
+// An emitting surface the path found, weighed against next-event estimation having sampled it.
+template <class F>
+void PathIntegrator::addSurfaceEmission(const PathState& st, SampleRecord& rec, const Ray& ray,
+                                        const Hit& hit, const SurfaceInteraction& si,
+                                        int bounce) const {
+    int li = -1;
+    Color Le = emissionAt(ray, hit, si, li);
+    if (!rules_.emitterLights(li, bounce)) Le = Color(0.0f);
+    addLight<F::splitLight>(
+        rec, bounce, st.beta * Le * emissionWeight<F>(st, li, normalize(ray.dir), si.p, si.ng),
+        st.firstLobe);
+}
+
+// Weight of emission found by following the BSDF-sampled ray, against NEE having sampled light li.
+template <class F>
+float PathIntegrator::emissionWeight(const PathState& st, int li, const Vec3& dir, const Vec3& x,
+                                     const Vec3& n) const {
+    if constexpr (F::deltaLightsOnly) return 1.0f;  // no light can be hit: emission is unweighted
+    if (rules_.hemisphere && !st.specular) return 0.0f;  // the probes counted it
+    if (st.specular || li < 0 || !useNee_) return 1.0f;
+    if (opt_.sampling == DirectSampling::Light) return 0.0f;
+    float pl = lights_.selectPmf(size_t(li)) * lights_.pdf(size_t(li), st.prevP, dir, x, n);
+    return misWeight(1, st.prevPdf, float(opt_.lightSamples), pl);
+}
+
+// The material at the vertex: textures and vertex colours looked up with the footprint the path
+// has grown to, the normal map applied.
+SurfaceInputs PathIntegrator::surfaceInputs(PathState& st, const Material& mat, const Ray& ray,
+                                            const Hit& hit, SurfaceInteraction& si) const {
+    if (!colourVaries_) return SurfaceInputs::of(mat);
+    st.travelled += hit.t * length(ray.dir);
+    const float footprint = st.travelled * opt_.pixelSpread;
+    SurfaceInputs in = surfaceInputsAt(scene_, mat, hit, footprint);
+    applyNormalMap(scene_, mat, hit, -normalize(ray.dir), footprint, si);
+    return in;
+}
+
+// The vertex's stages in order: direct light (light sampling, or -H probes), then the
+// continuation by BSDF sampling and roulette.
+template <class F, class B>
+void PathIntegrator::shadeVertex(const Vertex& v, const B& bsdf, Scratch& w) const {
+    if (bsdf.isBlack()) return;
+    const Vec3 wo = v.frame.toLocal(v.woWorld);
+    // A diffuse last vertex takes its direct light from light sampling alone: its continuation
+    // could only find emission, which MIS weighs low on a diffuse surface.
+    const bool lightOnly =
+        lightOnlyAtLastVertex_ && v.bounce + 1 == opt_.maxDepth && bsdf.isDiffuse();
+    const bool gathers = !bsdf.isDelta() && rules_.gathersAt(v.bounce);
+    if (useNee_ && gathers) sampleDirectLight<F>(v, bsdf, wo, lightOnly, w);
+    if (rules_.hemisphere && gathers) queueHemisphereProbes(v, bsdf, wo, w);
+    // With only delta lights and no emitters, a ray after the last bounce could find nothing.
+    if constexpr (F::deltaLightsOnly)
+        if (v.bounce + 1 >= opt_.maxDepth) return;
+    if (lightOnly) return;
+    continuePath(v, bsdf, wo, w);
+}
+
+// Next-event estimation, shadow rays queued: -l lights chosen by power, or each delta light once.
+template <class F, class B>
+void PathIntegrator::sampleDirectLight(const Vertex& v, const B& bsdf, const Vec3& wo,
+                                       bool lightOnly, Scratch& w) const {
+    const bool eachOnce = rules_.eachDeltaLightOnce;
+    const int samples = rules_.lightSamplesPerVertex(opt_.lightSamples, lights_.size());
+    const float nLight = float(opt_.lightSamples);
+    const float perSample = eachOnce ? 1.0f : nLight;
+    for (int k = 0; k < samples; ++k) {
+        float pmf = 1.0f, u1 = 0.5f, u2 = 0.5f;
+        size_t li = size_t(k);
+        if (!eachOnce) {
+            if (lights_.size() == 1) {  // the one light: no choice to draw
+                v.sampler.skip1D();
+                li = 0, pmf = lights_.selectPmf(0);
+            } else {
+                li = lights_.select(v.sampler.next1D(), pmf);
+            }
+            auto [a, b] = v.sampler.next2D();
+            u1 = a, u2 = b;
+        }
+        LightSample ls;
+        if (!lights_.sample(li, v.si.p, u1, u2, ls) || pmf == 0) continue;
+        Vec3 wi = v.frame.toLocal(ls.wi);
+        Color f = bsdf.eval(wo, wi) * std::abs(wi.z);
+        // Geometric side check: no light from behind the actual surface through a bent normal.
+        if (maxComponent(f) <= 0 || (dot(ls.wi, v.si.ng) <= 0 && !bsdf.hasTransmission())) continue;
+        float pl = pmf * ls.pdf;
+        float weight = 1.0f;
+        if constexpr (!F::deltaLightsOnly)
+            if (!ls.delta && opt_.sampling != DirectSampling::Light && !lightOnly &&
+                lights_.hittable(li))
+                weight = misWeight(nLight, pl, 1, bsdf.pdf(wo, wi));
+        w.shadowRays.push_back(ls.infinite ? spawnRay(v.si, ls.wi)
+                                           : spawnRayTo(v.si, ls.p, ls.pError));
+        w.pending.push_back(
+            {v.path, v.bounce + 1, v.lobe(), v.st.beta * f * ls.Li * (weight / (pl * perSample))});
+    }
+}
+
+// -H (CS184's estimate_direct_lighting_hemisphere): -l uniform hemisphere rays, each adding the
+// emission it finds; the continuing path then counts none.
+template <class B>
+void PathIntegrator::queueHemisphereProbes(const Vertex& v, const B& bsdf, const Vec3& wo,
+                                           Scratch& w) const {
+    const float nLight = float(opt_.lightSamples);
+    for (int k = 0; k < opt_.lightSamples; ++k) {
+        Vec3 wi = uniformHemisphere(v.sampler.next1D(), v.sampler.next1D());
+        if (wo.z < 0) wi.z = -wi.z;
+        Vec3 wiWorld = v.frame.toWorld(wi);
+        Color f = bsdf.eval(wo, wi) * std::abs(wi.z);
+        if (maxComponent(f) <= 0 || (dot(wiWorld, v.si.ng) > 0) != (dot(v.woWorld, v.si.ng) > 0))
+            continue;
+        w.probeRays.push_back(spawnRay(v.si, wiWorld));
+        w.probes.push_back(
+            {v.path, v.bounce + 1, v.lobe(), v.st.beta * f / (uniformHemispherePdf() * nLight)});
+    }
+}
+
+// The bounce: a direction sampled from the BSDF, the throughput updated, roulette played, the
+// next ray queued.
+template <class B>
+void PathIntegrator::continuePath(const Vertex& v, const B& bsdf, const Vec3& wo,
+                                  Scratch& w) const {
+    BsdfSample bs;
+    float uc = 0.5f;  // the lobe choice, for BSDFs with more than one lobe
+    if (bsdf.usesLobeChoice())
+        uc = v.sampler.next1D();
+    else
+        v.sampler.skip1D();
+    auto [u1, u2] = v.sampler.next2D();
+    if (!bsdf.sample(wo, uc, u1, u2, bs)) return;
+    if (bs.pdf <= 0 || maxComponent(bs.f) <= 0) return;
+    // With -H, what a non-delta bounce's ray finds at the last depth the probes counted.
+    if (rules_.hemisphere && !bs.delta && v.bounce + 1 >= opt_.maxDepth) return;
+    // The shading frame may send a reflection below the real surface, or a refraction back out of
+    // it: following either would leak light through thin walls.
+    Vec3 wiWorld = v.frame.toWorld(bs.wi);
+    if ((dot(wiWorld, v.si.ng) > 0) == bs.transmission) return;
+    PathState& st = v.st;
+    if (v.bounce == 0) st.firstLobe = lobeOf(v.mat, bs.transmission);
+    st.beta *= bs.f * (std::abs(bs.wi.z) / bs.pdf);
+    st.specular = bs.delta;
+    st.prevPdf = bs.misPdf > 0 ? bs.misPdf : bs.pdf;
+    st.prevP = v.si.p;
+    if (!playRoulette(st, v.sampler, v.bounce)) return;
+    if (!isFinite(st.beta) || maxComponent(st.beta) <= 0) return;
+    w.next.push_back(v.path);
+    w.nextRays.push_back(spawnRay(v.si, wiWorld));
+}
+
+// Russian roulette: unbiased, the survivors carry 1 / continuation. Its dimension is spent at every
+// vertex, played or not. False: the path ends.
+bool PathIntegrator::playRoulette(PathState& st, Sampler& sampler, int bounce) const {
+    if (opt_.roulette == Roulette::Throughput && bounce + 1 >= opt_.rouletteMinBounces) {
+        float q = std::min(1.0f, maxComponent(st.beta));
+        if (sampler.next1D() >= q) return false;
+        st.beta = st.beta / q;
+    } else if (opt_.roulette == Roulette::Fixed && bounce >= 1) {
+        if (sampler.next1D() >= opt_.fixedContinuation) return false;
+        st.beta = st.beta / opt_.fixedContinuation;
+    } else {
+        sampler.skip1D();
+    }
+    return true;
+}
+
+// The queued next-event estimates, traced together; in queue order, which is each path's own.
+template <class F>
+void PathIntegrator::resolveShadowRays(std::span<CameraSample> batch, Scratch& w,
+                                       RayCounter& counter) const {
+    if (w.shadowRays.empty()) return;
+    w.occluded.resize(w.shadowRays.size());
+    accel_.occluded(std::span<const Ray>(w.shadowRays), std::span<uint8_t>(w.occluded));
+    counter.rays += w.shadowRays.size();
+    for (size_t k = 0; k < w.pending.size(); ++k) {
+        if (w.occluded[k]) continue;
+        const PendingLight& p = w.pending[k];
+        addLight<F::splitLight>(batch[p.path].record, p.bounce, p.contribution, p.lobe);
+    }
+}
+
+// The queued -H probes, traced together: each adds the emission it found.
+template <class F>
+void PathIntegrator::resolveProbes(std::span<CameraSample> batch, Scratch& w,
+                                   RayCounter& counter) const {
+    if (w.probeRays.empty()) return;
+    w.probeHits.resize(w.probeRays.size());
+    accel_.intersect(std::span<const Ray>(w.probeRays), std::span<Hit>(w.probeHits));
+    counter.rays += w.probeRays.size();
+    for (size_t k = 0; k < w.probes.size(); ++k) {
+        const PendingLight& p = w.probes[k];
+        Color Le = probeEmission<F::infinite>(w.probeRays[k], w.probeHits[k]);
+        if (maxComponent(Le) > 0)
+            addLight<F::splitLight>(batch[p.path].record, p.bounce, p.contribution * Le, p.lobe);
     }
 }
 

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "integrators/bsdf.h"
+#include "integrators/cs184_rules.h"
 #include "integrators/guiding.h"
 #include "integrators/integrator.h"
 #include "integrators/lights.h"
@@ -48,9 +49,49 @@ class PathIntegrator final : public Integrator {
     const std::shared_ptr<const GuideField>& guide() const { return guide_; }
 
   private:
-    static TraceFn pathFor(const RenderPlan& plan);
+    // What the plan lets a specialisation leave out, as compile-time flags (pathFor).
     template <bool DiffuseOnly, bool Infinite, bool DeltaLightsOnly, bool SplitLight>
+    struct Features {
+        static constexpr bool diffuseOnly = DiffuseOnly;          // every surface Lambert or black
+        static constexpr bool infinite = Infinite;                // escaping rays look up lights
+        static constexpr bool deltaLightsOnly = DeltaLightsOnly;  // no light a ray can hit
+        static constexpr bool splitLight = SplitLight;            // light AOVs recorded
+    };
+    struct PathState;  // path.cpp: what a path carries between vertices
+    struct Scratch;    // path.cpp: a batch's queues
+    struct Vertex;     // path.cpp: one path's surface vertex being shaded
+
+    static TraceFn pathFor(const RenderPlan& plan);
+    // The wavefront over a batch, a bounce at a time, in named stages (path.cpp).
+    template <class F>
     void trace(std::span<CameraSample> batch, RayCounter& counter) const;
+    template <class F>
+    void shadePath(std::span<CameraSample> batch, Scratch& w, size_t j, int bounce) const;
+    template <class F>
+    void addEscaped(const PathState& st, SampleRecord& rec, const Ray& ray, int bounce) const;
+    template <class F>
+    void addSurfaceEmission(const PathState& st, SampleRecord& rec, const Ray& ray, const Hit& hit,
+                            const SurfaceInteraction& si, int bounce) const;
+    template <class F>
+    float emissionWeight(const PathState& st, int li, const Vec3& dir, const Vec3& x,
+                         const Vec3& n) const;
+    SurfaceInputs surfaceInputs(PathState& st, const Material& mat, const Ray& ray, const Hit& hit,
+                                SurfaceInteraction& si) const;
+    template <class F, class B>
+    void shadeVertex(const Vertex& v, const B& bsdf, Scratch& w) const;
+    template <class F, class B>
+    void sampleDirectLight(const Vertex& v, const B& bsdf, const Vec3& wo, bool lightOnly,
+                           Scratch& w) const;
+    template <class B>
+    void queueHemisphereProbes(const Vertex& v, const B& bsdf, const Vec3& wo, Scratch& w) const;
+    template <class B>
+    void continuePath(const Vertex& v, const B& bsdf, const Vec3& wo, Scratch& w) const;
+    bool playRoulette(PathState& st, Sampler& sampler, int bounce) const;
+    template <class F>
+    void resolveShadowRays(std::span<CameraSample> batch, Scratch& w, RayCounter& counter) const;
+    template <class F>
+    void resolveProbes(std::span<CameraSample> batch, Scratch& w, RayCounter& counter) const;
+
     template <bool SplitLight>
     void addLight(SampleRecord& rec, int bounce, const Color& c, Lobe lobe) const;
     // Radiance an emitting surface sends back along ray; li: the light that samples it, or -1.
@@ -58,14 +99,17 @@ class PathIntegrator final : public Integrator {
     // What a -H hemisphere probe finds: emission where it hits, lights at infinity where not.
     template <bool Infinite>
     Color probeEmission(const Ray& ray, const Hit& hit) const;
-    TraceFn trace_;  // chosen once, for the plan
     float misWeight(float nf, float fPdf, float ng, float gPdf) const {
         return opt_.heuristic == MisHeuristic::Power ? powerHeuristic(nf, fPdf, ng, gPdf)
                                                      : balanceHeuristic(nf, fPdf, ng, gPdf);
     }
+
+    TraceFn trace_;  // chosen once, for the plan
     PathOptions opt_;
     LightSet lights_;
-    bool eachDeltaLightOnce_ = false;     // only (a few) delta lights: NEE takes each once
+    Cs184Rules rules_;
+    // Next-event estimation: light sampling (mis, light) with lights to sample.
+    bool useNee_ = false;
     bool lightOnlyAtLastVertex_ = false;  // a diffuse last vertex: NEE alone, no continuation
     std::shared_ptr<const GuideField> guide_;
     std::vector<uint8_t> lambertian_;  // per material: shaded by the Lambert-only code

@@ -28,6 +28,8 @@ struct BsdfClasses {
                                          : false) ||
                ...);
     }
+    // How many classes take the kind (exactly one for every kind: tests/test_material_kinds.cpp).
+    static int handlerCount(MaterialKind k) { return (int(Classes::handles(k)) + ...); }
     static Color aovAlbedo(const Material& m, const Color& baseColour) {
         Color out(0.0f);
         (void)((Classes::handles(m.kind) ? (out = Classes::aovAlbedo(m, baseColour), true)

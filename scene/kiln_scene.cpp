@@ -247,6 +247,22 @@ void readPrincipledTextures(const std::string& file, pugi::xml_node n, Material&
     m.maps.metallicChannel = 2, m.maps.roughnessChannel = 1;
 }
 
+// Every attribute must be one this kind reads (its row's parameters): a typo, or a parameter of
+// another kind, is an error rather than a silently ignored setting.
+void checkMaterialAttributes(const std::string& file, pugi::xml_node n,
+                             const MaterialKindSpec& spec) {
+    for (pugi::xml_attribute a : n.attributes()) {
+        std::string_view name = a.name();
+        bool known = name == "name" || name == "kind" || (name == "emission" && spec.addsEmission);
+        for (const MaterialParam& p : spec.params) known |= name == p.name;
+        if (spec.kind == MaterialKind::Principled)
+            known |= name == "base-color-texture" || name == "metallic-roughness-texture";
+        if (!known)
+            throw SceneError(file, "<material> has unknown attribute '" + std::string(name) +
+                                       "' for kind " + spec.name);
+    }
+}
+
 Material parseMaterial(const std::string& file, pugi::xml_node n, Scene& scene) {
     Material m;
     m.name = n.attribute("name").as_string();
@@ -257,6 +273,7 @@ Material parseMaterial(const std::string& file, pugi::xml_node n, Scene& scene) 
             file, "unknown material kind '" + kind + "' (" +
                       materialKindNames([](const MaterialKindSpec& s) { return s.inKiln; }) + ")");
     m.kind = spec->kind;
+    checkMaterialAttributes(file, n, *spec);
     if (spec->kilnDefaults) spec->kilnDefaults(m);
     for (const MaterialParam& p : spec->params) readParam(file, n, p, m);
     if (m.kind == MaterialKind::Principled) readPrincipledTextures(file, n, m, scene);
@@ -480,11 +497,6 @@ void readKilnScene(const std::string& path, Scene& scene) {
     // so positions given in the file are stored against it whatever the order of the elements.
     std::map<std::string, uint32_t> materials;
     for (pugi::xml_node n : root.children("material")) {
-        checkKnown(path, n,
-                   {"name", "kind", "albedo", "reflectance", "ior", "alpha", "eta", "k",
-                    // principled (docs/kiln-scene.md)
-                    "base-color", "base-color-texture", "metallic-roughness-texture", "metallic",
-                    "roughness", "specular", "clearcoat", "clearcoat-roughness", "emission"});
         materials[n.attribute("name").as_string()] = uint32_t(scene.materials.size());
         scene.materials.push_back(parseMaterial(path, n, scene));
     }

@@ -6,6 +6,7 @@
 #include "renderer/core/warp.h"
 #include "renderer/geometry/material_lookup.h"
 #include "renderer/geometry/opacity.h"
+#include "scene/light_kinds.h"
 
 namespace kiln {
 namespace {
@@ -166,6 +167,7 @@ LightSet::LightSet(const Scene& scene) : scene_(&scene) {
     for (const Light& l : scene.lights) {
         Entry e;
         e.light = &l;
+        e.hittable = specOf(l.kind).hittable(l);
         if (l.kind == LightKind::Area || l.kind == LightKind::MeshEmitter) {
             if (l.kind == LightKind::MeshEmitter || l.hasMesh) {
                 const TriangleMesh& m = scene.meshes[l.mesh];
@@ -244,18 +246,11 @@ float LightSet::power(const Entry& e, float r) const {
     return 0;
 }
 
-bool LightSet::hittable(size_t i) const {
-    const Light& l = *lights_[i].light;
-    return l.kind == LightKind::MeshEmitter || l.kind == LightKind::Environment ||
-           l.kind == LightKind::Ambient || (l.kind == LightKind::Area && l.hasMesh);
-}
+bool LightSet::hittable(size_t i) const { return lights_[i].hittable; }
 
 bool LightSet::allDelta() const {
-    for (const Entry& e : lights_) {
-        LightKind k = e.light->kind;
-        if (k != LightKind::Point && k != LightKind::Spot && k != LightKind::Directional)
-            return false;
-    }
+    for (const Entry& e : lights_)
+        if (!specOf(e.light->kind).delta) return false;
     return true;
 }
 

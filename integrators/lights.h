@@ -87,6 +87,7 @@ class LightSet {
   private:
     struct Entry {
         const Light* light;
+        bool hittable = false;  // light_kinds.h: rays can hit it
         // Area lights (rectangle) and mesh emitters: triangles with an area distribution.
         std::vector<Vec3> triangles;  // p0, edge1, edge2 per triangle
         std::vector<Vec3> normals;    // unit geometric normal per triangle

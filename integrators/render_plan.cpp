@@ -8,6 +8,7 @@
 #include "renderer/core/warp.h"
 #include "renderer/geometry/camera.h"
 #include "renderer/geometry/interaction.h"
+#include "scene/light_kinds.h"
 #include "scene/material_kinds.h"
 
 namespace kiln {
@@ -70,13 +71,11 @@ RenderPlan planFor(const Scene& scene, const Accelerator& accel, const AovReques
     bool hittableAreaLights = false;
     p.deltaLightsOnly = !scene.lights.empty();
     for (const Light& l : scene.lights) {
-        bool delta = l.kind == LightKind::Point || l.kind == LightKind::Spot ||
-                     l.kind == LightKind::Directional;
-        p.deltaLightsOnly &= delta;
-        p.areaLights |= l.kind == LightKind::Area || l.kind == LightKind::MeshEmitter;
-        hittableAreaLights |=
-            l.kind == LightKind::MeshEmitter || (l.kind == LightKind::Area && l.hasMesh);
-        p.infiniteLights |= l.kind == LightKind::Environment || l.kind == LightKind::Ambient;
+        const LightKindSpec& k = specOf(l.kind);
+        p.deltaLightsOnly &= k.delta;
+        p.areaLights |= k.surface;
+        hittableAreaLights |= k.surface && k.hittable(l);
+        p.infiniteLights |= k.infinite;
         p.environmentMap |= l.kind == LightKind::Environment && l.environmentImage != nullptr;
     }
     p.defaultLightSamples = p.environmentMap ? RenderPlan::kEnvironmentLightSamples : 1;

@@ -5,26 +5,6 @@
 
 namespace kiln {
 
-const char* toString(LightKind kind) {
-    switch (kind) {
-        case LightKind::Area:
-            return "area";
-        case LightKind::MeshEmitter:
-            return "emissive_mesh";
-        case LightKind::Point:
-            return "point";
-        case LightKind::Spot:
-            return "spot";
-        case LightKind::Directional:
-            return "directional";
-        case LightKind::Ambient:
-            return "ambient";
-        case LightKind::Environment:
-            return "environment";
-    }
-    return "unknown";
-}
-
 void TriangleMesh::finalizePadding() {
     if (positions.size() % 3 == 0) positions.push_back(0.0f);
 }

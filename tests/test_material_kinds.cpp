@@ -5,6 +5,7 @@
 #include <set>
 
 #include "integrators/bsdf.h"
+#include "scene/light_kinds.h"
 #include "scene/material_kinds.h"
 #include "scene/scene_info.h"
 #include "scene/scene_loader.h"
@@ -133,6 +134,40 @@ TEST(MaterialKinds, RequiredParametersAreRequired) {
     ASSERT_TRUE(m);
     EXPECT_FLOAT_EQ(m->roughness, 0.5f);  // the kind's default, not Material{}'s
     EXPECT_EQ(m->albedo, Color(0.8f));
+}
+
+}  // namespace
+}  // namespace kiln
+
+namespace kiln {
+namespace {
+
+// The light kind table: one row per kind, in order, with facts the light set and plan agree with.
+TEST(LightKinds, EveryKindHasOneRow) {
+    constexpr LightKind kEvery[] = {
+        LightKind::Area,        LightKind::MeshEmitter, LightKind::Point,      LightKind::Spot,
+        LightKind::Directional, LightKind::Ambient,     LightKind::Environment};
+    EXPECT_EQ(lightKinds().size(), std::size(kEvery));
+    std::set<std::string> names;
+    for (LightKind k : kEvery) {
+        EXPECT_EQ(specOf(k).kind, k);
+        EXPECT_TRUE(names.insert(toString(k)).second) << toString(k);
+        EXPECT_FALSE(specOf(k).delta && (specOf(k).infinite || specOf(k).surface)) << toString(k);
+        Light l;
+        l.kind = k;
+        // A delta light can never be hit; a light at infinity always can.
+        if (specOf(k).delta) {
+            EXPECT_FALSE(specOf(k).hittable(l));
+        }
+        if (specOf(k).infinite) {
+            EXPECT_TRUE(specOf(k).hittable(l));
+        }
+    }
+    Light area;
+    area.kind = LightKind::Area;
+    EXPECT_FALSE(specOf(LightKind::Area).hittable(area));  // a rectangle no mesh draws
+    area.hasMesh = true;
+    EXPECT_TRUE(specOf(LightKind::Area).hittable(area));
 }
 
 }  // namespace

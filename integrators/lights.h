@@ -1,48 +1,42 @@
-// Light sampling for every light kind, selection by power, and the densities MIS needs.
+// The scene's lights for sampling: one emitter class per light kind (emitter_*.h, registered
+// below), selection by power, and the densities MIS needs.
 #pragma once
 
+#include <optional>
+#include <stdexcept>
+#include <variant>
 #include <vector>
 
+#include "integrators/emitter_ambient.h"
+#include "integrators/emitter_directional.h"
+#include "integrators/emitter_environment.h"
+#include "integrators/emitter_point.h"
+#include "integrators/emitter_surface.h"
+#include "integrators/light_sample.h"
 #include "renderer/core/distribution.h"
-#include "renderer/geometry/interaction.h"
 #include "scene/scene.h"
 
 namespace kiln {
 
-// Light leaving an emitting surface (a photon): where it starts, where it goes, and its power
-// (the light's radiance over the densities of the point, the direction and the light's choice).
-struct EmissionSample {
-    SurfaceInteraction from;
-    Vec3 dir;
-    Color power;
-    bool hittable = false;  // rays can hit the light (LightSet::hittable)
+template <class... Classes>
+struct EmitterClasses {
+    using Variant = std::variant<Classes...>;
+    // The class whose handles() takes the light's kind (the first that does).
+    static Variant make(const Light& l, const Scene& scene) {
+        std::optional<Variant> v;
+        (void)((Classes::handles(l.kind) ? (v.emplace(std::in_place_type<Classes>, l, scene), true)
+                                         : false) ||
+               ...);
+        if (!v) throw std::logic_error("lights: no emitter class for a light kind");
+        return std::move(*v);
+    }
+    // How many classes take the kind (exactly one: tests/test_material_kinds.cpp).
+    static int handlerCount(LightKind k) { return (int(Classes::handles(k)) + ...); }
 };
 
-struct LightSample {
-    Color Li;       // radiance arriving at the reference point (before visibility)
-    Vec3 wi;        // unit direction towards the light
-    Vec3 p;         // point on the light (finite lights)
-    Vec3 pError;    // absolute error bound of p
-    float pdf = 0;  // solid angle density; 1 for delta lights
-    bool delta = false;
-    bool infinite = false;  // shadow ray has no end point
-};
-
-// A lat-long environment map in memory (scaled, in the working space), looked up bilinearly
-// (nearest texel for scenes built without the loader), with its importance-sampling distribution.
-struct EnvironmentMap {
-    int width = 0, height = 0;
-    std::vector<Color> pixels;
-    Color constant{0.0f};  // used when there is no image (uniform environment)
-    Distribution2D distribution;
-    float scale = 1;
-    float rotation = 0;     // radians about +Y (right-handed: counterclockwise seen from above)
-    bool bilinear = false;  // between texel centres (the loader's maps); else nearest texel
-    Color lookup(const Vec3& dir) const;
-    Color bilinearLookup(float u, float v) const;  // (u, v) in [0,1)^2
-    Vec3 direction(float u, float v) const;        // (u, v) in [0,1)^2 -> unit direction
-    void coordinates(const Vec3& dir, float& u, float& v) const;
-};
+// The registration: every emitter class, one entry each (a new light kind's class goes here).
+using RegisteredEmitters = EmitterClasses<SurfaceEmitter, PointEmitter, DirectionalEmitter,
+                                          AmbientEmitter, EnvironmentEmitter>;
 
 class LightSet {
   public:
@@ -88,31 +82,12 @@ class LightSet {
     struct Entry {
         const Light* light;
         bool hittable = false;  // light_kinds.h: rays can hit it
-        // Area lights (rectangle) and mesh emitters: triangles with an area distribution.
-        std::vector<Vec3> triangles;  // p0, edge1, edge2 per triangle
-        std::vector<Vec3> normals;    // unit geometric normal per triangle
-        Distribution1D triangleArea;
-        // Two triangles tiling a parallelogram: sampled directly (findParallelogram).
-        bool parallelogram = false;
-        Vec3 origin, edgeX, edgeY, originError, pointError;
-        float area = 0;
-        bool oneSided = false;
-        Vec3 side;  // emitting side for one-sided lights
-        // A mesh with an emission texture: sampled by triangle (the point's UVs read the texture).
-        bool emissionTextured = false;
-        // A mesh whose material cuts it out (alpha mask or blend): a sampled point emits only as
-        // much as rays hitting it see (coverageAt), so it too is sampled by triangle.
-        bool alphaCut = false;
-        EnvironmentMap env;
+        RegisteredEmitters::Variant emitter;
+        template <class F>
+        decltype(auto) visit(F&& f) const {
+            return std::visit(std::forward<F>(f), emitter);
+        }
     };
-    struct SurfacePoint {
-        Vec3 p, pError, n;
-        Color texel;  // the emission texture and alpha coverage there
-    };
-    SurfacePoint samplePoint(const Entry& e, float u1, float u2) const;
-    float power(const Entry& e, float sceneRadius) const;
-    static void findParallelogram(Entry& e);
-    const Scene* scene_;  // emission textures of mesh lights
     std::vector<Entry> lights_;
     std::vector<int> meshLight_;
     std::vector<size_t> infinite_;

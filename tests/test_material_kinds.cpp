@@ -5,6 +5,7 @@
 #include <set>
 
 #include "integrators/bsdf.h"
+#include "integrators/lights.h"
 #include "scene/light_kinds.h"
 #include "scene/material_kinds.h"
 #include "scene/scene_info.h"
@@ -142,7 +143,7 @@ TEST(MaterialKinds, RequiredParametersAreRequired) {
 namespace kiln {
 namespace {
 
-// The light kind table: one row per kind, in order, with facts the light set and plan agree with.
+// The light kind table: one row and one emitter class per kind, with facts that hold together.
 TEST(LightKinds, EveryKindHasOneRow) {
     constexpr LightKind kEvery[] = {
         LightKind::Area,        LightKind::MeshEmitter, LightKind::Point,      LightKind::Spot,
@@ -152,6 +153,7 @@ TEST(LightKinds, EveryKindHasOneRow) {
     for (LightKind k : kEvery) {
         EXPECT_EQ(specOf(k).kind, k);
         EXPECT_TRUE(names.insert(toString(k)).second) << toString(k);
+        EXPECT_EQ(RegisteredEmitters::handlerCount(k), 1) << toString(k);
         EXPECT_FALSE(specOf(k).delta && (specOf(k).infinite || specOf(k).surface)) << toString(k);
         Light l;
         l.kind = k;

@@ -1,0 +1,27 @@
+// The environment light (LightKind::Environment): a lat-long map at infinity, importance-sampled
+// by its texels (or a uniform colour without an image).
+#pragma once
+
+#include "integrators/environment_map.h"
+#include "integrators/light_sample.h"
+#include "scene/scene.h"
+
+namespace kiln {
+
+class EnvironmentEmitter {
+  public:
+    static bool handles(LightKind k) { return k == LightKind::Environment; }
+    EnvironmentEmitter(const Light& l, const Scene&) : l_(l), env_(loadEnvironment(l)) {}
+
+    float power(float r) const;
+    bool sample(const Vec3& ref, float u1, float u2, LightSample& out) const;
+    float pdf(const Vec3& ref, const Vec3& wi, const Vec3& x, const Vec3& n) const;
+    Color escaped(const Vec3& dir, bool) const { return env_.lookup(dir); }
+    Color emitted(const Vec3&, const Vec3&, const Vec3&) const { return l_.radiance; }
+
+  private:
+    const Light& l_;
+    EnvironmentMap env_;
+};
+
+}  // namespace kiln

@@ -489,9 +489,38 @@ Metadata renderMetadata(const RenderJob& job, const RenderCommand& c, const std:
     return meta;
 }
 
-int renderLong(const RenderCommand& c, const RenderJob& job,
-               const std::unique_ptr<Accelerator>& accel, const std::string& scenePath,
-               const OutputPaths& out, double loadTime, double buildTime) {
+// The final checkpoint, after the images: a checkpoint that does not fit (a full disk) cannot cost
+// a finished image. Its failure is a warning when the render is complete and its images were
+// written (the checkpoint would only serve a later refinement); otherwise (a time limit, an
+// interruption, a shard for kiln merge, an image not written) it is an error: returns 1 then.
+int writeCheckpointAfterImages(RenderCommand& c, const LongRenderOptions& lo, LongRenderResult& r,
+                               const OutputPaths& out, int imageFailures) {
+    try {
+        writeFinalCheckpoint(lo, r);
+    } catch (const std::exception& e) {
+        const RenderSettings& s = c.job.job.settings;
+        const bool shard = c.rangeStart >= 0 || s.hasRegion();
+        if (imageFailures == 0 && r.stats.complete && !shard) {
+            std::string text = fmt::format(
+                "{} (the finished image is written; the checkpoint would only serve a later "
+                "refinement with --resume)",
+                e.what());
+            logWarning("{}", text);
+            c.warnings.push_back(text);
+            return 0;
+        }
+        logError("{}", e.what());
+        return 1;
+    }
+    if (r.checkpointBytes)
+        logInfo("checkpoint {}: {:.1f} MiB written in {:.3f}s", out.checkpoint,
+                double(r.checkpointBytes) / (1 << 20), r.checkpointSeconds);
+    return 0;
+}
+
+int renderLong(RenderCommand& c, const RenderJob& job, const std::unique_ptr<Accelerator>& accel,
+               const std::string& scenePath, const OutputPaths& out, double loadTime,
+               double buildTime) {
     LongRenderOptions lo;
     lo.checkpointPath = c.checkpoints() ? out.checkpoint : "";
     lo.checkpointEverySeconds = c.checkpointEvery;
@@ -505,14 +534,11 @@ int renderLong(const RenderCommand& c, const RenderJob& job,
     lo.report = [](const std::string& text) { logInfo("{}", text); };
     LongRenderResult r = [&] {
         try {
-            return runLongRender(job, lo);
+            return renderLongFilm(job, lo);
         } catch (const CheckpointError& e) {
             throw UsageError(e.what());
         }
     }();
-    if (r.checkpointBytes)
-        logInfo("checkpoint {}: {:.1f} MiB written in {:.3f}s", out.checkpoint,
-                double(r.checkpointBytes) / (1 << 20), r.checkpointSeconds);
     auto t2 = std::chrono::steady_clock::now();
     std::string heatPath;
     int failures =
@@ -521,6 +547,7 @@ int renderLong(const RenderCommand& c, const RenderJob& job,
                                                : r.totals.metadata,
                      heatPath);
     double writeTime = seconds(t2);
+    failures += writeCheckpointAfterImages(c, lo, r, out, failures);
     printSummary(scenePath, out, heatPath, r.stats, loadTime, buildTime, writeTime);
     if (job.guided())
         logInfo("path guiding {}; trained in {:.3f}s (counted in the render time)",

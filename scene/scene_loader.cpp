@@ -142,7 +142,10 @@ void importFile(const std::string& path, Scene& scene) {
     if (ext == ".ply") {
         readPly(path, scene);
     } else if (ext == ".obj") {
-        if (!readObj(path, scene)) importWithAssimp(path, nullptr, scene);
+        if (!readObj(path, scene)) {
+            checkObjIndices(path);
+            importWithAssimp(path, nullptr, scene);
+        }
     } else if (ext == ".kiln") {
         readKilnScene(path, scene);
     } else if (ext == ".dae") {

@@ -7,6 +7,7 @@
 #include <assimp/Importer.hpp>
 #include <assimp/LogStream.hpp>
 #include <charconv>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -442,6 +443,43 @@ std::vector<bool> usedMaterials(const aiScene* as) {
     return used;
 }
 
+// Parts with no vertices or no faces (an empty "solid" in an ASCII STL beside one with triangles,
+// an empty object of a multi-part file) are dropped with a warning each, before Assimp validates
+// the scene (its validation refuses the whole file for one empty mesh). Nodes' references are
+// renumbered; when nothing is left, the file is refused as having no geometry.
+void skipEmptyMeshes(const std::string& path, aiScene* as, Scene& scene) {
+    std::vector<unsigned> newIndex(as->mNumMeshes, UINT_MAX);
+    unsigned kept = 0;
+    for (unsigned i = 0; i < as->mNumMeshes; ++i) {
+        aiMesh* m = as->mMeshes[i];
+        if (m && m->mNumVertices > 0 && m->mNumFaces > 0 && m->mVertices && m->mFaces) {
+            newIndex[i] = kept;
+            as->mMeshes[kept++] = m;
+            continue;
+        }
+        std::string name = m ? m->mName.C_Str() : "";
+        scene.warnings.push_back(fmt::format("mesh '{}' (part {} of {}) has no {}: skipped", name,
+                                             i + 1, as->mNumMeshes,
+                                             m && m->mNumVertices > 0 ? "faces" : "vertices"));
+        delete m;
+    }
+    if (kept == as->mNumMeshes) return;
+    as->mNumMeshes = kept;  // the dropped ones are deleted: the scene must not free them again
+    if (kept == 0)
+        throw SceneError(path, "every mesh of the file is empty (no vertices or no faces)");
+    std::vector<aiNode*> stack{as->mRootNode};
+    while (!stack.empty()) {
+        aiNode* node = stack.back();
+        stack.pop_back();
+        unsigned n = 0;
+        for (unsigned j = 0; j < node->mNumMeshes; ++j)
+            if (node->mMeshes[j] < newIndex.size() && newIndex[node->mMeshes[j]] != UINT_MAX)
+                node->mMeshes[n++] = newIndex[node->mMeshes[j]];
+        node->mNumMeshes = n;
+        for (unsigned c = 0; c < node->mNumChildren; ++c) stack.push_back(node->mChildren[c]);
+    }
+}
+
 }  // namespace
 
 void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scene& scene) {
@@ -454,12 +492,17 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
         aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_ValidateDataStructure;
     const aiScene* as = nullptr;
     CerrCapture printed;
+    // Read without post-processing, drop empty parts, then validate and post-process.
     if (extras && extras->patchedXml)
-        as = importer.ReadFileFromMemory(extras->patchedXml->data(), extras->patchedXml->size(),
-                                         flags, "dae");
+        as = importer.ReadFileFromMemory(extras->patchedXml->data(), extras->patchedXml->size(), 0,
+                                         "dae");
     else {
         if (lowerExtension(path) == ".off") checkOffHeader(path);
-        as = importer.ReadFile(path, flags);
+        as = importer.ReadFile(path, 0);
+    }
+    if (as && as->mRootNode && !(as->mFlags & AI_SCENE_FLAGS_INCOMPLETE)) {
+        skipEmptyMeshes(path, const_cast<aiScene*>(as), scene);
+        as = importer.ApplyPostProcessing(flags);
     }
     printed.stop();
     if (log.said("out-of-range indices"))

@@ -566,14 +566,7 @@ int renderLong(RenderCommand& c, const RenderJob& job, const std::unique_ptr<Acc
     return 0;
 }
 
-}  // namespace
-
-int runRender(const std::vector<std::string>& args) {
-    // From the start a signal stops the work and saves what it has (a farm may send SIGTERM or
-    // SIGUSR1 while the scene loads).
-    SignalScope signals;
-    RenderCommand c;
-    ArgParser parser("render", "SCENE [options]   (writes OUT.exr and OUT.png)");
+void addRenderOptions(ArgParser& parser, RenderCommand& c) {
     addOutputOptions(parser, c);
     c.job.addOptions(parser);
     c.accel.addOptions(parser, true);
@@ -586,17 +579,60 @@ int runRender(const std::vector<std::string>& args) {
     addCompressionOption(parser, c);
     addCompositingOptions(parser, c);
     addQueueOptions(parser, c);
+}
+
+// The one scene file among the positional arguments; anything more is not an option.
+void checkOneScene(const std::vector<std::string>& pos) {
+    if (pos.empty()) throw UsageError("needs exactly one scene file (see 'kiln render --help')");
+    if (pos.size() > 1)
+        throw UsageError("needs exactly one scene file; '" + pos[1] +
+                         "' is not an option (see 'kiln render --help')");
+}
+
+// The checks of the options alone, before anything is opened: the job's options, the long-render
+// combinations, the camera override and the debug pair.
+RenderJobOptions checkedJobOptions(const RenderCommand& c) {
+    RenderJobOptions jobOptions = c.job.finish();
+    applyLongRenderOptions(c, jobOptions);
+    c.camera.check();
+    if ((c.debugX >= 0) != (c.debugSample >= 0))
+        throw UsageError("--pixel and --sample go together");
+    return jobOptions;
+}
+
+}  // namespace
+
+void checkRenderArguments(const std::vector<std::string>& args) {
+    RenderCommand c;
+    ArgParser parser("render", "SCENE [options]");
+    addRenderOptions(parser, c);
+    std::vector<std::string> pos = parser.parse(args);
+    if (parser.helpRequested()) throw UsageError("--help is not a render option");
+    checkOneScene(pos);
+    checkedJobOptions(c);
+    try {
+        checkColorConfig(c.display, c.view);
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+    }
+}
+
+int runRender(const std::vector<std::string>& args) {
+    // From the start a signal stops the work and saves what it has (a farm may send SIGTERM or
+    // SIGUSR1 while the scene loads).
+    SignalScope signals;
+    RenderCommand c;
+    ArgParser parser("render", "SCENE [options]   (writes OUT.exr and OUT.png)");
+    addRenderOptions(parser, c);
     std::vector<std::string> pos = parser.parse(args);
     if (parser.helpRequested()) {
         std::fputs(parser.helpText().c_str(), stdout);
         std::fputs(kExitCodes, stdout);
         return 0;
     }
-    if (pos.size() != 1)
-        throw UsageError("needs exactly one scene file (see 'kiln render --help')");
+    checkOneScene(pos);
     const std::string& scenePath = pos[0];
-    RenderJobOptions jobOptions = c.job.finish();
-    applyLongRenderOptions(c, jobOptions);
+    RenderJobOptions jobOptions = checkedJobOptions(c);
     applyCompositingOptions(c, jobOptions);
     applyQueueOptions(c, jobOptions);
     checkColour(c);

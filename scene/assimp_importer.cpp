@@ -319,6 +319,7 @@ void readCamera(const std::string& path, const aiScene* as, const NodeWorlds& wo
         cam.nearClip = float(ac->mClipPlaneNear * view->lengthScale);
     if (view->clipPlanes && ac->mClipPlaneFar > ac->mClipPlaneNear)
         cam.farClip = float(ac->mClipPlaneFar * view->lengthScale);
+    cam.name = name;
     cam.fromFile = true;
     scene.hasFileCamera = true;
 }

@@ -357,10 +357,11 @@ class Parser {
         else if (!persp)
             throw SceneError(file_,
                              "camera '" + id + "' has neither <perspective> nor <orthographic>");
-        placeCamera(persp.name() == std::string("orthographic")
-                        ? orthographicCamera(id, persp, world)
-                        : perspectiveCamera(id, persp),
-                    persp, world);
+        Camera cam = persp.name() == std::string("orthographic")
+                         ? orthographicCamera(id, persp, world)
+                         : perspectiveCamera(id, persp);
+        cam.name = def.attribute("name").as_string(id.c_str());
+        placeCamera(cam, persp, world);
     }
 
     Camera perspectiveCamera(const std::string& id, pugi::xml_node persp) {

@@ -21,6 +21,7 @@
 #include "renderer/core/log.h"
 #include "renderer/core/memory.h"
 #include "renderer/exr_scene.h"
+#include "renderer/frame_probe.h"
 #include "renderer/long_render.h"
 #include "renderer/progress.h"
 #include "renderer/render_job.h"
@@ -652,6 +653,11 @@ int runRender(const std::vector<std::string>& args) {
     RenderJob job(scene, *accel, jobOptions);
     warnHemisphereBlind(job, scenePath);
     if (c.debugX >= 0 || c.debugSample >= 0) return printDebugSample(job, c);
+    // What the camera will see decides the black-image warning (a few thousand samples).
+    if (std::optional<std::string> black = blackImageWarning(probeFrame(job), c.exposure)) {
+        logWarning("{}: {}", scenePath, *black);
+        c.warnings.push_back(*black);
+    }
 
     addSceneToExr(c.exr, scene, jobOptions.settings, jobOptions.aovs);
     c.exr.software = fmt::format("kiln {} (commit {})", KILN_VERSION, gitCommit());

@@ -362,6 +362,7 @@ void readAttenuation(const std::string& path, const aiLight* al, Light& l, Scene
 void readLights(const std::string& path, const aiScene* as, const NodeWorlds& worlds,
                 Scene& scene) {
     float coneScale = lowerExtension(path) == ".fbx" ? 0.5f : 1.0f;
+    LightConventions conventions = as->mNumLights ? lightConventionsOf(path) : LightConventions{};
     for (unsigned i = 0; i < as->mNumLights; ++i) {
         const aiLight* al = as->mLights[i];
         Mat4 world = worldOf(as, worlds, al->mName);
@@ -375,7 +376,6 @@ void readLights(const std::string& path, const aiScene* as, const NodeWorlds& wo
                         ? toVec3d(al->mDirection) - toVec3d(al->mPosition)
                         : toVec3d(al->mDirection);
         Vec3 dir = Vec3(world.vector(aim));
-        readAttenuation(path, al, l, scene);
         if (length(dir) > 0) l.direction = normalize(dir);
         switch (al->mType) {
             case aiLightSource_POINT:
@@ -405,6 +405,10 @@ void readLights(const std::string& path, const aiScene* as, const NodeWorlds& wo
                 scene.warnings.push_back("light '" + l.name + "' is of a type kiln ignores");
                 continue;
         }
+        if (conventions.format == LightConventions::Format::Other)
+            readAttenuation(path, al, l, scene);
+        else if (!convertLightUnits(path, conventions, al, l, scene))
+            continue;
         scene.lights.push_back(l);
     }
 }

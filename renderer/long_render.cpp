@@ -66,7 +66,7 @@ Film resumeFilm(const RenderJob& job, const LongRenderOptions& options, Checkpoi
     return readCheckpoint(path, previous);
 }
 
-LongRenderResult runLongRender(const RenderJob& job, const LongRenderOptions& options) {
+LongRenderResult renderLongFilm(const RenderJob& job, const LongRenderOptions& options) {
     LongRenderResult result{Film(0, 0), {}, {}, false};
     CheckpointInfo previous;
     result.film = resumeFilm(job, options, previous);
@@ -95,13 +95,21 @@ LongRenderResult runLongRender(const RenderJob& job, const LongRenderOptions& op
         };
     result.stats = job.render(result.film, control);
     result.totals = totalsOf(options, job, result.film, result.stats, previous);
-    if (!options.checkpointPath.empty()) {
-        auto t0 = std::chrono::steady_clock::now();
-        writeCheckpoint(options.checkpointPath, result.totals, result.film);
-        result.checkpointSeconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        result.checkpointBytes = std::filesystem::file_size(options.checkpointPath);
-    }
+    return result;
+}
+
+void writeFinalCheckpoint(const LongRenderOptions& options, LongRenderResult& result) {
+    if (options.checkpointPath.empty()) return;
+    auto t0 = std::chrono::steady_clock::now();
+    writeCheckpoint(options.checkpointPath, result.totals, result.film);
+    result.checkpointSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    result.checkpointBytes = std::filesystem::file_size(options.checkpointPath);
+}
+
+LongRenderResult runLongRender(const RenderJob& job, const LongRenderOptions& options) {
+    LongRenderResult result = renderLongFilm(job, options);
+    writeFinalCheckpoint(options, result);
     return result;
 }
 

@@ -43,7 +43,17 @@ OutputSizes estimateOutputs(const RenderJobOptions& options, bool checkpoint);
 
 // Throws CheckpointError when the checkpoint to resume is damaged or belongs to another render
 // (bad input), std::runtime_error when the final checkpoint cannot be written.
+// = renderLongFilm, then writeFinalCheckpoint.
 LongRenderResult runLongRender(const RenderJob& job, const LongRenderOptions& options);
+
+// The render alone: resumed, checkpointed periodically, stopped by the time limit or a signal; the
+// final checkpoint is not written yet (kiln render writes the images first, so a checkpoint that
+// does not fit the disk cannot cost the finished image).
+LongRenderResult renderLongFilm(const RenderJob& job, const LongRenderOptions& options);
+
+// Writes the final checkpoint of result (when options name one) and records its size and time.
+// Throws std::runtime_error when it cannot be written (the previous checkpoint stays).
+void writeFinalCheckpoint(const LongRenderOptions& options, LongRenderResult& result);
 
 // The film a resume starts from, checked against the job; nullopt-like empty film (0 x 0) when
 // there is no checkpoint. Throws CheckpointError naming what differs.

@@ -7,6 +7,7 @@
 #include <assimp/Importer.hpp>
 #include <assimp/LogStream.hpp>
 #include <charconv>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -318,6 +319,7 @@ void readCamera(const std::string& path, const aiScene* as, const NodeWorlds& wo
         cam.nearClip = float(ac->mClipPlaneNear * view->lengthScale);
     if (view->clipPlanes && ac->mClipPlaneFar > ac->mClipPlaneNear)
         cam.farClip = float(ac->mClipPlaneFar * view->lengthScale);
+    cam.name = name;
     cam.fromFile = true;
     scene.hasFileCamera = true;
 }
@@ -360,6 +362,7 @@ void readAttenuation(const std::string& path, const aiLight* al, Light& l, Scene
 void readLights(const std::string& path, const aiScene* as, const NodeWorlds& worlds,
                 Scene& scene) {
     float coneScale = lowerExtension(path) == ".fbx" ? 0.5f : 1.0f;
+    LightConventions conventions = as->mNumLights ? lightConventionsOf(path) : LightConventions{};
     for (unsigned i = 0; i < as->mNumLights; ++i) {
         const aiLight* al = as->mLights[i];
         Mat4 world = worldOf(as, worlds, al->mName);
@@ -373,7 +376,6 @@ void readLights(const std::string& path, const aiScene* as, const NodeWorlds& wo
                         ? toVec3d(al->mDirection) - toVec3d(al->mPosition)
                         : toVec3d(al->mDirection);
         Vec3 dir = Vec3(world.vector(aim));
-        readAttenuation(path, al, l, scene);
         if (length(dir) > 0) l.direction = normalize(dir);
         switch (al->mType) {
             case aiLightSource_POINT:
@@ -403,6 +405,10 @@ void readLights(const std::string& path, const aiScene* as, const NodeWorlds& wo
                 scene.warnings.push_back("light '" + l.name + "' is of a type kiln ignores");
                 continue;
         }
+        if (conventions.format == LightConventions::Format::Other)
+            readAttenuation(path, al, l, scene);
+        else if (!convertLightUnits(path, conventions, al, l, scene))
+            continue;
         scene.lights.push_back(l);
     }
 }
@@ -442,6 +448,43 @@ std::vector<bool> usedMaterials(const aiScene* as) {
     return used;
 }
 
+// Parts with no vertices or no faces (an empty "solid" in an ASCII STL beside one with triangles,
+// an empty object of a multi-part file) are dropped with a warning each, before Assimp validates
+// the scene (its validation refuses the whole file for one empty mesh). Nodes' references are
+// renumbered; when nothing is left, the file is refused as having no geometry.
+void skipEmptyMeshes(const std::string& path, aiScene* as, Scene& scene) {
+    std::vector<unsigned> newIndex(as->mNumMeshes, UINT_MAX);
+    unsigned kept = 0;
+    for (unsigned i = 0; i < as->mNumMeshes; ++i) {
+        aiMesh* m = as->mMeshes[i];
+        if (m && m->mNumVertices > 0 && m->mNumFaces > 0 && m->mVertices && m->mFaces) {
+            newIndex[i] = kept;
+            as->mMeshes[kept++] = m;
+            continue;
+        }
+        std::string name = m ? m->mName.C_Str() : "";
+        scene.warnings.push_back(fmt::format("mesh '{}' (part {} of {}) has no {}: skipped", name,
+                                             i + 1, as->mNumMeshes,
+                                             m && m->mNumVertices > 0 ? "faces" : "vertices"));
+        delete m;
+    }
+    if (kept == as->mNumMeshes) return;
+    as->mNumMeshes = kept;  // the dropped ones are deleted: the scene must not free them again
+    if (kept == 0)
+        throw SceneError(path, "every mesh of the file is empty (no vertices or no faces)");
+    std::vector<aiNode*> stack{as->mRootNode};
+    while (!stack.empty()) {
+        aiNode* node = stack.back();
+        stack.pop_back();
+        unsigned n = 0;
+        for (unsigned j = 0; j < node->mNumMeshes; ++j)
+            if (node->mMeshes[j] < newIndex.size() && newIndex[node->mMeshes[j]] != UINT_MAX)
+                node->mMeshes[n++] = newIndex[node->mMeshes[j]];
+        node->mNumMeshes = n;
+        for (unsigned c = 0; c < node->mNumChildren; ++c) stack.push_back(node->mChildren[c]);
+    }
+}
+
 }  // namespace
 
 void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scene& scene) {
@@ -454,12 +497,17 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
         aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_ValidateDataStructure;
     const aiScene* as = nullptr;
     CerrCapture printed;
+    // Read without post-processing, drop empty parts, then validate and post-process.
     if (extras && extras->patchedXml)
-        as = importer.ReadFileFromMemory(extras->patchedXml->data(), extras->patchedXml->size(),
-                                         flags, "dae");
+        as = importer.ReadFileFromMemory(extras->patchedXml->data(), extras->patchedXml->size(), 0,
+                                         "dae");
     else {
         if (lowerExtension(path) == ".off") checkOffHeader(path);
-        as = importer.ReadFile(path, flags);
+        as = importer.ReadFile(path, 0);
+    }
+    if (as && as->mRootNode && !(as->mFlags & AI_SCENE_FLAGS_INCOMPLETE)) {
+        skipEmptyMeshes(path, const_cast<aiScene*>(as), scene);
+        as = importer.ApplyPostProcessing(flags);
     }
     printed.stop();
     if (log.said("out-of-range indices"))

@@ -106,6 +106,12 @@ class Parser {
             out_.unitMeters = meter[0];
         }
         checkColladaGeometry(file_, root);
+        // The course's light rule (colour as intensity, 1 / d^2) for the files it was made for:
+        // those with CGL/CMU462 techniques, and the Z-up Blender exports of the CS184 library
+        // (which carry none in meshedit/ and keenan/). Every other file: COLLADA's own model.
+        std::string tool = root.child("asset").child("contributor").child_value("authoring_tool");
+        courseLights_ = root.select_node(".//technique[@profile='CGL' or @profile='CMU462']") ||
+                        (out_.zUp && tool.rfind("Blender", 0) == 0);
         for (pugi::xml_node lib : root.children()) index(lib);
         parseMaterials(root.child("library_materials"));
         pugi::xml_node visual = root.child("library_visual_scenes").child("visual_scene");
@@ -298,6 +304,7 @@ class Parser {
         if (!kind) throw SceneError(file_, "light '" + id + "' has no supported technique");
         std::string k = kind.name();
         light.radiance = expectColor(file_, kind, "color");
+        const bool common = !courseLights_ && kind.parent() == def.child("technique_common");
         lightPositions_.push_back(world.point(Vec3d(0, 0, 0)));
         Vec3d dir = world.vector(Vec3d(0, 0, -1));
         light.direction = Vec3(normalize(dir));
@@ -322,7 +329,52 @@ class Parser {
         } else {
             throw SceneError(file_, "light '" + id + "' has unsupported type <" + k + ">");
         }
+        if (common) commonProfileUnits(kind, world, light);
         out_.lights.push_back(light);
+    }
+
+    // COLLADA's common profile lights a <lambert> surface as diffuse * colour * attenuation *
+    // max(N.L, 0), with attenuation 1 / (constant + linear d + quadratic d^2) (defaults 1, 0, 0:
+    // no falloff). kiln's Lambertian reflects albedo / pi of the irradiance, so the intensity (and
+    // a directional light's irradiance) is pi * colour and the falloff the file's own: exact. A
+    // spot's falloff_exponent and an ambient light (which COLLADA scales by each material's
+    // ambient colour) are approximated, with a warning.
+    void commonProfileUnits(pugi::xml_node kind, const Mat4& world, Light& light) {
+        std::string k = kind.name();
+        if (k == "ambient") {
+            out_.warnings.push_back("light '" + light.name +
+                                    "': a COLLADA ambient light scales each material's ambient "
+                                    "colour; kiln lights the scene with a sky of its colour from "
+                                    "above instead");
+            return;
+        }
+        // 3ds Max and FCollada exporters put the light's multiplier in their own technique.
+        float multiplier = 1;
+        if (pugi::xpath_node n = kind.parent().parent().select_node(
+                ".//technique[@profile='MAX3D' or @profile='FCOLLADA']/intensity"))
+            multiplier = float(expectNumbers(file_, n.node(), "intensity", 1)[0]);
+        light.radiance = light.radiance * (kPi * multiplier);
+        if (k != "point" && k != "spot") return;
+        // Distances in the file's units; kiln's are metres (the unit and node scale applied).
+        double scale = length(world.vector(Vec3d(1, 0, 0)));
+        auto number = [&](const char* name, double fallback) {
+            pugi::xml_node n = kind.child(name);
+            return n ? expectNumbers(file_, n, name, 1)[0] : fallback;
+        };
+        double c = number("constant_attenuation", 1), l = number("linear_attenuation", 0),
+               q = number("quadratic_attenuation", 0);
+        if (!(c >= 0 && l >= 0 && q >= 0 && c + l + q > 0))
+            throw SceneError(
+                file_, "light '" + light.name + "' has negative or all-zero attenuation factors");
+        light.attenuationStated = true;
+        light.attenuationConstant = float(c);
+        light.attenuationLinear = scale > 0 ? float(l / scale) : float(l);
+        light.attenuationQuadratic = scale > 0 ? float(q / (scale * scale)) : float(q);
+        if (k == "spot" && number("falloff_exponent", 0) > 0)
+            out_.warnings.push_back(
+                "light '" + light.name +
+                "': the spot's falloff_exponent (cos^n within the cone) is approximated by kiln's "
+                "soft edge over the outer 15 % of the cone");
     }
 
     void addCamera(pugi::xml_node inst, const Mat4& world) {
@@ -336,10 +388,11 @@ class Parser {
         else if (!persp)
             throw SceneError(file_,
                              "camera '" + id + "' has neither <perspective> nor <orthographic>");
-        placeCamera(persp.name() == std::string("orthographic")
-                        ? orthographicCamera(id, persp, world)
-                        : perspectiveCamera(id, persp),
-                    persp, world);
+        Camera cam = persp.name() == std::string("orthographic")
+                         ? orthographicCamera(id, persp, world)
+                         : perspectiveCamera(id, persp);
+        cam.name = def.attribute("name").as_string(id.c_str());
+        placeCamera(cam, persp, world);
     }
 
     Camera perspectiveCamera(const std::string& id, pugi::xml_node persp) {
@@ -423,6 +476,7 @@ class Parser {
     std::map<std::string, pugi::xml_node> byId_;
     ColladaExtras out_;
     bool patched_ = false;
+    bool courseLights_ = false;
 };
 
 }  // namespace

@@ -1,6 +1,7 @@
 // Format readers. Each fills a Scene in world space (Y up) and throws SceneError on bad input.
 #pragma once
 
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -11,6 +12,7 @@
 
 struct aiScene;
 struct aiMaterial;
+struct aiLight;
 
 namespace kiln {
 
@@ -84,9 +86,56 @@ void checkMemoryFor(const std::string& path, uint64_t vertices, uint64_t triangl
 // triangle).
 void readPly(const std::string& path, Scene& scene);
 
+// A lamp of a .blend file as Blender stores it (scene/blend_lamps.cpp), named after its object
+// (Assimp names its aiLight so). type: 0 point ("Local"), 1 sun, 2 spot, 3 hemi, 4 area.
+// falloffType: 0 constant, 1 inverse linear, 2 inverse square, 3 curve, 4 sliders (-1: the file
+// predates the field). mode: flags (16 negative, 64 sphere). spotSize: degrees before Blender
+// 2.70, radians after; the full cone angle.
+struct BlendLamp {
+    std::string object;
+    int type = 0, mode = 0, falloffType = -1, areaShape = 0;
+    float r = 1, g = 1, b = 1, energy = 1, dist = 25, att1 = 0, att2 = 1, gamma = 1;
+    float spotSize = 0, spotBlend = 0, areaSize = 0, areaSizeY = 0;
+};
+struct BlendLamps {
+    int version = 0;  // Blender's version that wrote the file: 248 for 2.48
+    std::vector<BlendLamp> lamps;
+};
+// The file's lamps, or nothing (and why) when the file cannot be read this way.
+std::optional<BlendLamps> readBlendLamps(const std::string& path, std::string& reason);
+
+// An ASE light as the file states it (Assimp keeps no cone for a "Free" light).
+struct AseLight {
+    std::string type;  // Omni, Target, Free, Directional, TargetDirectional
+    float hotspot = -1, falloff = -1;
+};
+
+// What kiln knows of a file's lights beyond Assimp's aiLight, to convert them to kiln's units as
+// the format defines them (scene/light_conventions.cpp, docs/import.md "Light conventions").
+struct LightConventions {
+    enum class Format { Other, Blender, Ase, Collada } format = Format::Other;
+    std::optional<BlendLamps> blend;      // Blender: the lamps as the file stores them
+    std::string reason;                   // why they could not be read
+    std::map<std::string, AseLight> ase;  // ASE: by node name
+};
+LightConventions lightConventionsOf(const std::string& path);
+// Converts l (kind, position and direction from the aiLight, radiance Assimp's colour) to kiln's
+// units as the file's format defines them, warning where that cannot be exact; false when the
+// light is to be dropped (warned). For formats other than Blender, ASE and COLLADA read by Assimp
+// alone, the caller's rules apply.
+bool convertLightUnits(const std::string& path, const LightConventions& c, const aiLight* al,
+                       Light& l, Scene& scene);
+
 // Direct multi-threaded OBJ reader for geometry-only files. Returns false, leaving `scene`
 // untouched, when the file needs Assimp (materials, free-form geometry, attribute indices that
 // differ from position indices).
 bool readObj(const std::string& path, Scene& scene);
+
+// Every index of every 'f', 'l' and 'p' statement of an OBJ file checked against the file's own
+// counts of 'v', 'vt' and 'vn' (negative indices against those defined before the statement):
+// throws SceneError naming the line, the index and the count. Run before Assimp reads a file
+// kiln's reader declined: Assimp 5.2 renders a face whose normal index is past the last 'vn' with
+// some other normal, and says nothing.
+void checkObjIndices(const std::string& path);
 
 }  // namespace kiln

@@ -332,6 +332,62 @@ bool splitIntoGroups(const TriangleMesh& all,
 
 }  // namespace
 
+void checkObjIndices(const std::string& path) {
+    MappedFile file(path);
+    Chunk all;
+    all.begin = file.data(), all.end = file.data() + file.size();
+    Chunk counted = all;
+    countChunk(counted);  // the file's totals: positive indices may refer forward
+    const uint64_t totals[3] = {counted.positions, counted.uvs, counted.normals};
+    static constexpr const char* kKinds[3] = {"vertex", "texture coordinate", "normal"};
+    static constexpr const char* kStatements[3] = {"'v' vertices", "'vt' texture coordinates",
+                                                   "'vn' normals"};
+    uint64_t defined[3] = {0, 0, 0}, line = 0;
+    const char* p = all.begin;
+    auto fail = [&](const std::string& what) {
+        throw SceneError(path, "line " + std::to_string(line) + ": " + what);
+    };
+    while (p < all.end) {
+        const char* nl = static_cast<const char*>(std::memchr(p, '\n', size_t(all.end - p)));
+        const char* lineEnd = nl ? nl : all.end;
+        const char* hash = static_cast<const char*>(std::memchr(p, '#', size_t(lineEnd - p)));
+        const char* end = hash ? hash : lineEnd;
+        ++line;
+        const char* s = skipBlanks(p, end);
+        const char* k = tokenEnd(s, end);
+        std::string_view key(s, size_t(k - s));
+        p = lineEnd + 1;
+        if (key == "v") ++defined[0];
+        if (key == "vt") ++defined[1];
+        if (key == "vn") ++defined[2];
+        if (key != "f" && key != "l" && key != "p") continue;
+        for (const char* t = skipBlanks(k, end); t < end; t = skipBlanks(t, end)) {
+            const char* e = tokenEnd(t, end);
+            for (int kind = 0; kind < 3 && t < e; ++kind) {
+                const char* slash = static_cast<const char*>(std::memchr(t, '/', size_t(e - t)));
+                const char* partEnd = slash ? slash : e;
+                if (partEnd > t) {
+                    int64_t v = 0;
+                    auto [next, ec] = std::from_chars(t, partEnd, v);
+                    if (ec != std::errc() || next != partEnd)
+                        fail("bad " + std::string(kKinds[kind]) + " index '" +
+                             std::string(t, size_t(partEnd - t)) + "'");
+                    uint64_t count = v < 0 ? defined[kind] : totals[kind];
+                    if (v == 0 || (v > 0 && uint64_t(v) > count) || (v < 0 && v < -int64_t(count)))
+                        fail(std::string(kKinds[kind]) + " index " + std::to_string(v) +
+                             " out of range (" + std::to_string(count) + " " + kStatements[kind] +
+                             (v < 0 ? " before it)" : " in the file)"));
+                } else if (kind == 0) {
+                    fail("a corner without a vertex index ('" + std::string(t, size_t(e - t)) +
+                         "')");
+                }
+                t = slash ? slash + 1 : e;
+            }
+            t = e;
+        }
+    }
+}
+
 bool readObj(const std::string& path, Scene& scene) {
     MappedFile file(path);
     const char* data = file.data();

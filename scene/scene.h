@@ -86,6 +86,7 @@ struct Light {
 };
 
 struct Camera {
+    std::string name;  // as the file names it ("" for kiln's own framing)
     Vec3 position{0, 0, 5};
     Vec3 forward{0, 0, -1};
     Vec3 up{0, 1, 0};

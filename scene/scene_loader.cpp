@@ -11,6 +11,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <optional>
 #include <tuple>
@@ -142,7 +143,10 @@ void importFile(const std::string& path, Scene& scene) {
     if (ext == ".ply") {
         readPly(path, scene);
     } else if (ext == ".obj") {
-        if (!readObj(path, scene)) importWithAssimp(path, nullptr, scene);
+        if (!readObj(path, scene)) {
+            checkObjIndices(path);
+            importWithAssimp(path, nullptr, scene);
+        }
     } else if (ext == ".kiln") {
         readKilnScene(path, scene);
     } else if (ext == ".dae") {
@@ -205,30 +209,31 @@ void warnBlackImage(Scene& scene) {
         scene.warnings.push_back(
             "every material's diffuse colour is black, as the file states, "
             "and nothing emits: the image will be black");
-    // Point, spot and directional lights only, all outside the scene's bounds: the most irradiance
-    // they can give any surface. Below 1e-3 a white surface reflects under one 8-bit sRGB code.
+    // Whether the lights are too dim or far is decided from what the camera sees, when kiln render
+    // probes the frame (renderer/frame_probe.h): no threshold on light power alone can tell.
+}
+
+// A camera whose clip range (near and far planes, along its view axis) lies wholly in front of or
+// behind every object sees none of them: the image is black (a COLLADA camera node scaled by 1e3
+// scales znear and zfar too, putting the near plane beyond the scene). Named with the numbers.
+void warnClipRange(Scene& scene) {
+    const Camera& c = scene.camera;
     Bounds3 b = scene.storedBounds();
-    if (b.empty() || scene.lights.empty()) return;
-    double most = 0;
-    for (const Light& l : scene.lights) {
-        if (l.kind == LightKind::Directional) {
-            most += maxComponent(l.radiance);
-            continue;
-        }
-        if (l.kind != LightKind::Point && l.kind != LightKind::Spot) return;
-        Vec3 nearest = min(max(l.position, b.lo), b.hi);
-        double d = length(l.position - nearest);
-        if (!(d > 0)) return;  // inside the bounds: no bound on what it lights
-        most += maxComponent(l.radiance) / l.falloffDenominator(float(d * d));
+    if (b.empty() || !(length(c.forward) > 0)) return;
+    Vec3 axis = normalize(c.forward);
+    float nearest = std::numeric_limits<float>::infinity(), farthest = -nearest;
+    for (int k = 0; k < 8; ++k) {
+        Vec3 corner((k & 1) ? b.hi.x : b.lo.x, (k & 2) ? b.hi.y : b.lo.y,
+                    (k & 4) ? b.hi.z : b.lo.z);
+        float z = dot(corner - c.position, axis);
+        nearest = std::min(nearest, z), farthest = std::max(farthest, z);
     }
-    if (most < 1e-3) {
-        char msg[240];
-        std::snprintf(msg, sizeof msg,
-                      "the lights give the scene an irradiance of at most %.3g (they are far away "
-                      "for their intensity): the image will look black",
-                      most);
-        scene.warnings.push_back(msg);
-    }
+    if (!(c.nearClip > farthest || c.farClip < nearest)) return;
+    scene.warnings.push_back(fmt::format(
+        "camera '{}': its clip range {:.4g} .. {:.4g} (along the view axis) excludes every "
+        "object, which lie {:.4g} .. {:.4g} in front of it: the image will show no geometry",
+        c.name.empty() ? "(default)" : c.name, double(c.nearClip), double(c.farClip),
+        double(nearest), double(farthest)));
 }
 
 // Beyond 2^24 / 100 the float spacing at the scene's far edge exceeds 1% of a typical edge.
@@ -324,6 +329,7 @@ Scene loadScene(const std::string& path, const LoadOptions& options) {
     scene.framedByCourseRule = scene.hasFileCamera && courseRule;
 
     validateView(scene);
+    warnClipRange(scene);
     scene.loadSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return scene;

@@ -31,12 +31,13 @@ struct LoadedSpheres {
     std::unique_ptr<Accelerator> accel = makeEmbreeAccelerator(scene);
 };
 
-// Starts kiln with args, stderr to errFile.
+// Starts kiln with args, stderr to errFile (and stdout to outFile when given).
 inline pid_t startKiln(const std::vector<std::string>& args,
-                       const std::string& errFile = "/dev/null") {
+                       const std::string& errFile = "/dev/null", const std::string& outFile = "") {
     pid_t pid = ::fork();
     if (pid == 0) {
         if (!::freopen(errFile.c_str(), "w", stderr)) ::_exit(126);
+        if (!outFile.empty() && !::freopen(outFile.c_str(), "w", stdout)) ::_exit(126);
         std::vector<char*> argv{const_cast<char*>(KILN_BINARY)};
         for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
         argv.push_back(nullptr);

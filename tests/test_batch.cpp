@@ -95,6 +95,42 @@ TEST(JobFile, RefusesMalformedFiles) {
     EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
 }
 
+// Issue #33 item 6: every render of a job file goes through kiln render's own checks before the
+// first one starts; the error names the job file, the entry and the field (or the render, when
+// only the combination fails), exit 2, one line, nothing rendered.
+TEST(JobFile, BadRenderValuesAreRefusedUpFrontNamingTheEntryAndField) {
+    fs::path dir = test::scratchDir();
+    test::writeFile(dir / "a.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    const std::string head =
+        R"("output": "out/{camera}_{frame}_{settings}", "scenes": ["a.obj"], )";
+    const std::vector<std::pair<std::string, std::string>> bad{
+        {R"("settings": [{"args": ["-s", 4]}, {"args": ["-s", 0]}])", "settings[1]: 'args': "},
+        {R"("args": ["-r", 16, 12, 7])", "job.json: 'args': needs exactly one scene file; '7'"},
+        {R"("cameras": [{"position": [0, 0, 5], "up": [0, 1e39, 0]}])",
+         "job.json: cameras[0]: 'up': --up takes finite coordinates"},
+        {R"("cameras": [{"turntable": 4, "centre": [1e39, 0, 0]}])",
+         "job.json: cameras[0]: 'centre': --orbit-centre takes finite coordinates"},
+        {R"("cameras": [{"name": "fly", "path": [{"position": [0, 0, 5]}, {"position": [1, 1, 1], "look_at": [1, 1, 1]}]}])",
+         "job.json: the render of scene 'a.obj', camera 'fly', frame 1: --position and --look-at "
+         "are the same point"},
+        {R"("args": ["--display", "no such display"])", "job.json: 'args': "}};
+    for (const auto& [body, message] : bad) {
+        std::string file = test::writeFile(dir / "job.json", "{" + head + body + "}");
+        farm::CommandResult r = test::kiln({"batch", file, "-q"});
+        EXPECT_EQ(r.exitCode, 2) << body << "\n" << r.output;
+        EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+        EXPECT_NE(r.output.find(message), std::string::npos) << r.output;
+        EXPECT_FALSE(fs::exists(dir / "out")) << body;
+    }
+    // The same job with good values runs.
+    std::string good = test::writeFile(
+        dir / "job.json",
+        "{" + head +
+            R"("args": ["-r", 8, 6, "-s", 1], "cameras": [{"position": [0.3, 0.3, 4], "up": [0, 1, 0]}]})");
+    farm::CommandResult r = test::kiln({"batch", good, "-q"});
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+}
+
 TEST(Turntable, OrbitKeepsDistanceAndAim) {
     Camera cam;
     cam.position = Vec3(1, 2, 7);

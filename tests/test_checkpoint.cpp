@@ -2,6 +2,7 @@
 // the uninterrupted one bit for bit, refinement, refusals, and a full disk during a checkpoint.
 #include <sys/mount.h>
 
+#include <nlohmann/json.hpp>
 #include <random>
 
 #include "color/atomic_file.h"
@@ -321,6 +322,55 @@ TEST(Checkpoint, DiskFullDuringACheckpointKeepsThePreviousOneAndReportsTheFailur
                                    -1, 0, err),
               2);
     EXPECT_NE(test::readText(err).find("not writable"), std::string::npos) << test::readText(err);
+}
+
+// Issue #33 item 5: a finished render whose final checkpoint does not fit the disk keeps its image.
+// The disk is filled while the render runs (after kiln's free-space check), leaving room for the
+// EXR and PNG but not for the checkpoint: the images are written first, the failed checkpoint is a
+// warning (in the JSON result too) and the exit code is 0.
+TEST(Checkpoint, AFinalCheckpointThatDoesNotFitLeavesTheFinishedImageAndAWarning) {
+    if (::geteuid() != 0) GTEST_SKIP() << "mounting a tmpfs needs root (CI runs as root)";
+    fs::path scratch = test::scratchDir();
+    ScopedTmpfs disk(scratch / "disk", "size=8m");
+    ASSERT_TRUE(disk.mounted);
+    std::string base = (disk.dir / "a").string(), err = (scratch / "err.txt").string(),
+                out = (scratch / "out.json").string();
+    // 64x48 with the default AOVs: a 1.0 MiB checkpoint, an EXR of about 0.3 MiB.
+    pid_t pid =
+        test::startKiln({"render", test::spheres(), "-r", "64", "48", "-s", "512", "-t", "1",
+                         "--checkpoint-every", "600", "--json", "--progress", "none", "-o", base},
+                        err, out);
+    ASSERT_TRUE(test::waitForHandler(pid, SIGUSR1));
+    ::kill(pid, SIGUSR1);  // a checkpoint at the first pixel: the render is under way
+    bool started = false;
+    for (int i = 0; i < 4000 && !started; ++i) {
+        started = fs::exists(base + ".ckpt");
+        if (!started) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    ASSERT_TRUE(started) << test::readText(err);
+    ::kill(pid, SIGSTOP);
+    uintmax_t checkpointBytes = fs::file_size(base + ".ckpt");
+    fillDisk(disk.dir);
+    fs::resize_file(disk.dir / "filler", fs::file_size(disk.dir / "filler") - (600 << 10));
+    ::kill(pid, SIGCONT);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    std::string log = test::readText(err);
+    ASSERT_EQ(test::exitCode(status), 0) << log;
+    EXPECT_GT(checkpointBytes, uintmax_t(600 << 10));
+    // The finished image is there and whole.
+    test::ExrPixels pixels = test::readExrPixels(base + ".exr");
+    EXPECT_EQ(pixels.values.size() % (64 * 48), 0u);
+    EXPECT_FALSE(pixels.values.empty());
+    EXPECT_GT(fs::file_size(base + ".png"), 0u);
+    // The checkpoint on disk is still the earlier valid one, and the result says what failed.
+    CheckpointInfo info = readCheckpointInfo(base + ".ckpt");
+    EXPECT_FALSE(info.complete);
+    nlohmann::json result = nlohmann::json::parse(test::readText(out));
+    std::string warnings = result["warnings"].dump();
+    EXPECT_NE(warnings.find("a.ckpt"), std::string::npos) << warnings;
+    EXPECT_NE(warnings.find("the finished image is written"), std::string::npos) << warnings;
+    EXPECT_NE(log.find("warning"), std::string::npos) << log;
 }
 
 TEST(AtomicFile, TwoWritersOfOneTargetNeverShareATemporaryFile) {

@@ -286,6 +286,33 @@ TEST(ImportCameras, AssimpCameraClipPlanesFollowTheNodeScale) {
     EXPECT_NEAR(s.camera.vFovDeg, 40.0f, 1e-3f);
 }
 
+// Issue #33 item 3: a COLLADA camera node scaled by 1e3 scales znear and zfar too (10 cm becomes
+// 100 m), putting the near plane beyond the triangle 5 m away: the image shows nothing. A warning
+// names the camera and the numbers, through the CGL pass (.dae) and Assimp (.xml) alike.
+TEST(ImportCameras, AClipRangeThatExcludesTheSceneIsAWarning) {
+    auto dir = test::scratchDir();
+    std::string plain = centimetreCollada(false), scaled = plain;
+    const std::string node = "<translate>0 50 500</translate>";
+    scaled.replace(scaled.find(node), node.size(), node + "<scale>1000 1000 1000</scale>");
+    for (const char* ext : {".dae", ".xml"}) {
+        Scene s = loadAsFile(test::writeFile(dir / (std::string("scaled") + ext), scaled));
+        ASSERT_EQ(test::warningsNaming(s, "excludes every object"), 1) << ext;
+        // The camera's name (the XML pass: the <camera>'s, Assimp: its node's) and the numbers.
+        EXPECT_TRUE(
+            test::hasWarning(s, ext == std::string(".dae") ? "camera 'c':" : "camera 'cn':"))
+            << ext;
+        EXPECT_TRUE(test::hasWarning(s, "its clip range 100 .. 1e+05")) << ext;
+        EXPECT_TRUE(test::hasWarning(s, "which lie 5 .. 5 in front of it")) << ext;
+        Scene fine = loadAsFile(test::writeFile(dir / (std::string("plain") + ext), plain));
+        EXPECT_FALSE(test::hasWarning(fine, "clip range")) << ext;
+    }
+    // A far plane short of the scene likewise.
+    std::string near = plain;
+    near.replace(near.find("<zfar>10000</zfar>"), 18, "<zfar>20</zfar>");
+    Scene s = loadAsFile(test::writeFile(dir / "short.dae", near));
+    EXPECT_TRUE(test::hasWarning(s, "camera 'c': its clip range 0.1 .. 0.2")) << s.warnings[0];
+}
+
 // A flat mesh in the x = 0 plane would be seen edge-on by the default (+Z) framing.
 TEST(ImportCameras, FlatSceneIsFramedFaceOn) {
     auto dir = test::scratchDir();

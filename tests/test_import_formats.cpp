@@ -1,5 +1,7 @@
 // Formats other than COLLADA and PLY go through Assimp: node transforms composed, shared meshes
 // instanced.
+#include <filesystem>
+
 #include "scene/scene_info.h"
 #include "scene/scene_loader.h"
 #include "test_support.h"
@@ -33,6 +35,30 @@ TEST(AssimpFormats, AsciiStl) {
         "endsolid t\n";
     Scene s = loadScene(test::writeFile(dir / "quad.stl", stl));
     EXPECT_EQ(summarize(s).triangles, 2u);
+}
+
+// Issue #33 item 7: an empty part of a multi-part file is skipped with a warning naming it; the
+// file was refused ("mesh emptySolid contains no vertices") though it holds a valid triangle. A
+// file with nothing but empty parts stays an error.
+TEST(AssimpFormats, EmptyPartsAreSkippedWithAWarning) {
+    std::string corpus = "/usr/share/assimp/models/STL/triangle_with_empty_solid.stl";
+    ASSERT_TRUE(std::filesystem::exists(corpus)) << "assimp-testmodels (tools/setup.sh) missing";
+    Scene s = loadScene(corpus);
+    EXPECT_EQ(summarize(s).triangles, 1u);
+    EXPECT_TRUE(test::hasWarning(s, "mesh 'emptySolid' (part 2 of 2) has no vertices: skipped"));
+
+    auto dir = test::scratchDir();
+    const std::string triangle =
+        "solid full\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 "
+        "0\nendloop\nendfacet\nendsolid full\n";
+    Scene between = loadScene(test::writeFile(
+        dir / "three.stl", "solid a\nendsolid a\n" + triangle + "solid c\nendsolid c\n"));
+    EXPECT_EQ(summarize(between).triangles, 1u);
+    EXPECT_TRUE(test::hasWarning(between, "mesh 'a'"));
+    EXPECT_TRUE(test::hasWarning(between, "mesh 'c'"));
+    EXPECT_FALSE(test::hasWarning(between, "mesh 'full'"));
+    test::expectError(
+        test::writeFile(dir / "empty.stl", "solid a\nendsolid a\nsolid b\nendsolid b\n"), "");
 }
 
 TEST(AssimpFormats, ObjQuadsAreTriangulatedAndGroupsKept) {

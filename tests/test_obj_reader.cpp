@@ -199,6 +199,41 @@ TEST(ObjReader, BadInputNamesFileAndLine) {
     }
 }
 
+// Issue #33 item 4: files kiln's reader hands to Assimp (normal or uv counts that differ from the
+// vertex count, materials, lines) have every index checked against the file's own counts; Assimp
+// 5.2 gave a face whose normal index is past the last 'vn' another normal, and said nothing.
+TEST(ObjReader, EveryIndexIsCheckedWhicheverReaderReadsTheFile) {
+    auto dir = test::scratchDir();
+    test::writeFile(dir / "red.mtl", "newmtl red\nKd 0.8 0.1 0.1\n");
+    const std::string quad = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n";
+    struct Case {
+        std::string text;
+        const char* expect;
+    } cases[] = {
+        // Two normals for four vertices: Assimp's case; the second face names normal 3.
+        {quad + "vn 0 0 1\nvn 0 0 -1\nf 1//1 2//1 3//1\nf 2//2 4//3 3//2\n",
+         "line 8: normal index 3 out of range (2 'vn' normals in the file)"},
+        {quad + "vn 0 0 1\nf 1//1 2//1 3//1\nf 2//-2 4//1 3//1\n",
+         "line 7: normal index -2 out of range (1 'vn' normals before it)"},
+        {quad + "vt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\nf 2/2 4/4 3/3\n",
+         "line 9: texture coordinate index 4 out of range (3 'vt' texture coordinates"},
+        {"mtllib red.mtl\n" + quad + "usemtl red\nf 1 2 3\nf 2 5 3\n",
+         "line 8: vertex index 5 out of range (4 'v' vertices in the file)"},
+        {"mtllib red.mtl\n" + quad + "usemtl red\nf 1 2 3\nl 1 9\n",
+         "line 8: vertex index 9 out of range"},
+        {"mtllib red.mtl\n" + quad + "usemtl red\nf 1 2 x3\n", "line 7: bad vertex index 'x3'"},
+    };
+    for (const Case& c : cases)
+        test::expectError(test::writeFile(dir / "bad.obj", c.text), c.expect);
+    // The same files with their indices in range load through Assimp.
+    Scene normals = loadScene(test::writeFile(
+        dir / "good.obj", quad + "vn 0 0 1\nvn 0 0 -1\nf 1//1 2//1 3//1\nf 2//2 4//2 3//-1\n"));
+    EXPECT_EQ(normals.uniqueTriangles(), 2u);
+    Scene material = loadScene(test::writeFile(
+        dir / "good_mtl.obj", "mtllib red.mtl\n" + quad + "usemtl red\nf 1 2 3\nf -3 -1 -2\n"));
+    EXPECT_EQ(material.uniqueTriangles(), 2u);
+}
+
 TEST(ObjReader, MemoryEstimateRefusesBeforeAllocating) {
     test::ScopedMemoryLimit limit("1000000");  // 1 MB
     try {

@@ -1,10 +1,13 @@
 #!/usr/bin/env bash
 # Runs `kiln info` and a tiny render over every model file under a directory and classifies each:
-#   ok           info and render exit 0 and the image is not entirely black
+#   ok           info and render exit 0 and the image is not dark (mean luminance >= 1e-3)
+#   warned-dark  exit 0, the image dark, and kiln's render said why (a black-image, clip-range or
+#                black-material warning)
 #   clear-error  exit 2 with a one-line error that names the file
 #   crash        killed by a signal (SIGSEGV, SIGABRT, ...)
 #   hang         still running after the time limit
-#   suspicious   exit 0 with an all-black image, or any other exit code / error form
+#   suspicious   exit 0 with a dark image and no warning saying so (silently wrong), or any other
+#                exit code / error form
 # Usage: tools/import_corpus.sh [DIR] [-j JOBS] [-t SECONDS] [-o LOG]
 # Default DIR: /usr/share/assimp/models (Debian assimp-testmodels). Prints one line per file to LOG
 # (default corpus.log) and the counts to stdout.
@@ -45,13 +48,21 @@ classify() {
     fi
     if [ $rc -ne 0 ]; then printf 'suspicious\t%s\t%s exit %d: %s\n' "$f" $step $rc "$err"; return; fi
   done
-  # An image with no light anywhere is a silent failure (camera away, black materials, no light).
-  # The first three channels of the EXR are the beauty RGB.
-  if oiiotool "$out.exr" --printstats 2>/dev/null |
-    awk '/Stats Max:/ { exit !($3 == 0 && $4 == 0 && $5 == 0) } END { if (NR == 0) exit 1 }'; then
-    printf 'suspicious\t%s\tblack image\n' "$f"; return
+  # A dark image (mean luminance under 1e-3, what kiln's own black-image probe calls black: code 3
+  # of 255 after sRGB) is a silent failure unless kiln warned why (camera away or clipping
+  # everything, black materials, lights too dim). The first three channels are the beauty RGB.
+  local mean
+  mean=$(oiiotool "$out.exr" --printstats 2>/dev/null |
+    awk '/Stats Avg:/ { printf "%.3g", 0.2126 * $3 + 0.7152 * $4 + 0.0722 * $5; exit }')
+  if [ -z "$mean" ] || awk -v m="$mean" 'BEGIN { exit !(m < 1e-3) }'; then
+    if grep -qE 'will look black|show no geometry|diffuse colour is black' "$out.err"; then
+      printf 'warned-dark\t%s\tmean %s: %s\n' "$f" "$mean" \
+        "$(grep -hE 'will look black|show no geometry|diffuse colour is black' "$out.err" |
+          head -1 | cut -c1-200)"; return
+    fi
+    printf 'suspicious\t%s\tdark image (mean %s), no warning\n' "$f" "$mean"; return
   fi
-  printf 'ok\t%s\t\n' "$f"
+  printf 'ok\t%s\tmean %s\n' "$f" "$mean"
 }
 export -f classify
 
@@ -60,6 +71,6 @@ find "$dir" -type f ! -path '*/ReferenceImages/*' |
   sort | xargs -P "$jobs" -I{} bash -c 'classify "$@"' _ {} "$work" "$kiln" "$limit" >"$log"
 
 echo "import_corpus: $(wc -l <"$log") files under $dir (log: $log)"
-for c in ok clear-error crash hang suspicious; do
+for c in ok warned-dark clear-error crash hang suspicious; do
   printf '  %-12s %d\n' "$c" "$(grep -c "^$c	" "$log")"
 done

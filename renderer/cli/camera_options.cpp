@@ -1,5 +1,6 @@
 #include "renderer/cli/camera_options.h"
 
+#include <cmath>
 #include <stdexcept>
 
 #include "renderer/geometry/turntable.h"
@@ -7,11 +8,20 @@
 namespace kiln {
 namespace {
 
-ArgParser::Handler vec3Into(std::optional<Vec3>& target, std::string name) {
-    return [&target, name](const std::vector<std::string>& v) {
-        double x = ArgParser::toDouble(name, v[0]), y = ArgParser::toDouble(name, v[1]),
-               z = ArgParser::toDouble(name, v[2]);
-        target = Vec3(float(x), float(y), float(z));
+// Three coordinates, each finite once stored as a float (1e39 is not); a direction (nonZero) must
+// not be (0, 0, 0).
+ArgParser::Handler vec3Into(std::optional<Vec3>& target, std::string name, bool nonZero = false) {
+    return [&target, name, nonZero](const std::vector<std::string>& v) {
+        float xyz[3];
+        for (int k = 0; k < 3; ++k) {
+            xyz[k] = float(ArgParser::toDouble(name, v[size_t(k)]));
+            if (!std::isfinite(xyz[k]))
+                throw UsageError(name + " takes finite coordinates (at most 3.4e38), got '" +
+                                 v[size_t(k)] + "'");
+        }
+        if (nonZero && xyz[0] == 0 && xyz[1] == 0 && xyz[2] == 0)
+            throw UsageError(name + " takes a direction, got (0, 0, 0)");
+        target = Vec3(xyz[0], xyz[1], xyz[2]);
     };
 }
 
@@ -27,7 +37,7 @@ void CameraOptions::addOptions(ArgParser& parser) {
     parser.option("look-at", "", 3, "X Y Z", "point the camera looks at (default: bbox centre)",
                   vec3Into(lookAt, "--look-at"));
     parser.option("up", "", 3, "X Y Z", "camera up vector (default: the scene camera's)",
-                  vec3Into(up, "--up"));
+                  vec3Into(up, "--up", true));
     parser.option("fov", "", 1, "DEG", "field of view of the image's shorter side in degrees",
                   [this](const std::vector<std::string>& v) {
                       fovDeg = float(ArgParser::toDouble("--fov", v[0]));
@@ -38,17 +48,23 @@ void CameraOptions::addOptions(ArgParser& parser) {
                      turntable, 1, 1 << 20);
     parser.intOption("frame", "", "the turntable frame to render, 0..N-1", frame, 0, 1 << 20);
     parser.option("orbit-axis", "", 3, "X Y Z", "turntable axis (default: the camera's up)",
-                  vec3Into(orbitAxis, "--orbit-axis"));
+                  vec3Into(orbitAxis, "--orbit-axis", true));
     parser.option("orbit-centre", "", 3, "X Y Z",
                   "a point on the turntable axis (default: bbox centre)",
                   vec3Into(orbitCentre, "--orbit-centre"));
 }
 
-void CameraOptions::apply(Scene& scene) const {
+void CameraOptions::check() const {
     if ((turntable > 0) != (frame >= 0)) throw UsageError("--turntable and --frame go together");
     if (turntable > 0 && frame >= turntable)
         throw UsageError("--frame " + std::to_string(frame) + " is not below --turntable " +
                          std::to_string(turntable));
+    if (position && lookAt && *position == *lookAt)
+        throw UsageError("--position and --look-at are the same point");
+}
+
+void CameraOptions::apply(Scene& scene) const {
+    check();
     Camera& cam = scene.camera;
     Vec3 centre = scene.storedBounds().centroid();
     try {

@@ -16,6 +16,8 @@ struct CameraOptions {
 
     // --position --look-at --up --fov --turntable --frame --orbit-axis --orbit-centre
     void addOptions(ArgParser& parser);
+    // What the options say alone (the turntable and its frame, distinct points); throws UsageError.
+    void check() const;
     // The override, then the orbit; throws UsageError on an impossible camera.
     void apply(Scene& scene) const;
 };

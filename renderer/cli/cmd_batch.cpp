@@ -1,5 +1,6 @@
 // kiln batch FILE: every render of a job file on this machine, each a child `kiln render`.
 #include <cstdio>
+#include <set>
 
 #include "renderer/cli/cli_args.h"
 #include "renderer/cli/commands.h"
@@ -7,6 +8,35 @@
 #include "renderer/farm/task_runner.h"
 
 namespace kiln {
+
+void checkJobRenders(const std::vector<farm::RenderTask>& tasks, int checkpointSeconds,
+                     const std::vector<farm::TaskOrigin>* origins) {
+    std::set<std::vector<std::string>> checked;
+    for (size_t i = 0; i < tasks.size(); ++i) {
+        const farm::RenderTask& t = tasks[i];
+        std::vector<std::string> command = farm::renderCommand(t, checkpointSeconds, true);
+        command.erase(command.begin());  // "render"
+        if (!checked.insert(command).second) continue;
+        try {
+            checkRenderArguments(command);
+        } catch (const UsageError& e) {
+            if (!origins || i >= origins->size())
+                throw UsageError("the render of " + t.output + ": " + e.what());
+            // The entry and field: the first source whose options fail on their own.
+            const farm::TaskOrigin& origin = (*origins)[i];
+            for (const farm::ArgSource& source : origin.sources) {
+                std::vector<std::string> alone{t.scene};
+                alone.insert(alone.end(), source.args.begin(), source.args.end());
+                try {
+                    checkRenderArguments(alone);
+                } catch (const UsageError& own) {
+                    throw UsageError(source.where + ": " + own.what());
+                }
+            }
+            throw UsageError(origin.label + ": " + e.what());
+        }
+    }
+}
 
 int runBatch(const std::vector<std::string>& args) {
     farm::RunOptions run;
@@ -26,12 +56,14 @@ int runBatch(const std::vector<std::string>& args) {
     }
     if (pos.size() != 1) throw UsageError("needs exactly one job file (see 'kiln batch --help')");
     std::vector<farm::RenderTask> tasks;
+    std::vector<farm::TaskOrigin> origins;
     try {
-        tasks = farm::readJobFile(pos[0]);
+        tasks = farm::readJobFile(pos[0], &origins);
     } catch (const farm::FarmInputError& e) {
         throw UsageError(e.what());
     }
     run.quietChildren = quiet;
+    checkJobRenders(tasks, run.checkpointSeconds, &origins);
     std::vector<farm::TaskResult> results = farm::runTasks(tasks, run);
     std::fprintf(stderr, "%s\n", farm::summaryLine(results).c_str());
     if (json) std::printf("%s\n", farm::summaryJson(results).c_str());

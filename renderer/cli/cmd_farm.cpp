@@ -106,7 +106,10 @@ std::vector<farm::RenderTask> submitTasks(const SubmitArgs& a, const std::string
         if (!a.renderArgs.empty())
             throw UsageError("render options go into the job file's \"args\", not after " +
                              a.input);
-        return farm::readJobFile(a.input);
+        std::vector<farm::TaskOrigin> origins;
+        std::vector<farm::RenderTask> tasks = farm::readJobFile(a.input, &origins);
+        checkJobRenders(tasks, a.checkpointSeconds, &origins);
+        return tasks;
     }
     std::error_code ec;
     if (!fs::is_regular_file(a.input, ec))
@@ -129,16 +132,13 @@ bool sameWork(const farm::FarmJob& a, const farm::FarmJob& b) {
     return true;
 }
 
-// kiln render parses every option before it acts on --help, so a typo in the render options is
-// refused here, before anything is submitted (the first and last render stand for the rest).
+// Every shard's render options through kiln render's own checks, before anything is submitted:
+// a typo, a value out of range, or a combination a shard makes impossible (-a with a sample range
+// that does not start at 0).
 void checkRenderOptions(const farm::FarmJob& job) {
-    for (const farm::RenderTask* t :
-         {&job.shards.front().tasks.front(), &job.shards.back().tasks.back()}) {
-        std::vector<std::string> cmd = farm::renderCommand(*t, job.checkpointSeconds, true);
-        cmd.push_back("--help");
-        farm::CommandResult r = farm::runCapturing(job.kiln, cmd);
-        if (r.exitCode != 0) throw UsageError(r.output.substr(0, r.output.find('\n')));
-    }
+    std::vector<farm::RenderTask> all;
+    for (const farm::Shard& s : job.shards) all.insert(all.end(), s.tasks.begin(), s.tasks.end());
+    checkJobRenders(all, job.checkpointSeconds);
 }
 
 std::vector<int> allShards(const farm::FarmJob& job) {

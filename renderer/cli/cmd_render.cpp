@@ -21,6 +21,7 @@
 #include "renderer/core/log.h"
 #include "renderer/core/memory.h"
 #include "renderer/exr_scene.h"
+#include "renderer/frame_probe.h"
 #include "renderer/long_render.h"
 #include "renderer/progress.h"
 #include "renderer/render_job.h"
@@ -489,9 +490,38 @@ Metadata renderMetadata(const RenderJob& job, const RenderCommand& c, const std:
     return meta;
 }
 
-int renderLong(const RenderCommand& c, const RenderJob& job,
-               const std::unique_ptr<Accelerator>& accel, const std::string& scenePath,
-               const OutputPaths& out, double loadTime, double buildTime) {
+// The final checkpoint, after the images: a checkpoint that does not fit (a full disk) cannot cost
+// a finished image. Its failure is a warning when the render is complete and its images were
+// written (the checkpoint would only serve a later refinement); otherwise (a time limit, an
+// interruption, a shard for kiln merge, an image not written) it is an error: returns 1 then.
+int writeCheckpointAfterImages(RenderCommand& c, const LongRenderOptions& lo, LongRenderResult& r,
+                               const OutputPaths& out, int imageFailures) {
+    try {
+        writeFinalCheckpoint(lo, r);
+    } catch (const std::exception& e) {
+        const RenderSettings& s = c.job.job.settings;
+        const bool shard = c.rangeStart >= 0 || s.hasRegion();
+        if (imageFailures == 0 && r.stats.complete && !shard) {
+            std::string text = fmt::format(
+                "{} (the finished image is written; the checkpoint would only serve a later "
+                "refinement with --resume)",
+                e.what());
+            logWarning("{}", text);
+            c.warnings.push_back(text);
+            return 0;
+        }
+        logError("{}", e.what());
+        return 1;
+    }
+    if (r.checkpointBytes)
+        logInfo("checkpoint {}: {:.1f} MiB written in {:.3f}s", out.checkpoint,
+                double(r.checkpointBytes) / (1 << 20), r.checkpointSeconds);
+    return 0;
+}
+
+int renderLong(RenderCommand& c, const RenderJob& job, const std::unique_ptr<Accelerator>& accel,
+               const std::string& scenePath, const OutputPaths& out, double loadTime,
+               double buildTime) {
     LongRenderOptions lo;
     lo.checkpointPath = c.checkpoints() ? out.checkpoint : "";
     lo.checkpointEverySeconds = c.checkpointEvery;
@@ -505,14 +535,11 @@ int renderLong(const RenderCommand& c, const RenderJob& job,
     lo.report = [](const std::string& text) { logInfo("{}", text); };
     LongRenderResult r = [&] {
         try {
-            return runLongRender(job, lo);
+            return renderLongFilm(job, lo);
         } catch (const CheckpointError& e) {
             throw UsageError(e.what());
         }
     }();
-    if (r.checkpointBytes)
-        logInfo("checkpoint {}: {:.1f} MiB written in {:.3f}s", out.checkpoint,
-                double(r.checkpointBytes) / (1 << 20), r.checkpointSeconds);
     auto t2 = std::chrono::steady_clock::now();
     std::string heatPath;
     int failures =
@@ -521,6 +548,7 @@ int renderLong(const RenderCommand& c, const RenderJob& job,
                                                : r.totals.metadata,
                      heatPath);
     double writeTime = seconds(t2);
+    failures += writeCheckpointAfterImages(c, lo, r, out, failures);
     printSummary(scenePath, out, heatPath, r.stats, loadTime, buildTime, writeTime);
     if (job.guided())
         logInfo("path guiding {}; trained in {:.3f}s (counted in the render time)",
@@ -539,14 +567,7 @@ int renderLong(const RenderCommand& c, const RenderJob& job,
     return 0;
 }
 
-}  // namespace
-
-int runRender(const std::vector<std::string>& args) {
-    // From the start a signal stops the work and saves what it has (a farm may send SIGTERM or
-    // SIGUSR1 while the scene loads).
-    SignalScope signals;
-    RenderCommand c;
-    ArgParser parser("render", "SCENE [options]   (writes OUT.exr and OUT.png)");
+void addRenderOptions(ArgParser& parser, RenderCommand& c) {
     addOutputOptions(parser, c);
     c.job.addOptions(parser);
     c.accel.addOptions(parser, true);
@@ -559,17 +580,60 @@ int runRender(const std::vector<std::string>& args) {
     addCompressionOption(parser, c);
     addCompositingOptions(parser, c);
     addQueueOptions(parser, c);
+}
+
+// The one scene file among the positional arguments; anything more is not an option.
+void checkOneScene(const std::vector<std::string>& pos) {
+    if (pos.empty()) throw UsageError("needs exactly one scene file (see 'kiln render --help')");
+    if (pos.size() > 1)
+        throw UsageError("needs exactly one scene file; '" + pos[1] +
+                         "' is not an option (see 'kiln render --help')");
+}
+
+// The checks of the options alone, before anything is opened: the job's options, the long-render
+// combinations, the camera override and the debug pair.
+RenderJobOptions checkedJobOptions(const RenderCommand& c) {
+    RenderJobOptions jobOptions = c.job.finish();
+    applyLongRenderOptions(c, jobOptions);
+    c.camera.check();
+    if ((c.debugX >= 0) != (c.debugSample >= 0))
+        throw UsageError("--pixel and --sample go together");
+    return jobOptions;
+}
+
+}  // namespace
+
+void checkRenderArguments(const std::vector<std::string>& args) {
+    RenderCommand c;
+    ArgParser parser("render", "SCENE [options]");
+    addRenderOptions(parser, c);
+    std::vector<std::string> pos = parser.parse(args);
+    if (parser.helpRequested()) throw UsageError("--help is not a render option");
+    checkOneScene(pos);
+    checkedJobOptions(c);
+    try {
+        checkColorConfig(c.display, c.view);
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+    }
+}
+
+int runRender(const std::vector<std::string>& args) {
+    // From the start a signal stops the work and saves what it has (a farm may send SIGTERM or
+    // SIGUSR1 while the scene loads).
+    SignalScope signals;
+    RenderCommand c;
+    ArgParser parser("render", "SCENE [options]   (writes OUT.exr and OUT.png)");
+    addRenderOptions(parser, c);
     std::vector<std::string> pos = parser.parse(args);
     if (parser.helpRequested()) {
         std::fputs(parser.helpText().c_str(), stdout);
         std::fputs(kExitCodes, stdout);
         return 0;
     }
-    if (pos.size() != 1)
-        throw UsageError("needs exactly one scene file (see 'kiln render --help')");
+    checkOneScene(pos);
     const std::string& scenePath = pos[0];
-    RenderJobOptions jobOptions = c.job.finish();
-    applyLongRenderOptions(c, jobOptions);
+    RenderJobOptions jobOptions = checkedJobOptions(c);
     applyCompositingOptions(c, jobOptions);
     applyQueueOptions(c, jobOptions);
     checkColour(c);
@@ -589,6 +653,11 @@ int runRender(const std::vector<std::string>& args) {
     RenderJob job(scene, *accel, jobOptions);
     warnHemisphereBlind(job, scenePath);
     if (c.debugX >= 0 || c.debugSample >= 0) return printDebugSample(job, c);
+    // What the camera will see decides the black-image warning (a few thousand samples).
+    if (std::optional<std::string> black = blackImageWarning(probeFrame(job), c.exposure)) {
+        logWarning("{}: {}", scenePath, *black);
+        c.warnings.push_back(*black);
+    }
 
     addSceneToExr(c.exr, scene, jobOptions.settings, jobOptions.aovs);
     c.exr.software = fmt::format("kiln {} (commit {})", KILN_VERSION, gitCommit());

@@ -18,4 +18,26 @@ int runTools(const std::vector<std::string>& args);            // kiln tools sub
 int runAccuracyCommand(const std::vector<std::string>& args);  // kiln bench accuracy
 int runReport(const std::vector<std::string>& args);           // kiln report cs184
 
+// kiln render's checks of a command line (SCENE and options, without "render") that need no scene
+// and no output: the parser, option ranges and combinations, the camera override, the colour
+// config's display and view. Throws UsageError.
+void checkRenderArguments(const std::vector<std::string>& args);
+
+}  // namespace kiln
+
+namespace kiln::farm {
+struct RenderTask;
+struct TaskOrigin;
+}  // namespace kiln::farm
+
+namespace kiln {
+
+// Every render of a job file through checkRenderArguments, as the child `kiln render` will get it,
+// before the first one starts (kiln batch, kiln farm submit). With origins (one per task, from
+// readJobFile) the error names the job file, the entry and the field ("job.json: cameras[0]:
+// 'up': --up takes finite coordinates ..."), or the render when only the combination fails;
+// without, the render's output. Throws UsageError.
+void checkJobRenders(const std::vector<farm::RenderTask>& tasks, int checkpointSeconds,
+                     const std::vector<farm::TaskOrigin>* origins = nullptr);
+
 }  // namespace kiln

@@ -17,12 +17,21 @@ struct CameraFrame {
     std::string camera;
     int frame = 0;
     std::vector<std::string> args;
+    std::vector<ArgSource> sources;  // args by the key they come from
 };
 
 struct Setting {
     std::string name;
     std::vector<std::string> args;
+    std::string where;
 };
+
+// One key's options as a source of its own, appended to args.
+void addSource(CameraFrame& f, const std::string& where, const std::vector<std::string>& args) {
+    if (args.empty()) return;
+    f.args.insert(f.args.end(), args.begin(), args.end());
+    f.sources.push_back({where, args});
+}
 
 [[noreturn]] void fail(const std::string& where, const std::string& what) {
     throw FarmInputError(where + ": " + what);
@@ -48,27 +57,26 @@ std::vector<std::string> argList(const json& v, const std::string& where) {
     return args;
 }
 
-void addVec3(std::vector<std::string>& args, const json& entry, const char* key,
-             const std::string& option, const std::string& where) {
+void addVec3(CameraFrame& f, const json& entry, const char* key, const std::string& option,
+             const std::string& where) {
     if (!entry.contains(key)) return;
     const json& v = entry[key];
     if (!v.is_array() || v.size() != 3 || !v[0].is_number() || !v[1].is_number() ||
         !v[2].is_number())
         fail(where, std::string("'") + key + "' must be three numbers");
-    args.push_back(option);
+    std::vector<std::string> args{option};
     for (const json& x : v) args.push_back(numberText(x, where));
+    addSource(f, where + ": '" + key + "'", args);
 }
 
-std::vector<std::string> viewArgs(const json& entry, const std::string& where) {
-    std::vector<std::string> args;
-    addVec3(args, entry, "position", "--position", where);
-    addVec3(args, entry, "look_at", "--look-at", where);
-    addVec3(args, entry, "up", "--up", where);
+void addViewArgs(CameraFrame& f, const json& entry, const std::string& where) {
+    addVec3(f, entry, "position", "--position", where);
+    addVec3(f, entry, "look_at", "--look-at", where);
+    addVec3(f, entry, "up", "--up", where);
     if (entry.contains("fov")) {
         if (!entry["fov"].is_number()) fail(where, "'fov' must be a number");
-        args.insert(args.end(), {"--fov", numberText(entry["fov"], where)});
+        addSource(f, where + ": 'fov'", {"--fov", numberText(entry["fov"], where)});
     }
-    return args;
 }
 
 int intIn(const json& v, int lo, int hi, const std::string& where) {
@@ -87,14 +95,16 @@ std::vector<CameraFrame> turntableFrames(const json& c, const std::string& name,
         first = intIn(f[0], 0, n - 1, where + ": 'frames'");
         last = intIn(f[1], first + 1, n, where + ": 'frames'");
     }
-    std::vector<std::string> base = viewArgs(c, where);
+    CameraFrame base{name, 0, {}, {}};
+    addViewArgs(base, c, where);
     addVec3(base, c, "axis", "--orbit-axis", where);
     addVec3(base, c, "centre", "--orbit-centre", where);
     std::vector<CameraFrame> frames;
     for (int k = first; k < last; ++k) {
-        CameraFrame f{name, k, base};
-        f.args.insert(f.args.end(),
-                      {"--turntable", std::to_string(n), "--frame", std::to_string(k)});
+        CameraFrame f = base;
+        f.frame = k;
+        addSource(f, where + ": 'turntable'",
+                  {"--turntable", std::to_string(n), "--frame", std::to_string(k)});
         frames.push_back(f);
     }
     return frames;
@@ -112,29 +122,35 @@ std::vector<CameraFrame> cameraFrames(const json& c, size_t i, const std::string
         name = c["name"].get<std::string>();
     }
     if (c.contains("turntable")) return turntableFrames(c, name, where);
-    if (!c.contains("path")) return {{name, 0, viewArgs(c, where)}};
+    if (!c.contains("path")) {
+        CameraFrame f{name, 0, {}, {}};
+        addViewArgs(f, c, where);
+        return {f};
+    }
     const json& path = c["path"];
     if (!path.is_array() || path.empty()) fail(where, "'path' must be a non-empty array");
     std::vector<CameraFrame> frames;
     for (size_t k = 0; k < path.size(); ++k) {
         std::string at = where + ".path[" + std::to_string(k) + "]";
         onlyKeys(path[k], {"position", "look_at", "up", "fov"}, at);
-        frames.push_back({name, int(k), viewArgs(path[k], at)});
+        CameraFrame f{name, int(k), {}, {}};
+        addViewArgs(f, path[k], at);
+        frames.push_back(f);
     }
     return frames;
 }
 
 std::vector<Setting> settingsOf(const json& doc, const std::string& file) {
-    if (!doc.contains("settings")) return {{"", {}}};
+    if (!doc.contains("settings")) return {{"", {}, ""}};
     const json& list = doc["settings"];
     if (!list.is_array() || list.empty()) fail(file, "'settings' must be a non-empty array");
     std::vector<Setting> settings;
     for (size_t i = 0; i < list.size(); ++i) {
         std::string where = file + ": settings[" + std::to_string(i) + "]";
         onlyKeys(list[i], {"name", "args"}, where);
-        Setting s{"set" + std::to_string(i), {}};
+        Setting s{"set" + std::to_string(i), {}, where + ": 'args'"};
         if (list[i].contains("name")) s.name = numberText(list[i]["name"], where);
-        if (list[i].contains("args")) s.args = argList(list[i]["args"], where + ": 'args'");
+        if (list[i].contains("args")) s.args = argList(list[i]["args"], s.where);
         settings.push_back(s);
     }
     return settings;
@@ -185,7 +201,7 @@ std::string expandOutputName(const std::string& pattern, const OutputVariables& 
 }
 
 std::vector<RenderTask> expandJobText(const std::string& text, const std::string& folder,
-                                      const std::string& file) {
+                                      const std::string& file, std::vector<TaskOrigin>* origins) {
     json doc = json::parse(text, nullptr, false);
     if (doc.is_discarded()) fail(file, "is not valid JSON");
     onlyKeys(doc, {"output", "scenes", "args", "cameras", "settings"}, file);
@@ -194,7 +210,7 @@ std::vector<RenderTask> expandJobText(const std::string& text, const std::string
     std::vector<std::string> scenes = scenesOf(doc, folder, file);
     std::vector<std::string> common;
     if (doc.contains("args")) common = argList(doc["args"], file + ": 'args'");
-    std::vector<CameraFrame> frames{{"default", 0, {}}};
+    std::vector<CameraFrame> frames{{"default", 0, {}, {}}};
     if (doc.contains("cameras")) {
         if (!doc["cameras"].is_array() || doc["cameras"].empty())
             fail(file, "'cameras' must be a non-empty array");
@@ -220,6 +236,17 @@ std::vector<RenderTask> expandJobText(const std::string& text, const std::string
                              fs::absolute(fs::path(folder) / name).lexically_normal()};
                 t.args.insert(t.args.end(), f.args.begin(), f.args.end());
                 t.args.insert(t.args.end(), s.args.begin(), s.args.end());
+                if (origins) {
+                    TaskOrigin o;
+                    if (!common.empty()) o.sources.push_back({file + ": 'args'", common});
+                    o.sources.insert(o.sources.end(), f.sources.begin(), f.sources.end());
+                    if (!s.args.empty()) o.sources.push_back({s.where, s.args});
+                    o.label =
+                        fmt::format("{}: the render of scene '{}', camera '{}', frame {}{}", file,
+                                    fs::path(scene).filename().string(), f.camera, f.frame,
+                                    s.name.empty() ? "" : ", settings '" + s.name + "'");
+                    origins->push_back(std::move(o));
+                }
                 if (!outputs.insert(t.output).second)
                     fail(file, "two renders write '" + t.output +
                                    "': add {scene}, {camera}, {frame} or {settings} to 'output'");
@@ -228,9 +255,9 @@ std::vector<RenderTask> expandJobText(const std::string& text, const std::string
     return tasks;
 }
 
-std::vector<RenderTask> readJobFile(const std::string& path) {
+std::vector<RenderTask> readJobFile(const std::string& path, std::vector<TaskOrigin>* origins) {
     std::string folder = fs::path(path).parent_path().string();
-    return expandJobText(readFileText(path), folder.empty() ? "." : folder, path);
+    return expandJobText(readFileText(path), folder.empty() ? "." : folder, path, origins);
 }
 
 }  // namespace kiln::farm

@@ -13,9 +13,7 @@
 #include <utility>
 #include <vector>
 
-#ifndef KILN_GIT_COMMIT
-#define KILN_GIT_COMMIT "unknown"
-#endif
+#include "kiln_git_commit.h"  // generated in the build tree (CMakeLists.txt)
 
 namespace kiln {
 namespace {

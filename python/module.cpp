@@ -268,6 +268,7 @@ py::object render(const SceneHandle& handle, const py::object& options, const py
     args.insert(args.end(), o.args.begin(), o.args.end());
     RenderCommand command = parseRenderArguments(args);
 
+    LoadedScene::Caller caller(scene);
     std::atomic<bool> stop{false};
     ProgressChannel channel;
     RenderControl control;
@@ -348,6 +349,7 @@ py::object crosscheck(const SceneHandle& handle, const py::dict& kwargs) {
     std::map<std::string, const Declared*> known;
     for (const Declared& d : parser.declared()) known[keywordOf(d.longName)] = &d;
     parser.parse(argumentsOf(kwargs, "crosscheck", known));
+    LoadedScene::Caller caller(*handle.scene);
     Json report;
     {
         py::gil_scoped_release release;

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <utility>
 
 #include "renderer/core/log.h"
@@ -53,28 +54,44 @@ LoadedScene::LoadedScene(std::string path, std::vector<std::string> loadArgs)
     : path_(std::move(path)), loadArgs_(std::move(loadArgs)) {
     RenderCommand c = parseRenderArguments(loadArgs_);
     scene_ = loadScene(path_, c.load);
-}
-
-std::string LoadedScene::infoJson() {
-    std::lock_guard lock(mutex_);
-    return sceneInfoJson(scene_);
+    info_ = sceneInfoJson(scene_);
 }
 
 std::vector<AcceleratorStats> LoadedScene::accelerators() {
-    std::lock_guard lock(mutex_);
+    std::lock_guard lock(accelMutex_);
     std::vector<AcceleratorStats> out;
     for (const auto& [key, accel] : accelerators_) out.push_back(accel->stats());
     return out;
+}
+
+LoadedScene::Caller::Caller(LoadedScene& scene) : scene_(scene) {
+    std::lock_guard lock(scene.callersMutex_);
+    auto& callers = scene.callers_;
+    if (std::find(callers.begin(), callers.end(), std::this_thread::get_id()) != callers.end())
+        throw std::logic_error(scene.path_ +
+                               ": this thread is rendering the scene already (a render from "
+                               "its own progress callback would wait for itself)");
+    callers.push_back(std::this_thread::get_id());
+}
+
+LoadedScene::Caller::~Caller() {
+    std::lock_guard lock(scene_.callersMutex_);
+    auto& callers = scene_.callers_;
+    callers.erase(std::find(callers.begin(), callers.end(), std::this_thread::get_id()));
 }
 
 const Accelerator& LoadedScene::accelerator(const AcceleratorChoice& choice,
                                             const RenderJobOptions* job) {
     std::string key =
         choice.kind == AcceleratorKind::BruteForce ? "brute force" : acceleratorKey(choice);
-    auto found = accelerators_.find(key);
-    if (found != accelerators_.end() && choice.kind != AcceleratorKind::BruteForce)
-        return *found->second;
+    {
+        std::lock_guard lock(accelMutex_);
+        auto found = accelerators_.find(key);
+        if (found != accelerators_.end() && choice.kind != AcceleratorKind::BruteForce)
+            return *found->second;
+    }
     std::unique_ptr<Accelerator> built = choice.build(scene_, job);  // may refuse: nothing kept
+    std::lock_guard lock(accelMutex_);
     std::unique_ptr<Accelerator>& slot = accelerators_[key];
     slot = std::move(built);
     return *slot;

@@ -7,6 +7,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "color/image_output.h"
@@ -35,8 +36,8 @@ class LoadedScene {
     const std::string& path() const { return path_; }
     const std::vector<std::string>& loadArguments() const { return loadArgs_; }
     const Scene& scene() const { return scene_; }
-    // kiln info --json.
-    std::string infoJson();
+    // kiln info --json of the scene as loaded.
+    const std::string& infoJson() const { return info_; }
     // The accelerators built so far: description, build seconds, bytes.
     std::vector<AcceleratorStats> accelerators();
 
@@ -53,15 +54,33 @@ class LoadedScene {
     // random, secondary and shadow rays.
     Json crosscheck(const AcceleratorChoice& choice, size_t raysPerCategory, uint64_t seed);
 
+    // The threads inside a render or crosscheck of this scene: one asked from a render's own
+    // progress callback (the same thread) would wait for itself, and is refused instead.
+    class Caller {
+      public:
+        explicit Caller(LoadedScene& scene);  // throws std::logic_error for a nested render
+        ~Caller();
+        Caller(const Caller&) = delete;
+        Caller& operator=(const Caller&) = delete;
+
+      private:
+        LoadedScene& scene_;
+    };
+
   private:
+    std::mutex callersMutex_;
+    std::vector<std::thread::id> callers_;
+
     // The accelerator of this choice, built on first use and kept (brute force: made again for
-    // each render, its time estimate depends on the render).
+    // each render, its time estimate depends on the render). Called with mutex_ held.
     const Accelerator& accelerator(const AcceleratorChoice& choice, const RenderJobOptions* job);
 
     std::string path_;
     std::vector<std::string> loadArgs_;
     Scene scene_;
-    std::mutex mutex_;  // the camera is the scene's while a render runs
+    std::string info_;
+    std::mutex mutex_;       // held by a render or crosscheck: the camera is theirs meanwhile
+    std::mutex accelMutex_;  // the map (listed while a render runs, e.g. from its callback)
     std::map<std::string, std::unique_ptr<Accelerator>> accelerators_;
 };
 

@@ -116,3 +116,29 @@ def test_an_exception_in_the_callback_stops_the_render_and_propagates(cbspheres)
         kiln.render(cbspheres, resolution=(64, 48), spp=64, threads=1, tile=TILE, aovs=[],
                     progress=progress)
     assert error.value.image.samples.sum() == TILE * TILE
+
+
+def test_the_scene_answers_from_a_callback_and_renders_take_turns_across_threads(cbspheres):
+    seen = []
+
+    def progress(done, total):
+        seen.append((cbspheres.info()["triangles"], len(cbspheres.accelerators)))
+        with pytest.raises(RuntimeError, match="rendering the scene already"):
+            kiln.render(cbspheres, resolution=(8, 6))
+
+    images = [None, None]
+
+    def work(i):
+        images[i] = kiln.render(cbspheres, resolution=(48, 36), spp=2, aovs=[], tile=TILE,
+                                progress=progress, turntable=4, frame=i)
+
+    threads = [threading.Thread(target=work, args=(i,)) for i in range(2)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join(timeout=60)
+    assert not any(t.is_alive() for t in threads)
+    assert seen and all(triangles == 12 for triangles, _ in seen)
+    assert all(image is not None and not image.interrupted for image in images)
+    alone = kiln.render(cbspheres, resolution=(48, 36), spp=2, aovs=[], turntable=4, frame=1)
+    assert np.array_equal(images[1].beauty, alone.beauty)

@@ -104,11 +104,19 @@ void checkWorkingSpace(const OCIO::ConstConfigRcPtr& config, ColorSetup& setup) 
             setup.configPath, setup.sceneLinear, worst));
 }
 
+std::string& bundledConfig() {
+    static std::string path;
+    return path;
+}
+
 }  // namespace
+
+void setBundledColorConfig(const std::string& path) { bundledConfig() = path; }
 
 std::string colorConfigPath() {
     if (const char* env = std::getenv("OCIO"); env && *env) return env;
     std::error_code ec;
+    if (!bundledConfig().empty() && fs::exists(bundledConfig(), ec)) return bundledConfig();
     fs::path exe = fs::read_symlink("/proc/self/exe", ec);
     if (!ec) {
         fs::path installed = (exe.parent_path() / KILN_CONFIG_FROM_BINARY).lexically_normal();

@@ -1,4 +1,5 @@
-// The OCIO config kiln follows: $OCIO when set, else the one installed beside the binary
+// The OCIO config kiln follows: $OCIO when set, else the one a front end ships beside itself (the
+// installed Python module's package), else the one installed beside the binary
 // (PREFIX/share/kiln/config.ocio for PREFIX/bin/kiln), else the source tree's (build directory).
 // Everything kiln needs from it is checked before a render starts.
 #pragma once
@@ -9,6 +10,10 @@
 namespace kiln {
 
 std::string colorConfigPath();
+
+// The config shipped beside a front end that is not the kiln binary (the Python module: its
+// package's config.ocio when installed); taken when the file exists. Empty: none.
+void setBundledColorConfig(const std::string& path);
 
 // What a render uses from the config, resolved and checked.
 struct ColorSetup {

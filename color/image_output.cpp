@@ -224,6 +224,50 @@ void writeExr(const std::string& path, const Film& film, const Metadata& metadat
     writeAtomically(path, "openexr", spec, buf, "EXR");
 }
 
+std::vector<ExrLayer> exrLayers(const Film& film) {
+    OIIO::ImageSpec spec(film.width(), film.height(), 0, OIIO::TypeDesc::FLOAT);
+    addChannels(spec, film, {});
+    std::vector<ExrLayer> layers;
+    for (size_t c = 0; c < spec.channelnames.size(); ++c) {
+        const std::string& full = spec.channelnames[c];
+        size_t dot = full.rfind('.');
+        std::string layer =
+            dot == std::string::npos ? (full == "Z" ? "Z" : "") : full.substr(0, dot);
+        if (layers.empty() || layers.back().name != layer) layers.push_back({layer, {}, c});
+        layers.back().channels.push_back(dot == std::string::npos ? full : full.substr(dot + 1));
+    }
+    return layers;
+}
+
+void exrPixel(const Film& film, int x, int y, std::vector<float>& values) {
+    gatherPixel(film, x, y, values);
+}
+
+std::map<std::string, ExrAttribute> exrHeader(const Film& film, const Metadata& metadata,
+                                              const ExrOptions& options) {
+    OIIO::ImageSpec spec(film.width(), film.height(), 0, OIIO::TypeDesc::FLOAT);
+    addMetadata(spec, film, metadata, options);
+    std::map<std::string, ExrAttribute> header;
+    for (const OIIO::ParamValue& p : spec.extra_attribs) {
+        const OIIO::TypeDesc t = p.type();
+        ExrAttribute& value = header[p.name().string()];
+        if (t == OIIO::TypeDesc::INT)
+            value = p.get_int();
+        else if (t == OIIO::TypeDesc::DOUBLE)
+            value = *static_cast<const double*>(p.data());
+        else if (t == OIIO::TypeDesc::FLOAT)
+            value = double(p.get_float());
+        else if (t == OIIO::TypeDesc::STRING)
+            value = p.get_string();
+        else if (t.basetype == OIIO::TypeDesc::FLOAT) {
+            const float* v = static_cast<const float*>(p.data());
+            value = std::vector<float>(v, v + size_t(p.nvalues()) * t.numelements() * t.aggregate);
+        } else
+            value = p.get_string();
+    }
+    return header;
+}
+
 void writePreview(const std::string& path, const Film& film, const std::string& display,
                   const std::string& view, float exposureStops) {
     OIIO::ImageBuf linear = beautyBuffer(film);

@@ -6,6 +6,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "color/color_config.h"
@@ -51,6 +52,25 @@ struct ExrOptions {
 // Metadata keys are written as "kiln:KEY", numbers as numbers. Throws std::runtime_error.
 void writeExr(const std::string& path, const Film& film, const Metadata& metadata,
               const ExrOptions& options = {});
+
+// The EXR's channels grouped by layer, in the file's order: "" (R, G, B, A), then each AOV layer
+// ("direct": R G B, "N": X Y Z, "Z": Z, "samples": count, "variance": V, "CryptoObject00": R G B
+// A, ...).
+struct ExrLayer {
+    std::string name;                   // "" for the beauty
+    std::vector<std::string> channels;  // "R", "X", "count", ...
+    size_t first = 0;                   // its first channel's index in the file's order
+};
+std::vector<ExrLayer> exrLayers(const Film& film);
+// Pixel (x, y) of the film in the file's channel order: the values writeExr stores (as float).
+void exrPixel(const Film& film, int x, int y, std::vector<float>& values);
+
+// One attribute of an EXR header: an integer, a number, text, or floats (matrices, chromaticities).
+using ExrAttribute = std::variant<int, double, std::string, std::vector<float>>;
+// The header attributes writeExr writes for this film, metadata and options (all but the channels
+// and windows), by name, with the types a reader of the file finds.
+std::map<std::string, ExrAttribute> exrHeader(const Film& film, const Metadata& metadata,
+                                              const ExrOptions& options = {});
 
 // The per-pixel sample counts as a heat map (blue few, red many) with a legend bar and its range.
 void writeSampleHeatMap(const std::string& path, const Film& film);

@@ -113,11 +113,17 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator,
         throw std::logic_error("renderImage: film size differs from the render region");
     int tile = std::max(1, settings.tileSize);
     int tilesX = (fw + tile - 1) / tile, tilesY = (fh + tile - 1) / tile;
-    Progress progress("render", remainingSamples(film, settings), settings.progress);
+    const uint64_t totalWork = remainingSamples(film, settings);
+    Progress progress("render", totalWork, settings.progress);
+    std::atomic<uint64_t> doneWork{0};
     std::atomic<uint64_t> nonFinite{0};
     std::mutex badMutex;
     std::vector<BadSample> bad;
-    std::atomic<bool>& cancel = renderCancelFlag();
+    std::atomic<bool>& signalled = renderCancelFlag();
+    auto cancelled = [&] {
+        return signalled.load(std::memory_order_relaxed) ||
+               (control.cancel && control.cancel->load(std::memory_order_relaxed));
+    };
     std::atomic<bool>& request = checkpointRequestFlag();
     const bool timed = control.timeLimitSeconds > 0, periodic = control.checkpointEverySeconds > 0;
     const Clock::time_point limit = after(control.start, control.timeLimitSeconds);
@@ -126,8 +132,7 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator,
     std::atomic<bool> paused{false};
     auto pausing = [&] {
         if (paused.load(std::memory_order_relaxed)) return true;
-        bool stop = cancel.load(std::memory_order_relaxed) ||
-                    (request.load(std::memory_order_relaxed) && control.checkpoint);
+        bool stop = cancelled() || (request.load(std::memory_order_relaxed) && control.checkpoint);
         if (!stop && (timed || periodic)) {
             Clock::time_point now = Clock::now();
             stop = (timed && now >= limit) || (periodic && now >= nextCheckpoint);
@@ -188,6 +193,7 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator,
         if (!batch.empty()) flush();
         progress.add(work, counter.rays);
         if (badCount) nonFinite += badCount;
+        if (control.tileDone) control.tileDone(doneWork += work, totalWork);
     };
 
     auto snapshot = [&] {
@@ -208,7 +214,7 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator,
                                           renderTile(t, waveStart, waveEnd);
                                   });
                 if (!paused.load()) break;
-                if (cancel.load()) return;
+                if (cancelled()) return;
                 if (timed && Clock::now() >= limit) {
                     stats.timeLimitReached = true;
                     return;
@@ -229,7 +235,7 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator,
     });
     if (bad.size() > 10) bad.resize(10);
     stats.firstBadSamples = bad;
-    stats.interrupted = cancel.load();
+    stats.interrupted = cancelled();
     stats.complete = remainingSamples(film, settings) == 0;
     return stats;
 }

@@ -40,6 +40,12 @@ struct RenderControl {
     std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
     // Called between pixels with no tile running; stats hold the counts so far.
     std::function<void(const Film&, const RenderStats&)> checkpoint;
+    // Stops this render alone at the next pixel, as SIGINT stops every render (the Python module:
+    // a callback returning False, KeyboardInterrupt, another thread); stats.interrupted says so.
+    const std::atomic<bool>* cancel = nullptr;
+    // Called after each tile, by the thread that rendered it, with the samples done and the
+    // samples in all (the Python module's progress callback).
+    std::function<void(uint64_t done, uint64_t total)> tileDone;
 };
 
 // Replays one camera sample exactly as the render loop traces it (same sampler state): for

@@ -42,7 +42,7 @@ std::vector<Include> quotedIncludes(const fs::path& file) {
 
 std::vector<fs::path> sourceFiles() {
     std::vector<fs::path> files;
-    for (const char* top : {"renderer", "scene", "integrators", "color"})
+    for (const char* top : {"renderer", "scene", "integrators", "color", "python"})
         for (const auto& e : fs::recursive_directory_iterator(test::repo(top))) {
             std::string ext = e.path().extension().string();
             if (e.is_regular_file() && (ext == ".h" || ext == ".cpp")) files.push_back(e.path());

@@ -9,6 +9,8 @@ packages=(build-essential cmake pkg-config
   libopencolorio-dev opencolorio-tools libtbb-dev libassimp-dev libgtest-dev
   libpugixml-dev zlib1g-dev libmurmurhash-dev nlohmann-json3-dev libfmt-dev libcli11-dev help2man
   assimp-testmodels
+  python3-dev pybind11-dev python3-numpy  # the kiln Python module (docs/python.md)
+  python3-pytest python3-openimageio python3-matplotlib  # its tests and the walkthrough
   slurmctld slurmd slurm-client munge)  # the farm tests' local cluster (tools/slurm_local.sh)
 
 missing=()

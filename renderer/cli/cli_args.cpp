@@ -58,6 +58,7 @@ struct ArgParser::Impl {
     CLI::App app;
     std::string group = "Options";
     std::vector<std::string> positional;
+    std::vector<Declared> declared;
     bool help = false;
     bool commonDeclared = false;
 
@@ -102,6 +103,7 @@ std::string ArgParser::group(const std::string& name) { return std::exchange(imp
 
 void ArgParser::option(const std::string& longName, const std::string& shortName, int nargs,
                        const std::string& metavar, const std::string& help, Handler handler) {
+    impl_->declared.push_back({longName, shortName, impl_->group, metavar, help, nargs});
     CLI::Option* opt = nullptr;
     std::string names = cliNames(longName, shortName);
     if (nargs == 0) {
@@ -169,6 +171,8 @@ std::vector<std::string> ArgParser::parse(const std::vector<std::string>& args) 
 }
 
 bool ArgParser::helpRequested() const { return impl_->help; }
+
+const std::vector<ArgParser::Declared>& ArgParser::declared() const { return impl_->declared; }
 
 std::string ArgParser::helpText() {
     declareCommon();

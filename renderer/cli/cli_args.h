@@ -59,6 +59,12 @@ class ArgParser {
             apply(*value);
         });
     }
+    // Every option declared so far, in order (the Python module maps its keywords onto them).
+    struct Declared {
+        std::string longName, shortName, group, metavar, help;
+        int nargs;  // 0: a switch
+    };
+    const std::vector<Declared>& declared() const;
     // Returns positional arguments. Throws UsageError; sets helpRequested() on -h/--help.
     std::vector<std::string> parse(const std::vector<std::string>& args);
     bool helpRequested() const;

@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <string>
+#include <utility>
 
 #include "integrators/make_integrator.h"
 #include "integrators/path.h"
@@ -81,7 +82,7 @@ double RenderJob::trainGuideOnce() const {
         guide_ = trainGuide(path, options_.settings);
         path.setGuide(guide_);
         seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        guideSeconds_ = seconds;
+        guideSeconds_ = uncountedTrainingSeconds_ = seconds;
     });
     return seconds;
 }
@@ -100,7 +101,10 @@ Film RenderJob::makeFilm() const {
 }
 
 RenderStats RenderJob::render(Film& film, const RenderControl& control) const {
-    const double training = trainGuideOnce();
+    // The first render counts the training in its time, whatever traced first (the frame probe
+    // of kiln render trains the guide before the render starts).
+    trainGuideOnce();
+    const double training = std::exchange(uncountedTrainingSeconds_, 0.0);
     RenderStats stats = renderImage(scene_, *integrator_, options_.settings, film, control);
     stats.seconds += training;
     return stats;

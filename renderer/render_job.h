@@ -70,6 +70,7 @@ class RenderJob {
     mutable std::once_flag guideTrained_;
     mutable std::shared_ptr<const GuideField> guide_;
     mutable double guideSeconds_ = 0;
+    mutable double uncountedTrainingSeconds_ = 0;  // training no render has counted yet
 };
 
 }  // namespace kiln

@@ -42,6 +42,10 @@ rm -rf "$reports" && mkdir -p "$reports"
 # "failure" exit) and the output is searched for reports as well.
 export ASAN_OPTIONS=detect_leaks=0:abort_on_error=1:halt_on_error=1:log_path=$reports/asan
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1:abort_on_error=1
+# The tests' scratch folders (TMPDIR/kiln-tests/SUITE.NAME) inside build-sanitize/: a Release suite
+# or another checkout's tests running at the same time on this machine use the same names in /tmp.
+export TMPDIR=$PWD/$dir/tmp
+rm -rf "$TMPDIR" && mkdir -p "$TMPDIR"
 status=0
 "./$dir/kiln_tests" --gtest_filter="$filter" 2>&1 | tee "$dir/tests.log" || status=$?
 if compgen -G "$reports/*" >/dev/null; then

@@ -24,8 +24,9 @@ import statistics
 import subprocess
 import sys
 
+sys.dont_write_bytecode = True  # no __pycache__ in the checkout
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from peer_bench import time_at  # noqa: E402  (one log-log interpolation for both benchmarks)
+from bench_common import parse_variant, time_at  # noqa: E402  (shared with tools/peer_bench.py)
 
 TIMES = re.compile(r"build ([0-9.]+)s, render ([0-9.]+)s")
 
@@ -43,19 +44,6 @@ def rel_mse(kiln, test, ref):
     out = subprocess.run([kiln, "bench", "compare", test, ref], capture_output=True, text=True,
                          check=True).stdout
     return float(re.search(r"relmse ([0-9.eE+-]+)", out).group(1))
-
-
-def parse_variant(text, default_points, kiln):
-    label, sep, rest = text.partition("=")
-    if not sep:
-        sys.exit("--variant takes LABEL=[KILN::]ARGS[@P1,P2,...], got " + repr(text))
-    if "::" in rest:
-        kiln, rest = rest.split("::", 1)
-    args, at, points = rest.partition("@")
-    points = points.split(",") if at else list(default_points)
-    if "{p}" not in args:
-        args += " -s {p}"
-    return label, kiln, args, points
 
 
 def main():

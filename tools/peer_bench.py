@@ -38,6 +38,9 @@ sys.dont_write_bytecode = True  # no __pycache__ in the checkout
 sys.path.insert(0, os.path.join(ROOT, "tools", "peer"))
 from box import box_quads, write_dae  # noqa: E402
 
+sys.path.insert(0, os.path.join(ROOT, "tools"))
+from bench_common import parse_variant, time_at  # noqa: E402
+
 
 def obj_bounds(path):
     lo, hi = [math.inf] * 3, [-math.inf] * 3
@@ -190,21 +193,6 @@ def check_references(refs, base):
 REF_SEED = 1007  # test renders use each renderer's default seed (kiln 0, Cycles 7)
 
 
-def time_at(series, level):
-    """Log-log interpolation of (time, error) points to the time at which error reaches `level`;
-    extrapolated along the last two points below the smallest error (marked with '*')."""
-    pts = sorted(series)
-    for (t0, e0), (t1, e1) in zip(pts, pts[1:]):
-        if e0 >= level >= e1 and e0 != e1:
-            f = math.log(level / e0) / math.log(e1 / e0)
-            return math.exp(math.log(t0) + f * (math.log(t1) - math.log(t0))), ""
-    if len(pts) >= 2 and level < pts[-1][1]:
-        (t0, e0), (t1, e1) = pts[-2], pts[-1]
-        f = math.log(level / e0) / math.log(e1 / e0)
-        return math.exp(math.log(t0) + f * (math.log(t1) - math.log(t0))), "*"
-    return float("nan"), "?"
-
-
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     ap.add_argument("--scene", default="lucy_env", choices=sorted(SCENES))
@@ -250,7 +238,6 @@ def main():
         return
 
     # Each kiln series: (label, args with {p}, one point per spp step, its reference).
-    from estimator_bench import parse_variant  # here: estimator_bench imports this module
     series = [("kiln " + x, "--sampler %s -s {p}" % x, [str(p) for p in spps], refs["kiln " + x])
               for x in samplers]
     for text in a.variant:

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs the Debian packages kiln needs (only those missing) and builds kiln in build/.
+# Installs the Debian packages kiln needs (only those missing) and builds kiln in build/, warnings as
+# errors (KILN_WERROR: the README's commands and .ci/run build what CI builds).
 # Idempotent: a second run with everything present costs a dpkg query and an incremental build.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -26,5 +27,5 @@ if ((${#missing[@]})); then
   "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DKILN_WERROR=ON >/dev/null
 cmake --build build -j"$(nproc)"

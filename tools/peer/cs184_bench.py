@@ -30,7 +30,8 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.dont_write_bytecode = True  # no __pycache__ in the checkout
 sys.path.insert(0, os.path.join(ROOT, "tools"))
-from peer_bench import REF_SEED, rel_mse, time_at  # noqa: E402
+from bench_common import time_at  # noqa: E402
+from peer_bench import REF_SEED, rel_mse  # noqa: E402
 
 
 def child_cpu():

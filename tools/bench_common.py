@@ -1,0 +1,36 @@
+"""What the equal-error benchmarks share (tools/estimator_bench.py, tools/peer_bench.py,
+tools/peer/cs184_bench.py): the log-log interpolation to a time at an error level and the parser of a
+--variant. A leaf module: it imports nothing of tools/, so the benchmarks import it and not each other.
+"""
+import math
+import sys
+
+
+def time_at(series, level):
+    """Log-log interpolation of (time, error) points to the time at which error reaches `level`;
+    extrapolated along the last two points below the smallest error (marked with '*')."""
+    pts = sorted(series)
+    for (t0, e0), (t1, e1) in zip(pts, pts[1:]):
+        if e0 >= level >= e1 and e0 != e1:
+            f = math.log(level / e0) / math.log(e1 / e0)
+            return math.exp(math.log(t0) + f * (math.log(t1) - math.log(t0))), ""
+    if len(pts) >= 2 and level < pts[-1][1]:
+        (t0, e0), (t1, e1) = pts[-2], pts[-1]
+        f = math.log(level / e0) / math.log(e1 / e0)
+        return math.exp(math.log(t0) + f * (math.log(t1) - math.log(t0))), "*"
+    return float("nan"), "?"
+
+
+def parse_variant(text, default_points, kiln):
+    """LABEL=[KILN::]ARGS[@P1,P2,...] -> (label, kiln binary, args with {p}, points); ARGS without
+    {p} get "-s {p}", and the points default to default_points."""
+    label, sep, rest = text.partition("=")
+    if not sep:
+        sys.exit("--variant takes LABEL=[KILN::]ARGS[@P1,P2,...], got " + repr(text))
+    if "::" in rest:
+        kiln, rest = rest.split("::", 1)
+    args, at, points = rest.partition("@")
+    points = points.split(",") if at else list(default_points)
+    if "{p}" not in args:
+        args += " -s {p}"
+    return label, kiln, args, points

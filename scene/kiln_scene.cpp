@@ -12,6 +12,7 @@
 #include "renderer/core/memory.h"
 #include "scene/importers.h"
 #include "scene/material_kinds.h"
+#include "scene/mesh_maps.h"
 #include "scene/scene_error.h"
 #include "scene/scene_loader.h"
 

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "scene/importers.h"
+#include "scene/mesh_maps.h"
 #include "scene/scene_error.h"
 #include "scene/scene_loader.h"
 

@@ -18,6 +18,7 @@
 
 #include "scene/framing.h"
 #include "scene/importers.h"
+#include "scene/mesh_maps.h"
 #include "scene/scene_error.h"
 
 namespace kiln {

@@ -1,5 +1,6 @@
 // Opens the textures importers found, at load time, so an unreadable one is a warning before any
 // rendering starts and the material falls back to its plain colour instead of failing mid-render.
+#include "scene/mesh_maps.h"
 #include "scene/scene_loader.h"
 
 namespace kiln {

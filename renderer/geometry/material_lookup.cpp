@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "scene/mesh_maps.h"
+
 namespace kiln {
 namespace {
 

@@ -41,7 +41,7 @@ bool ConductorBsdf::sample(const Vec3& wo, float, float u1, float u2, BsdfSample
     Vec3 h = micro_.sampleVisible(o, u1, u2);
     float oh = dot(o, h);
     if (oh <= 0) return false;
-    Vec3 i = h * (2 * oh) - o;
+    Vec3 i = reflectAbout(o, h);
     if (i.z <= 0) return false;
     // eval() and pdf() at i, sharing D and Lambda(o): pdf = G1(o) D / (4 cos_o).
     float D = micro_.D(h), lo = micro_.lambda(o), li = micro_.lambda(i);

@@ -17,7 +17,7 @@ bool DielectricBsdf::sample(const Vec3& wo, float uc, float, float, BsdfSample& 
     out.delta = true;
     if (reflects_ && (!canRefract || uc < F)) {
         // Reflection chosen with probability F (or always, under total internal reflection).
-        out.wi = {-wo.x, -wo.y, wo.z};
+        out.wi = reflectLocal(wo);
         out.pdf = canRefract ? F : 1.0f;
         out.f = m_.reflectance * (canRefract ? F : 1.0f) / std::abs(out.wi.z);
         return true;

@@ -23,7 +23,7 @@ class MirrorBsdf {
     bool sample(const Vec3& wo, float, float, float, BsdfSample& out) const {
         if (wo.z == 0) return false;
         out = BsdfSample{};
-        out.wi = {-wo.x, -wo.y, wo.z};
+        out.wi = reflectLocal(wo);
         out.delta = true;
         out.pdf = 1;
         out.f = m_.reflectance / std::abs(out.wi.z);

@@ -5,8 +5,6 @@
 namespace kiln {
 namespace {
 
-Vec3 reflectLocal(const Vec3& wo) { return {-wo.x, -wo.y, wo.z}; }
-
 // Density of the lobe around the mirror direction r: (n+1)/(2 pi) cos^n.
 float phongPdf(const Vec3& r, const Vec3& wi, float n) {
     float c = dot(r, wi);

@@ -1,4 +1,5 @@
-// One direction a BSDF sampled, with its value and density: what every BSDF's sample() returns.
+// One direction a BSDF sampled, with its value and density: what every BSDF's sample() returns;
+// and the reflections the BSDF classes share, in the local shading frame (z = the normal).
 #pragma once
 
 #include "renderer/core/math.h"
@@ -15,5 +16,10 @@ struct BsdfSample {
     // gives light sampling's weights for the same direction (a guided bounce: its cosine part).
     float misPdf = 0;
 };
+
+// The mirror direction of wo about the normal (0, 0, 1).
+inline Vec3 reflectLocal(const Vec3& wo) { return {-wo.x, -wo.y, wo.z}; }
+// w reflected about the unit vector n (a microfacet's half vector).
+inline Vec3 reflectAbout(const Vec3& w, const Vec3& n) { return n * (2 * dot(w, n)) - w; }
 
 }  // namespace kiln

@@ -112,7 +112,7 @@ bool PrincipledBsdf::sample(const Vec3& woIn, float uc, float u1, float u2, Bsdf
         Vec3 h = lobe.sampleVisible(wo, u1, u2);
         float d = dot(wo, h);
         if (d <= 0) return false;
-        wi = h * (2 * d) - wo;
+        wi = reflectAbout(wo, h);
     }
     if (wi.z <= 0) return false;
     out = BsdfSample{};

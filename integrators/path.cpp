@@ -1,7 +1,9 @@
 #include "integrators/path.h"
 
 #include <type_traits>
+#include <utility>
 
+#include "integrators/subsurface.h"
 #include "renderer/geometry/interaction.h"
 #include "renderer/geometry/material_lookup.h"
 #include "renderer/geometry/normal_map.h"
@@ -14,7 +16,11 @@ PathIntegrator::PathIntegrator(const Scene& scene, const Accelerator& accel,
     : Integrator(scene, accel, plan.aovs, options.pixelSpread),
       trace_(pathFor(plan)),
       opt_(options),
-      lights_(scene) {
+      lights_(scene),
+      media_(scene) {
+    // An integrator built without analysis (the general plan) still sees a scene's media.
+    if (plan.general && (sceneHasMedia(scene) || sceneHasSubsurface(scene)))
+        trace_ = &PathIntegrator::trace<Features<false, true, false, true, true>>;
     for (const Material& m : scene.materials) lambertian_.push_back(specOf(m.kind).lambertian);
     opt_.lightSamples = resolvedLightSamples(options, plan);
     rules_ = Cs184Rules(options, lights_.size(), lights_.allDelta());
@@ -28,6 +34,9 @@ PathIntegrator::PathIntegrator(const Scene& scene, const Accelerator& accel,
 }
 
 PathIntegrator::TraceFn PathIntegrator::pathFor(const RenderPlan& plan) {
+    // Media and subsurface walks: one specialisation, every other feature on.
+    if (plan.media || plan.subsurface)
+        return &PathIntegrator::trace<Features<false, true, false, true, true>>;
     if (plan.general) return &PathIntegrator::trace<Features<false, true, false, true>>;
     bool diffuse = plan.diffuseOnly, infinite = plan.infiniteLights;
     bool deltaOnly = plan.deltaLightsOnly && !plan.emitters && !plan.infiniteLights;
@@ -179,6 +188,8 @@ struct PathIntegrator::PathState {
     Vec3 prevP;
     Lobe firstLobe = Lobe::Diffuse;  // how the path left its first vertex (for the lobe AOVs)
     float travelled = 0;             // path length so far: the texture footprint grows with it
+    int medium = -1;                 // the medium the path is in (SceneMedia), -1 none
+    int crossings = 0;               // index-matched boundaries passed: they are no bounce
 };
 
 namespace {
@@ -200,6 +211,8 @@ struct PathIntegrator::Scratch {
     std::vector<Ray> rays, nextRays, shadowRays;
     std::vector<Hit> hits;
     std::vector<PendingLight> pending;
+    std::vector<int> shadowMedia;  // with media: the medium each shadow ray starts in
+    uint64_t walkRays = 0;         // rays traced by subsurface walks
     std::vector<uint8_t> occluded;
     // -H: hemisphere probes (closest-hit rays whose emission is the direct light), their
     // throughput waiting in PendingLight::contribution.
@@ -261,6 +274,7 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
         w.nextRays.clear();
         w.pending.clear();
         w.shadowRays.clear();
+        w.shadowMedia.clear();
         w.probes.clear();
         w.probeRays.clear();
 
@@ -273,8 +287,10 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
                 prefetchHitIndices(scene_, w.hits[j + kIndicesAhead]);
             if (j + kVerticesAhead < w.hits.size())
                 prefetchHitVertices(scene_, w.hits[j + kVerticesAhead]);
-            shadePath<F>(batch, w, j, bounce);
+            // With media, the boundaries a path passed through are no bounce of its.
+            shadePath<F>(batch, w, j, F::media ? bounce - w.paths[w.active[j]].crossings : bounce);
         }
+        if constexpr (F::media) counter.rays += std::exchange(w.walkRays, 0);
         resolveShadowRays<F>(batch, w, counter);
         resolveProbes<F>(batch, w, counter);
         w.active.swap(w.next);
@@ -293,6 +309,8 @@ void PathIntegrator::shadePath(std::span<CameraSample> batch, Scratch& w, size_t
     SampleRecord& rec = batch[pi].record;
     const Ray& ray = w.rays[j];
     const Hit& hit = w.hits[j];
+    if constexpr (F::media)
+        if (crossMedium<F>(batch, w, j, bounce)) return;
     if (!hit.valid()) {
         addEscaped<F>(st, rec, ray, bounce);
         return;
@@ -306,8 +324,14 @@ void PathIntegrator::shadePath(std::span<CameraSample> batch, Scratch& w, size_t
     const Vec3 woWorld = -normalize(ray.dir);
     const Vertex v{pi, bounce, st, batch[pi].sampler, si, mat, woWorld, shadingFrame(si, woWorld)};
     const bool lambertian = lambertian_[si.material];
+    if constexpr (F::media)
+        if (mat.kind == MaterialKind::Principled && mat.subsurface > 0) {
+            shadeSubsurface<F>(v, in, w);
+            return;
+        }
     if (!F::diffuseOnly && !lambertian) {
         shadeVertex<F>(v, Bsdf(mat, opt_.microfacet, in), w);
+        if constexpr (F::media) followTransmission(w, pi, hit, si);
         return;
     }
     LambertBsdf lambert(in.baseColour, !lambertian);
@@ -318,6 +342,88 @@ void PathIntegrator::shadePath(std::span<CameraSample> batch, Scratch& w, size_t
         shadeVertex<F>(v, GuidedLambert(lambert, *leaf, v.si.p, v.frame), w);
     else
         shadeVertex<F>(v, lambert, w);
+}
+
+// A path's ray in a medium: a free flight, which may end in a scattering vertex; then an index-
+// matched boundary at its end is passed straight through into the medium beyond it.
+template <class F>
+bool PathIntegrator::crossMedium(std::span<CameraSample> batch, Scratch& w, size_t j,
+                                 int bounce) const {
+    const uint32_t pi = w.active[j];
+    PathState& st = w.paths[pi];
+    const Ray& ray = w.rays[j];
+    const Hit& hit = w.hits[j];
+    Sampler& sampler = batch[pi].sampler;
+    if (st.medium >= 0) {
+        const HomogeneousMedium& m = media_.medium(st.medium);
+        const float len = length(ray.dir);
+        const float uChannel = sampler.next1D(), uDistance = sampler.next1D();
+        FreeFlight flight =
+            m.sample(hit.valid() ? hit.t * len : kInfinity, st.beta, uChannel, uDistance);
+        st.beta *= flight.weight;
+        if (!isFinite(st.beta) || maxComponent(st.beta) <= 0) return true;
+        if (flight.scattered) {
+            if (bounce >= opt_.maxDepth) return true;
+            const Vec3 woWorld = -(ray.dir / len);
+            const SurfaceInteraction si =
+                surfacePoint(ray.origin + ray.dir * (flight.t / len), Vec3(0.0f), woWorld);
+            static const Material kScatterer{};  // the lobe AOVs count medium light as diffuse
+            // The phase function takes the BSDF's place in the vertex's stages.
+            shadeVertex<F>(Vertex{pi, bounce, st, sampler, si, kScatterer, woWorld, Frame(woWorld)},
+                           PhaseAsBsdf(m.g()), w);
+            return true;
+        }
+    }
+    if (!hit.valid() || media_.interiorOf(hit) < 0) return false;
+    const SurfaceInteraction si = makeInteraction(scene_, ray, hit);
+    if (!media_.indexMatched(hit, si.material)) return false;
+    // A ray trapped between boundaries (a mesh that is not closed) ends.
+    constexpr int kMaxCrossings = 256;
+    if (++st.crossings > kMaxCrossings) return true;
+    st.medium = media_.beyond(hit, si.frontFace);
+    w.next.push_back(pi);
+    w.nextRays.push_back(spawnRay(si, ray.dir));
+    return true;
+}
+
+// Blender 4's subsurface weight blends the diffuse lobe into a random walk: with that probability
+// the vertex is its surface without the diffuse lobe plus the walk (chosen by the light that
+// passes the specular layer, at most kMaxEntryChoice), else the principled surface as it is.
+template <class F>
+void PathIntegrator::shadeSubsurface(const Vertex& v, const SurfaceInputs& in, Scratch& w) const {
+    PrincipledBsdf surface(v.mat, in.baseColour, in.mr);
+    if (v.sampler.next1D() >= v.mat.subsurface) {
+        shadeVertex<F>(v, surface, w);
+        return;
+    }
+    surface.dropDiffuse();
+    // The specular layer keeps some chance: a walk for every path would leave it unsampled.
+    constexpr float kMaxEntryChoice = 0.9f;
+    const float enter = surface.enteringFraction(std::abs(v.frame.toLocal(v.woWorld).z));
+    const float pEnter = std::min(enter, kMaxEntryChoice);
+    if (v.sampler.next1D() >= pEnter) {
+        v.st.beta = v.st.beta / (1 - pEnter);
+        shadeVertex<F>(v, surface, w);
+        return;
+    }
+    v.st.beta = v.st.beta * (enter / pEnter);
+    const WalkMedium walk =
+        walkMedium(in.baseColour, v.mat.subsurfaceRadius * v.mat.subsurfaceScale);
+    WalkExit exit;
+    if (!randomWalk(scene_, accel_, v.si, walk, v.st.beta, v.sampler, exit, w.walkRays)) return;
+    v.st.beta *= exit.weight;
+    if (!isFinite(v.st.beta) || maxComponent(v.st.beta) <= 0) return;
+    // The exit point is a white Lambertian surface facing out, at the same depth as the entry.
+    const Vertex out{v.path,  v.bounce, v.st,       v.sampler,
+                     exit.si, v.mat,    exit.si.ng, Frame(exit.si.ng)};
+    shadeVertex<F>(out, LambertBsdf(Color(1.0f), false), w);
+}
+
+void PathIntegrator::followTransmission(Scratch& w, uint32_t path, const Hit& hit,
+                                        const SurfaceInteraction& si) const {
+    if (w.next.empty() || w.next.back() != path) return;  // the path ended here
+    if (dot(w.nextRays.back().dir, si.ng) >= 0) return;   // reflected: the same medium
+    w.paths[path].medium = media_.beyond(hit, si.frontFace);
 }
 
 // A ray that left the scene: the lights at infinity it sees.
@@ -429,6 +535,7 @@ void PathIntegrator::sampleDirectLight(const Vertex& v, const B& bsdf, const Vec
                 weight = misWeight(nLight, pl, 1, bsdf.pdf(wo, wi));
         w.shadowRays.push_back(ls.infinite ? spawnRay(v.si, ls.wi)
                                            : spawnRayTo(v.si, ls.p, ls.pError));
+        if constexpr (F::media) w.shadowMedia.push_back(v.st.medium);
         w.pending.push_back(
             {v.path, v.bounce + 1, v.lobe(), v.st.beta * f * ls.Li * (weight / (pl * perSample))});
     }
@@ -506,6 +613,17 @@ template <class F>
 void PathIntegrator::resolveShadowRays(std::span<CameraSample> batch, Scratch& w,
                                        RayCounter& counter) const {
     if (w.shadowRays.empty()) return;
+    if constexpr (F::media) {  // through index-matched boundaries, dimmed by the media
+        for (size_t k = 0; k < w.pending.size(); ++k) {
+            const PendingLight& p = w.pending[k];
+            Color tr =
+                media_.transmittance(accel_, w.shadowRays[k], w.shadowMedia[k], counter.rays);
+            if (maxComponent(tr) > 0)
+                addLight<F::splitLight>(batch[p.path].record, p.bounce, p.contribution * tr,
+                                        p.lobe);
+        }
+        return;
+    }
     w.occluded.resize(w.shadowRays.size());
     accel_.occluded(std::span<const Ray>(w.shadowRays), std::span<uint8_t>(w.occluded));
     counter.rays += w.shadowRays.size();

@@ -11,6 +11,7 @@
 #include "integrators/guiding.h"
 #include "integrators/integrator.h"
 #include "integrators/lights.h"
+#include "integrators/media.h"
 #include "integrators/path_options.h"
 #include "integrators/render_plan.h"
 #include "renderer/core/warp.h"
@@ -50,12 +51,14 @@ class PathIntegrator final : public Integrator {
 
   private:
     // What the plan lets a specialisation leave out, as compile-time flags (pathFor).
-    template <bool DiffuseOnly, bool Infinite, bool DeltaLightsOnly, bool SplitLight>
+    template <bool DiffuseOnly, bool Infinite, bool DeltaLightsOnly, bool SplitLight,
+              bool Media = false>
     struct Features {
         static constexpr bool diffuseOnly = DiffuseOnly;          // every surface Lambert or black
         static constexpr bool infinite = Infinite;                // escaping rays look up lights
         static constexpr bool deltaLightsOnly = DeltaLightsOnly;  // no light a ray can hit
         static constexpr bool splitLight = SplitLight;            // light AOVs recorded
+        static constexpr bool media = Media;  // media and subsurface walks (general otherwise)
     };
     struct PathState;  // path.cpp: what a path carries between vertices
     struct Scratch;    // path.cpp: a batch's queues
@@ -67,6 +70,17 @@ class PathIntegrator final : public Integrator {
     void trace(std::span<CameraSample> batch, RayCounter& counter) const;
     template <class F>
     void shadePath(std::span<CameraSample> batch, Scratch& w, size_t j, int bounce) const;
+    // Media (path.cpp): the free flight of a ray in a medium and the index-matched boundaries it
+    // passes; true when the path's vertex is done with (scattered, passed through, or ended).
+    template <class F>
+    bool crossMedium(std::span<CameraSample> batch, Scratch& w, size_t j, int bounce) const;
+    // A principled vertex with subsurface > 0: its surface without the diffuse lobe, or a random
+    // walk below it and the walk's exit vertex (path.cpp).
+    template <class F>
+    void shadeSubsurface(const Vertex& v, const SurfaceInputs& in, Scratch& w) const;
+    // The medium a path is in after its vertex's BSDF sent the next ray through the surface.
+    void followTransmission(Scratch& w, uint32_t path, const Hit& hit,
+                            const SurfaceInteraction& si) const;
     template <class F>
     void addEscaped(const PathState& st, SampleRecord& rec, const Ray& ray, int bounce) const;
     template <class F>
@@ -108,6 +122,7 @@ class PathIntegrator final : public Integrator {
     PathOptions opt_;
     LightSet lights_;
     Cs184Rules rules_;
+    SceneMedia media_;
     // Next-event estimation: light sampling (mis, light) with lights to sample.
     bool useNee_ = false;
     bool lightOnlyAtLastVertex_ = false;  // a diffuse last vertex: NEE alone, no continuation

@@ -55,6 +55,7 @@ PrincipledBsdf::LobeChoice PrincipledBsdf::choice(float cosO) const {
     Color fm = base_ + (Color(1.0f) - base_) * fo;
     LobeChoice c;
     c.diffuse = (1 - metallic_) * luminance(base_) * (1 - fd);
+    if (diffuseDropped_) c.diffuse = 0;
     c.specular = std::max(kMinSpecularChoice, (1 - metallic_) * fd + metallic_ * luminance(fm));
     c.coat = coat_ * (0.04f + 0.96f * fo);
     float sum = c.diffuse + c.specular + c.coat;
@@ -72,6 +73,7 @@ Color PrincipledBsdf::evalUpper(const Vec3& wo, const Vec3& wi) const {
     // The diffuse lobe is what Fresnel lets through on the way in and out, at the normal: glTF's
     // (1 - F(wo.h)) reflects up to 1.7x what arrives at grazing angles (white furnace).
     float through = (1 - dielectricFresnel(wo.z)) * (1 - dielectricFresnel(wi.z));
+    if (diffuseDropped_) through = 0;
     Color f = (base_ * (kInvPi * through) + Color(fd * s)) * (1 - metallic_) + fm * (s * metallic_);
     if (coat_ > 0) {
         float w = coat_ * (0.04f + 0.96f * schlickWeight(wo.z));
@@ -87,6 +89,11 @@ float PrincipledBsdf::pdfUpper(const Vec3& wo, const Vec3& wi) const {
     float p = c.diffuse * wi.z * kInvPi + c.specular * reflectedPdf(specular_, wo, h);
     if (c.coat > 0) p += c.coat * reflectedPdf(coatLobe_, wo, h);
     return p;
+}
+
+float PrincipledBsdf::enteringFraction(float cosO) const {
+    float f = (1 - metallic_) * (1 - dielectricFresnel(cosO));
+    return coat_ > 0 ? f * (1 - coat_ * (0.04f + 0.96f * schlickWeight(cosO))) : f;
 }
 
 Color PrincipledBsdf::eval(const Vec3& wo, const Vec3& wi) const {

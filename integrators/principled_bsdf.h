@@ -40,6 +40,12 @@ class PrincipledBsdf {
     float pdf(const Vec3& wo, const Vec3& wi) const;
     bool sample(const Vec3& wo, float uc, float u1, float u2, BsdfSample& out) const;
 
+    // Subsurface scattering takes the diffuse lobe's place (integrators/subsurface.h): the
+    // surface without it, and the fraction of light from wo (cosine cosO) that passes the coat and
+    // the specular layer into the diffuse (or subsurface) lobe.
+    void dropDiffuse() { diffuseDropped_ = true; }
+    float enteringFraction(float cosO) const;
+
   private:
     struct LobeChoice {
         float diffuse = 0, specular = 0, coat = 0;  // probabilities, summing to 1
@@ -51,6 +57,7 @@ class PrincipledBsdf {
 
     Color base_{0.0f};
     float metallic_ = 0, dielectricF0_ = 0.04f, coat_ = 0;
+    bool diffuseDropped_ = false;
     Microfacet specular_, coatLobe_;
 };
 

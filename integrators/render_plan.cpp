@@ -35,6 +35,18 @@ float escapeFraction(const Scene& scene, const Accelerator& accel) {
 
 }  // namespace
 
+bool sceneHasMedia(const Scene& scene) {
+    for (const TriangleMesh& m : scene.meshes)
+        if (m.interior >= 0) return true;
+    return false;
+}
+
+bool sceneHasSubsurface(const Scene& scene) {
+    for (const Material& m : scene.materials)
+        if (m.kind == MaterialKind::Principled && m.subsurface > 0) return true;
+    return false;
+}
+
 RenderPlan generalPlan(const AovRequest& aovs) {
     RenderPlan p;
     p.general = true;
@@ -90,6 +102,8 @@ RenderPlan planFor(const Scene& scene, const Accelerator& accel, const AovReques
     // A mirror's caustic reaches the camera only where its light can be hit (next-event estimation
     // cannot pass a mirror); a metal's also through light sampling at the metal.
     p.guiding = anyDiffuse && ((glossyReflector && p.areaLights) || (mirror && hittableAreaLights));
+    p.media = sceneHasMedia(scene);
+    p.subsurface = sceneHasSubsurface(scene);
     p.thinLens = scene.camera.apertureRadius > 0;
     p.escapeFraction = escapeFraction(scene, accel);
     p.closed = p.escapeFraction < 0.01f;
@@ -134,6 +148,13 @@ RenderPlan planFor(const Scene& scene, const Accelerator& accel, const AovReques
         p.guiding ? "mirrors or metals reflect area lights onto diffuse surfaces: cosine "
                     "sampling alone rarely finds that light; photons show where it lands"
                   : "no mirror or metal reflects an area light onto a diffuse surface");
+    if (p.media)
+        say("participating media: free flights, index-matched boundaries, transmittance on "
+            "shadow rays",
+            fmt::format("meshes are filled with a medium ({} in the scene)", scene.media.size()));
+    if (p.subsurface)
+        say("subsurface scattering: random walks inside closed meshes",
+            "a principled material has subsurface > 0");
     say(p.thinLens ? "thin-lens camera sampling" : "pinhole camera",
         p.thinLens ? "aperture > 0" : "no aperture");
     say(p.aovs.splitsLight() || general ? "light AOVs accumulated" : "no light AOVs accumulated",
@@ -169,6 +190,8 @@ std::string RenderPlan::compact() const {
     flag(instances, "instances");
     flag(caustics, "caustics");
     flag(guiding, "guiding");
+    flag(media, "media");
+    flag(subsurface, "subsurface");
     flag(thinLens, "thin-lens");
     flag(closed, "closed");
     return out;

@@ -44,6 +44,10 @@ struct RenderPlan {
     // Diffuse bounces follow a trained guide field (guiding.h) unless --guiding says otherwise:
     // where glossy or specular surfaces can carry light onto diffuse ones.
     bool guiding = false;
+    // Participating media bounded by meshes, subsurface scattering: the path tracer's
+    // specialisation with media (free flights, boundaries, transmittance on shadow rays) only here.
+    bool media = false;
+    bool subsurface = false;
     bool thinLens = false;
     bool closed = false;  // probe rays from visible surfaces almost never escape
     float escapeFraction = 0;
@@ -54,6 +58,11 @@ struct RenderPlan {
     std::string text() const;     // one decision a line
     std::string compact() const;  // one line for the EXR header
 };
+
+// Whether a mesh of the scene bounds a medium; whether a material it uses scatters below its
+// surface.
+bool sceneHasMedia(const Scene& scene);
+bool sceneHasSubsurface(const Scene& scene);
 
 // Every feature on, whatever a scene holds: the baseline specialisations are checked against, and
 // what an integrator built without analysis runs.

@@ -137,6 +137,11 @@ void merge(Scene& dst, Scene& src, const Mat4& xf, int override, bool asPrototyp
         for (int* id : textureIds(m))
             if (*id >= 0) *id += textureBase;
     dst.materials.insert(dst.materials.end(), src.materials.begin(), src.materials.end());
+    // An included .kiln file's media come along, the interiors naming them moved past dst's.
+    const int mediumBase = int(dst.media.size());
+    dst.media.insert(dst.media.end(), src.media.begin(), src.media.end());
+    for (TriangleMesh& m : src.meshes)
+        if (m.interior >= 0) m.interior += mediumBase;
     std::vector<bool> proto = src.prototypeMask();
     uint32_t meshBase = uint32_t(dst.meshes.size());
     Mat4 toWorld = fromStored(xf, src.origin);
@@ -290,6 +295,30 @@ Material parseMaterial(const std::string& file, pugi::xml_node n, Scene& scene) 
     return m;
 }
 
+// <medium name kind="homogeneous" sigma-a="r g b" sigma-s="r g b" g="0">: the inside of the meshes
+// that name it as their interior.
+Medium parseMedium(const std::string& file, pugi::xml_node n) {
+    checkKnown(file, n, {"name", "kind", "sigma-a", "sigma-s", "g"});
+    Medium m;
+    m.name = n.attribute("name").as_string();
+    if (m.name.empty()) throw SceneError(file, "<medium> needs a name");
+    std::string kind = n.attribute("kind").as_string("homogeneous");
+    if (kind != "homogeneous")
+        throw SceneError(file, "<medium> kind '" + kind + "' is not known (homogeneous)");
+    auto coefficients = [&](const char* attr) {
+        if (!n.attribute(attr)) return Color(0.0f);
+        Color c(vec3(file, n, attr));
+        if (std::min({c.x, c.y, c.z}) < 0)
+            throw SceneError(file, "<medium> " + std::string(attr) + " must be >= 0");
+        return c;
+    };
+    m.sigmaA = coefficients("sigma-a");
+    m.sigmaS = coefficients("sigma-s");
+    if (n.attribute("g")) m.g = float(numbers(file, n, "g", 1)[0]);
+    if (!(m.g > -1 && m.g < 1)) throw SceneError(file, "<medium> g must be in (-1, 1)");
+    return m;
+}
+
 // The .kiln files being read, outermost first: an include cycle or runaway nesting is an error,
 // not a stack overflow.
 thread_local std::vector<std::string> includeStack;
@@ -420,14 +449,26 @@ void readLight(const std::string& path, pugi::xml_node n, Scene& scene) {
     scene.lights.push_back(l);
 }
 
+// A <mesh>'s interior="NAME": the medium of this file filling it, or -1.
+int interiorMedium(const std::string& path, pugi::xml_node n,
+                   const std::map<std::string, int>& media) {
+    if (!n.attribute("interior")) return -1;
+    auto it = media.find(n.attribute("interior").as_string());
+    if (it == media.end())
+        throw SceneError(path, std::string("<mesh> interior names unknown medium '") +
+                                   n.attribute("interior").as_string() + "'");
+    return it->second;
+}
+
 // <include>, <mesh> or <instances>: the referenced file read as a part, placed, merged.
 void readPart(const std::string& path, pugi::xml_node n,
-              const std::map<std::string, uint32_t>& materials, Scene& scene) {
+              const std::map<std::string, uint32_t>& materials,
+              const std::map<std::string, int>& media, Scene& scene) {
     std::string tag = n.name();
     if (tag == "include")
         checkKnown(path, n, {"file"}, {"override"});
     else if (tag == "mesh")
-        checkKnown(path, n, {"file", "material", "scale", "translate"},
+        checkKnown(path, n, {"file", "material", "interior", "scale", "translate"},
                    {"fit", "matrix", "override"});
     else
         checkKnown(path, n, {"file", "material", "grid", "spacing", "scale", "translate"},
@@ -457,6 +498,7 @@ void readPart(const std::string& path, pugi::xml_node n,
         throw SceneError(path, "<" + tag + " file=\"" + file + "\">: " + e.what());
     }
     applyOverride(path, n, materials, scene, part);
+    const int interior = interiorMedium(path, n, media);
     if (tag == "instances") {
         Mat4 fit = placement(path, n, meshBounds(part));
         std::vector<Mat4> placements;
@@ -472,7 +514,11 @@ void readPart(const std::string& path, pugi::xml_node n,
     } else {
         Mat4 xf = tag == "mesh" ? placement(path, n, meshBounds(part)) : Mat4::identity();
         part.hasFileCamera = part.hasFileCamera && tag == "include";
+        const size_t firstMesh = scene.meshes.size();
         merge(scene, part, xf, override, false, {});
+        if (interior >= 0)
+            for (size_t i = firstMesh; i < scene.meshes.size(); ++i)
+                scene.meshes[i].interior = interior;
         scene.isCs184 = false;
     }
 }
@@ -491,7 +537,8 @@ void readKilnScene(const std::string& path, Scene& scene) {
     for (pugi::xml_node n : root.children()) {
         std::string tag = n.name();
         if (n.type() == pugi::node_element && tag != "material" && tag != "include" &&
-            tag != "mesh" && tag != "instances" && tag != "camera" && tag != "light")
+            tag != "mesh" && tag != "instances" && tag != "camera" && tag != "light" &&
+            tag != "medium")
             throw SceneError(path, "unknown element <" + tag + ">");
     }
     // Materials, then geometry, then camera and lights: the geometry fixes the scene's origin,
@@ -501,10 +548,17 @@ void readKilnScene(const std::string& path, Scene& scene) {
         materials[n.attribute("name").as_string()] = uint32_t(scene.materials.size());
         scene.materials.push_back(parseMaterial(path, n, scene));
     }
+    std::map<std::string, int> media;
+    for (pugi::xml_node n : root.children("medium")) {
+        Medium m = parseMedium(path, n);
+        if (media.count(m.name)) throw SceneError(path, "<medium> " + m.name + " named twice");
+        media[m.name] = int(scene.media.size());
+        scene.media.push_back(std::move(m));
+    }
     for (pugi::xml_node n : root.children()) {
         std::string tag = n.name();
         if (tag == "include" || tag == "mesh" || tag == "instances")
-            readPart(path, n, materials, scene);
+            readPart(path, n, materials, media, scene);
     }
     for (pugi::xml_node n : root.children("camera")) readCamera(path, n, scene);
     for (pugi::xml_node n : root.children("light")) readLight(path, n, scene);

@@ -33,7 +33,11 @@ constexpr P kPrincipled[] = {
     {"specular", nullptr, &Material::specular, R::NonNegative},
     {"ior", nullptr, &Material::ior, R::AtLeastOne},
     {"clearcoat", nullptr, &Material::clearcoat, R::Unit},
-    {"clearcoat-roughness", nullptr, &Material::clearcoatRoughness, R::Unit}};
+    {"clearcoat-roughness", nullptr, &Material::clearcoatRoughness, R::Unit},
+    // Subsurface scattering (the random walk: integrators/subsurface.h).
+    {"subsurface", nullptr, &Material::subsurface, R::Unit},
+    {"subsurface-radius", &Material::subsurfaceRadius, nullptr, R::Any},
+    {"subsurface-scale", nullptr, &Material::subsurfaceScale, R::NonNegative}};
 
 bool always(const Material&) { return true; }
 bool anyMetal(const Material& m) { return m.metallic > 0; }

@@ -51,6 +51,21 @@ struct Material {
     float specular = 1.0f;            // KHR_materials_specular factor: scales the dielectric F0
     float clearcoat = 0.0f;           // KHR_materials_clearcoat: weight of a GGX coat, F0 0.04
     float clearcoatRoughness = 0.0f;  // its perceptual roughness
+    // Subsurface scattering (a random walk inside the closed mesh, integrators/subsurface.h):
+    // the weight blending the diffuse lobe into it, the mean free path per channel (scene units)
+    // and a factor on it; the walk's albedo is the base colour.
+    float subsurface = 0.0f;
+    Color subsurfaceRadius{1.0f, 0.2f, 0.1f};
+    float subsurfaceScale = 1.0f;
+};
+
+// A homogeneous participating medium filling the inside of the meshes that name it as their
+// interior (integrators/medium.h): absorption and scattering coefficients per unit length, and
+// the Henyey-Greenstein asymmetry of its phase function.
+struct Medium {
+    std::string name;
+    Color sigmaA{0.0f}, sigmaS{0.0f};
+    float g = 0.0f;
 };
 
 enum class LightKind { Area, MeshEmitter, Point, Spot, Directional, Ambient, Environment };
@@ -124,6 +139,7 @@ struct TriangleMesh {
     // whether the bitangent (increasing v) is +cross(n, t) or -cross(n, t). Normal maps only.
     std::vector<float> tangents;
     std::vector<uint32_t> materialIds;  // one per triangle, or one for the whole mesh
+    int interior = -1;                  // Scene::media index filling the (closed) mesh, or -1
 
     size_t vertexCount() const { return positions.size() / 3; }
     size_t triangleCount() const { return indices.size() / 3; }
@@ -161,6 +177,7 @@ struct Scene {
     std::vector<Instance> instances;
     std::vector<Material> materials;
     std::vector<Light> lights;
+    std::vector<Medium> media;                  // what TriangleMesh::interior names
     std::vector<TextureSource> textureSources;  // what importers found; Material::albedoTexture
     // The sources opened for rendering (scene_loader), ids as in textureSources.
     std::shared_ptr<const TextureSet> textures;

@@ -159,6 +159,20 @@ inline TriangleMesh sphereMesh(int rings, int segments) {
     return m;
 }
 
+// A closed tetrahedron as an OBJ file at path (wound outwards): the smallest mesh with an inside.
+inline std::string writeTetrahedronObj(const std::filesystem::path& path) {
+    return writeFile(path,
+                     "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+}
+
+// The white furnace's sky: an environment light without an image, radiance 1 from everywhere.
+inline Light uniformEnvironment() {
+    Light env;
+    env.kind = LightKind::Environment;
+    env.radiance = Color(1.0f);
+    return env;
+}
+
 inline Scene sceneWith(TriangleMesh mesh) {
     Scene s;
     s.sourcePath = "test";

@@ -36,7 +36,9 @@ void expectClose(const Color& a, const Color& b, const std::string& what) {
 TEST(Aovs, BeautyIsEmissionPlusDirectPlusIndirectAndTheSplitsAddUp) {
     for (const std::string& scene :
          {test::cs184("sky/CBspheres.dae"), test::cs184("sky/CBbunny_microfacet_cu.dae"),
-          test::cs184("sky/bunny.dae"), test::repo("scenes/cornell.dae")}) {
+          test::cs184("sky/bunny.dae"), test::repo("scenes/cornell.dae"),
+          // Media and subsurface walks (the plan's media specialisation).
+          test::repo("scenes/coloured_glass.kiln"), test::repo("scenes/lucy_subsurface.kiln")}) {
         Film f = render(scene, AovRequest::parse("all", 5));
         double total = 0;
         for (int y = 0; y < f.height(); ++y)

@@ -40,7 +40,7 @@ ShotPlan planShot(const Shot& shot, double scale, int topSpp) {
             p.spp = std::max(1, int(std::lround(shot.courseSpp * scale)));
             break;
         case SppRule::Sweep:
-            p.spp = 2 * shot.courseSpp <= topSpp ? shot.courseSpp : 0;
+            p.spp = 3 * shot.courseSpp <= 2 * topSpp ? shot.courseSpp : 0;
             break;
         case SppRule::Top:
             p.spp = topSpp;
@@ -66,12 +66,12 @@ int nominalTop(const Figure& sweep, double scale) {
     for (const Shot& s : sweep.shots)
         if (s.rule == SppRule::Top) top = std::max(1, int(std::lround(s.courseSpp * scale)));
     for (const Shot& s : sweep.shots)
-        if (s.rule == SppRule::Sweep && 2 * s.courseSpp <= top)
+        if (s.rule == SppRule::Sweep && 3 * s.courseSpp <= 2 * top)
             largestStep = std::max(largestStep, s.courseSpp);
-    return std::max(top, 2 * largestStep);
+    return std::max(top, (3 * largestStep + 1) / 2);
 }
 
-double raysPerSample(const std::string& flags) {
+double modelRaysPerSample(const std::string& flags) {
     // The planner asks for the same few flag sets thousands of times while it fits the budget.
     static std::map<std::string, double> known;
     if (auto it = known.find(flags); it != known.end()) return it->second;
@@ -99,30 +99,36 @@ std::string sppFreeKey(const std::string& flags) {
     return key;
 }
 
-void Throughput::record(const std::string& key, double units, double seconds) {
-    records_.push_back({key, units, seconds});
+double Throughput::raysPerSample(const std::string& flags) const {
+    auto it = raysPerSample_.find(sppFreeKey(flags));
+    return it != raysPerSample_.end() ? it->second : modelRaysPerSample(flags);
 }
 
-double Throughput::secondsPerUnit() const {
+void Throughput::record(const std::string& key, double rays, double seconds) {
+    records_.push_back({key, rays, seconds});
+}
+
+double Throughput::secondsPerRay() const {
     // The last few renders: the machine's present load, not the run's average.
     constexpr size_t kRecent = 6;
-    double units = 0, seconds = 0;
+    double rays = 0, seconds = 0;
     for (size_t i = records_.size() > kRecent ? records_.size() - kRecent : 0; i < records_.size();
          ++i)
-        units += records_[i].units, seconds += records_[i].seconds;
-    return units > 0 ? seconds / units : 1e-7;
+        rays += records_[i].rays, seconds += records_[i].seconds;
+    return rays > 0 ? seconds / rays : 1e-7;
 }
 
-double Throughput::secondsPerUnit(const std::string& key) const {
+double Throughput::secondsPerRay(const std::string& key) const {
     for (auto it = records_.rbegin(); it != records_.rend(); ++it)
-        if (it->key == key) return it->seconds / it->units;
-    return secondsPerUnit();
+        if (it->key == key && it->rays > 0) return it->seconds / it->rays;
+    return secondsPerRay();
 }
 
 double Planner::predictShot(size_t scene, const ShotPlan& plan, Size size) const {
     if (plan.spp == 0) return 0;
-    double units = double(size.width) * size.height * plan.spp * raysPerSample(plan.flags);
-    return units * throughput_[scene].secondsPerUnit();
+    const Throughput& t = throughput_[scene];
+    return double(size.width) * size.height * plan.spp * t.raysPerSample(plan.flags) *
+           t.secondsPerRay();
 }
 
 double Planner::predict(const std::vector<size_t>& figureIndices, Size size, double scale) const {
@@ -166,10 +172,11 @@ double Planner::fitScale(const std::vector<size_t>& figureIndices, Size size,
 
 int Planner::topSpp(size_t scene, const Shot& top, Size size, double seconds, int floorSpp) const {
     ShotPlan one = planShot(top, 0, 1);
-    double perSample = double(size.width) * size.height * raysPerSample(one.flags) *
-                       throughput_[scene].secondsPerUnit(sppFreeKey(one.flags));
+    const Throughput& t = throughput_[scene];
+    double perSample = double(size.width) * size.height * t.raysPerSample(one.flags) *
+                       t.secondsPerRay(sppFreeKey(one.flags));
     int spp = int(seconds / perSample);
-    return std::clamp(spp, 2 * floorSpp, top.courseSpp);
+    return std::clamp(spp, (3 * floorSpp + 1) / 2, top.courseSpp);
 }
 
 }  // namespace kiln::cs184

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <chrono>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -25,34 +26,38 @@ constexpr Size kMainSize{480, 360};
 // becomes 16. Below the smallest size the fraction may fall to 1/1024.
 constexpr double kMinScale = 1.0 / 64, kFloorScale = 1.0 / 1024;
 
-// A shot's -s (and -a batch) at a budget fraction; spp 0: the shot is left out (a sweep step not
-// below the sweep's top).
+// A shot's -s (and -a batch) at a budget fraction; spp 0: the shot is left out (a sweep step
+// not at most two thirds of the sweep's top).
 struct ShotPlan {
     int spp = 0, batch = 0;
     std::string flags;  // kiln render flags besides -r, -t, --view, -f
 };
 ShotPlan planShot(const Shot& shot, double scale, int topSpp);
-// The sweep top at a fraction: the course's -s scaled, and twice the sweep's largest step below.
+// The sweep top at a fraction: the course's -s scaled, at least 1.5 times the largest step kept.
 int nominalTop(const Figure& sweep, double scale);
 
-// Work of one camera sample in rays: the camera ray, then per vertex the light samples and the
-// next bounce (-m 100 counts as 6 vertices: roulette and escapes end such paths).
-double raysPerSample(const std::string& flags);
+// Rays of one camera sample as a model guesses them before a probe measured them: the camera
+// ray, then per vertex the light samples and the next bounce (-m 100 counts as 6 vertices).
+double modelRaysPerSample(const std::string& flags);
 
-// Seconds per unit of work (rays as raysPerSample counts them) measured in this run, one per
-// scene: the recent renders' total, and per flag set (without -s) the latest render's.
+// What this run measured of one scene: the rays a camera sample of each flag set (without -s)
+// traces, from a small probe render per flag set, and the seconds a ray costs, from the recent
+// renders (the machine's present load) or the latest render of the same flag set.
 class Throughput {
   public:
-    void record(const std::string& key, double units, double seconds);
-    double secondsPerUnit() const;
-    double secondsPerUnit(const std::string& key) const;
+    void setRaysPerSample(const std::string& key, double rays) { raysPerSample_[key] = rays; }
+    double raysPerSample(const std::string& flags) const;
+    void record(const std::string& key, double rays, double seconds);
+    double secondsPerRay() const;
+    double secondsPerRay(const std::string& key) const;
 
   private:
     struct Record {
         std::string key;
-        double units, seconds;
+        double rays, seconds;
     };
     std::vector<Record> records_;
+    std::map<std::string, double> raysPerSample_;
 };
 
 // The key of a flag set: its words without -s N and -a B T.
@@ -74,7 +79,7 @@ class Planner {
     // predicted time for the figures fits the seconds.
     double fitScale(const std::vector<size_t>& figureIndices, Size size, double seconds) const;
     // The sweep top's -s for one scene given the seconds it may take (its same-flag throughput),
-    // at least twice floorSpp, at most the course's.
+    // at least 1.5 times floorSpp, at most the course's.
     int topSpp(size_t scene, const Shot& top, Size size, double seconds, int floorSpp) const;
 
   private:

@@ -327,8 +327,8 @@ std::vector<std::string> timingProse(const std::vector<TimingRow>& rows, double 
         out.push_back(fmt::format(
             "{} ({} primitives): without a BVH a frame would take {} s, with the course's BVH {} "
             "s ({:.0f} times faster; building it took {} s) and with Embree {} s. Brute force "
-            "costs a ray every primitive, {:.2f} Mrays/s here, while a BVH visits a few boxes "
-            "and leaves, {:.1f} Mrays/s: the gap grows with the number of primitives.",
+            "costs a ray every primitive, {:.3g} Mrays/s here, while a BVH visits a few boxes "
+            "and leaves, {:.3g} Mrays/s: the gap grows with the number of primitives.",
             e.mesh, e.primitives, fixed(n.frameSeconds(), 1), fixed(b.frameSeconds(), 3),
             n.frameSeconds() / b.frameSeconds(), fixed(b.shot.buildSeconds, 3),
             fixed(e.frameSeconds(), 3), mrays(n.shot), mrays(b.shot)));

@@ -236,7 +236,7 @@ void Cs184Report::probe(size_t scene) {
 std::string Cs184Report::caption(const Shot& shot, const ShotPlan& plan,
                                  const ShotResult& r) const {
     std::string text = shot.label + ": " + fixed(r.stats.seconds, 2) + " s, " +
-                       fixed(double(r.stats.rays) * 1e-6, 1) + " Mrays";
+                       fmt::format("{:.3g}", double(r.stats.rays) * 1e-6) + " Mrays";
     std::string course = "-s " + std::to_string(shot.courseSpp);
     if (shot.courseBatch > 0)
         course +=

@@ -122,7 +122,7 @@ std::string noiseText(const ImageMeasures& m) {
 }
 
 std::string timing(const ShotResult& r) {
-    return fmt::format("{} s, {:.1f} Mrays, {:.2f} Mrays/s", fixed(r.stats.seconds, 2),
+    return fmt::format("{} s, {:.3g} Mrays, {:.3g} Mrays/s", fixed(r.stats.seconds, 2),
                        double(r.stats.rays) * 1e-6, mrays(r));
 }
 
@@ -326,12 +326,12 @@ std::vector<std::string> timingProse(const std::vector<TimingRow>& rows, double 
         const TimingRow &e = rows[i], &b = rows[i + 1], &n = rows[i + 2];
         out.push_back(fmt::format(
             "{} ({} primitives): without a BVH a frame would take {} s, with the course's BVH {} "
-            "s ({:.0f} times faster; building it took {} s) and with Embree {} s. Brute force "
+            "s ({:.0f} times faster; building it took {:.3g} s) and with Embree {} s. Brute force "
             "costs a ray every primitive, {:.3g} Mrays/s here, while a BVH visits a few boxes "
             "and leaves, {:.3g} Mrays/s: the gap grows with the number of primitives.",
             e.mesh, e.primitives, fixed(n.frameSeconds(), 1), fixed(b.frameSeconds(), 3),
-            n.frameSeconds() / b.frameSeconds(), fixed(b.shot.buildSeconds, 3),
-            fixed(e.frameSeconds(), 3), mrays(n.shot), mrays(b.shot)));
+            n.frameSeconds() / b.frameSeconds(), b.shot.buildSeconds, fixed(e.frameSeconds(), 3),
+            mrays(n.shot), mrays(b.shot)));
     }
     return out;
 }

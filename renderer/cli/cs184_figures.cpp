@@ -101,11 +101,12 @@ std::vector<Figure> courseFigures() {
     spp.shots.push_back(shot("s1024", "-s 1024", "-l 4 -m 5", 1024, SppRule::Top));
     f.push_back(spp);
     f.push_back(roulette);
-    f.push_back({"adaptive",
-                 5,
-                 0,
-                 "Adaptive sampling and its sample-rate image",
-                 {shot("adaptive", "adaptive sampling", "-l 1 -m 5", 2048, SppRule::Scaled, 64)}});
+    f.push_back({"adaptive", 5, 0, "Adaptive sampling and its sample-rate image", {[] {
+                     Shot s = shot("adaptive", "adaptive sampling", "-l 1 -m 5", 2048,
+                                   SppRule::Scaled, 64);
+                     s.boost = 4;
+                     return s;
+                 }()}});
     return f;
 }
 

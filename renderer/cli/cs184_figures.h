@@ -29,6 +29,10 @@ struct Shot {
     SppRule rule = SppRule::Course;
     int courseBatch = 0;      // -a BATCH TOL: the course's batch, 0 when not adaptive
     double tolerance = 0.05;  // -a's TOL
+    // Scaled: the budget's fraction is multiplied by this (at most the course's -s). Adaptive
+    // sampling's cap gets 4: the render takes about half its cap, and a cap near the batch leaves
+    // no pixel room to stop early, so the rate image would show nothing.
+    int boost = 1;
     std::string layer;        // non-empty: this layer of the previous shot's render
 };
 

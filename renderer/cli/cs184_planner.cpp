@@ -37,7 +37,8 @@ ShotPlan planShot(const Shot& shot, double scale, int topSpp) {
             p.spp = shot.courseSpp;
             break;
         case SppRule::Scaled:
-            p.spp = std::max(1, int(std::lround(shot.courseSpp * scale)));
+            p.spp =
+                std::max(1, int(std::lround(shot.courseSpp * std::min(1.0, scale * shot.boost))));
             break;
         case SppRule::Sweep:
             p.spp = 3 * shot.courseSpp <= 2 * topSpp ? shot.courseSpp : 0;

@@ -270,15 +270,16 @@ std::string roulette(const SceneShots& s) {
 
 std::string adaptive(const SceneShots& s) {
     const ShotResult& r = s.shots[0];
+    const ImageMeasures& m = r.image;
     return fmt::format(
-        "{}: at most {} samples per pixel, the pixels took {:.1f} on average (from {} to {}); "
-        "{:.0f} % of them stopped before the cap, so the render traced {:.0f} % of the samples "
-        "the cap allows ({}). The rate image shows where the samples went: a pixel whose samples "
-        "agree (the light, evenly lit walls) stops at an early check and is blue, one whose "
-        "samples disagree (soft shadows, dim corners reached only by indirect light, edges) "
-        "runs on towards the cap and is red.",
-        s.scene, r.spp, r.image.meanSpp, r.image.minSpp, r.image.maxSpp, 100 * r.image.stoppedEarly,
-        100 * r.image.meanSpp / r.spp, timing(r));
+        "{}: at most {} samples per pixel, the pixels took {:.1f} on average (from {} to {}), "
+        "so the render traced {:.0f} % of the samples the cap allows ({}). {:.0f} % of the lit "
+        "pixels stopped before the cap: blue to green in the rate image where their samples "
+        "agree, red where they disagree (soft shadows, corners lit only indirectly, edges) and "
+        "the pixel ran to the cap. The {:.0f} % of the pixels that see nothing (black: every "
+        "sample zero, so sigma = 0) stopped at the first check.",
+        s.scene, r.spp, m.meanSpp, m.minSpp, m.maxSpp, 100 * m.meanSpp / r.spp, timing(r),
+        100 * m.stoppedEarlyLit, 100 * m.blackFraction);
 }
 
 }  // namespace

@@ -73,7 +73,7 @@ ImageMeasures measureImage(const Film& film, int spp) {
     ImageMeasures m;
     const int w = film.width(), h = film.height();
     const double pixels = double(w) * h;
-    double lum = 0, early = 0;
+    double lum = 0, early = 0, earlyLit = 0, black = 0, earlyBlack = 0;
     uint64_t samples = 0;
     std::vector<double> relative;
     m.minSpp = UINT32_MAX;
@@ -85,11 +85,17 @@ ImageMeasures measureImage(const Film& film, int spp) {
             uint32_t n = film.samples(x, y);
             samples += n;
             m.minSpp = std::min(m.minSpp, n), m.maxSpp = std::max(m.maxSpp, n);
-            early += n < uint32_t(spp);
+            const bool stopped = n < uint32_t(spp);
+            early += stopped;
+            (l > 0 ? earlyLit : earlyBlack) += stopped;
+            black += l <= 0;
         }
     m.meanLuminance = lum / pixels;
     m.meanSpp = double(samples) / pixels;
     m.stoppedEarly = early / pixels;
+    m.blackFraction = black / pixels;
+    m.stoppedEarlyLit = pixels > black ? earlyLit / (pixels - black) : 0;
+    m.stoppedEarlyBlack = black > 0 ? earlyBlack / black : 0;
     if (m.minSpp >= 2) m.noise = median(std::move(relative));
     return m;
 }

@@ -29,6 +29,10 @@ struct ImageMeasures {
     double meanSpp = 0;
     uint32_t minSpp = 0, maxSpp = 0;
     double stoppedEarly = 0;  // fraction of pixels with fewer samples than -s (adaptive)
+    // The same among the lit pixels, and among the black ones (all samples zero: their interval
+    // is zero at the first check).
+    double stoppedEarlyLit = 0, stoppedEarlyBlack = 0;
+    double blackFraction = 0;
 };
 ImageMeasures measureImage(const Film& film, int spp);
 // The median over the lit pixels of |image - reference| / reference in luminance: the noise of

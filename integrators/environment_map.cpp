@@ -78,6 +78,13 @@ static float solidAngleDensity(float pdfUV, float sinTheta) {
     return sinTheta > 0 ? pdfUV / (2 * kPi * kPi * sinTheta) : 0.0f;
 }
 
+void EnvironmentMap::prefetch(float u1, float u2) const {
+    float pdfV;
+    size_t iv;
+    rows.sampleContinuous(u2, pdfV, iv);
+    columns.prefetch(iv, u1);
+}
+
 bool EnvironmentMap::sample(float u1, float u2, EnvironmentSample& out) const {
     float pdfV, pdfU;
     size_t iv, iu;

@@ -41,6 +41,8 @@ struct EnvironmentMap {
     Color bilinearLookup(float u, float v) const;  // (u, v) in [0,1)^2
     Vec3 direction(float u, float v) const;        // (u, v) in [0,1)^2 -> unit direction
     void coordinates(const Vec3& dir, float& u, float& v) const;
+    // Asks memory for the first table entry sample(u1, u2) reads (the row's is in cache).
+    void prefetch(float u1, float u2) const;
     // Importance sampling (a map with pixels): false where the drawn point has no density.
     bool sample(float u1, float u2, EnvironmentSample& out) const;
     // Solid-angle density of sample() drawing the unit direction dir.

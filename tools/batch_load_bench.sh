@@ -1,9 +1,13 @@
 #!/usr/bin/env bash
 # What a batch turntable costs against one frame of it (issue #28: a batch loads each scene once).
-# Alternates (one, batch, one, batch, ...) the wall time of
+# Alternates (one, batch, child, one, batch, child, ...) the wall time of
 #   one:   kiln render MESH -r W H -s 1 --turntable N --frame 1        (load, build, render, write)
 #   batch: kiln batch JOB.json, the N frames of the same turntable     (one child, one load and build)
-# and prints both medians, their ratio and the load average (a benchmark, not a test; docs/farm.md).
+#   child: the batch's child alone, kiln render-frames with the N renders (the batch less its own
+#          process start-up, job file reading and checks)
+# and prints the medians of wall and of CPU time (user + sys, children included: steadier than wall
+# on a loaded machine), the ratios to one frame and the load average (a benchmark, not a test;
+# docs/farm.md).
 #   tools/batch_load_bench.sh [MESH] [RUNS] [FRAMES]      KILN=path/to/kiln (default build/kiln)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -19,21 +23,38 @@ cat >"$WORK/job.json" <<EOF
  "cameras": [{"turntable": $FRAMES}]}
 EOF
 
-now() { date +%s.%N; }
 median() { sort -g | awk '{v[NR]=$1} END {print (NR%2 ? v[(NR+1)/2] : (v[NR/2]+v[NR/2+1])/2)}'; }
-run_one() { "$K" render "$MESH" "${OPTS[@]}" --turntable "$FRAMES" --frame 1 -q -o "$WORK/one"; }
-run_batch() { rm -rf "$WORK/frames"; "$K" batch "$WORK/job.json" -q >/dev/null 2>"$WORK/batch.log"; }
+child=()
+for ((k = 0; k < FRAMES; k++)); do
+  ((k == 0)) || child+=(--then)
+  child+=("$MESH" "${OPTS[@]}" --turntable "$FRAMES" --frame "$k" -o "$WORK/child/$k" --resume
+          --checkpoint-every 60 -q)
+done
+one=("$K" render "$MESH" "${OPTS[@]}" --turntable "$FRAMES" --frame 1 -q -o "$WORK/one")
+batch=("$K" batch "$WORK/job.json" -q)
+alone=("$K" render-frames "${child[@]}")
+# Appends "WALL CPU" of one run of the command to the file $1 (outputs removed first).
+timed() {
+  local file=$1; shift
+  rm -rf "$WORK/frames" "$WORK/child"; mkdir "$WORK/child"
+  /usr/bin/time -f "%e %U %S" -o "$file.t" "$@" >/dev/null 2>"$WORK/log"
+  awk '{print $1, $2 + $3}' "$file.t" >>"$file"
+}
+col() { cut -d' ' -f"$2" "$WORK/$1" | median; }
 
 echo "kiln $K; mesh $MESH; ${OPTS[*]}; $FRAMES frames; $RUNS runs each; load average $(cut -d' ' -f1-3 /proc/loadavg)"
-run_one 2>/dev/null  # warm-up: the mesh in the page cache
-one=() batch=()
+timed "$WORK/warm" "${one[@]}"  # the mesh in the page cache
 for ((i = 1; i <= RUNS; i++)); do
-  t0=$(now); run_one 2>/dev/null; t1=$(now)
-  run_batch; t2=$(now)
-  one+=("$(echo "$t1 - $t0" | bc)") batch+=("$(echo "$t2 - $t1" | bc)")
-  echo "run $i: one frame ${one[-1]} s, batch of $FRAMES ${batch[-1]} s"
+  timed "$WORK/t_one" "${one[@]}"
+  timed "$WORK/t_batch" "${batch[@]}"
+  grep -o "this process: [0-9]* renders, [0-9]* scene loads, [0-9]* accelerator builds" "$WORK/log" | tail -n1
+  timed "$WORK/t_alone" "${alone[@]}"
+  echo "run $i (wall, CPU s): one frame $(tail -n1 "$WORK/t_one"); batch $(tail -n1 "$WORK/t_batch"); child alone $(tail -n1 "$WORK/t_alone")"
 done
-grep -o "this process: [0-9]* renders, [0-9]* scene loads, [0-9]* accelerator builds" "$WORK/batch.log" | tail -n1
-m1=$(printf '%s\n' "${one[@]}" | median) mb=$(printf '%s\n' "${batch[@]}" | median)
-echo "median: one frame $m1 s, batch of $FRAMES frames $mb s, ratio $(echo "scale=3; $mb / $m1" | bc)"
+for what in wall CPU; do
+  c=$([[ $what == wall ]] && echo 1 || echo 2)
+  m1=$(col t_one "$c") mb=$(col t_batch "$c") mc=$(col t_alone "$c")
+  echo "median $what: one frame $m1 s; batch of $FRAMES $mb s, ratio $(echo "scale=3; $mb / $m1" | bc);" \
+    "its child alone $mc s, ratio $(echo "scale=3; $mc / $m1" | bc)"
+done
 echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"

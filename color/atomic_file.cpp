@@ -18,26 +18,6 @@ namespace fs = std::filesystem;
 
 std::string systemError(int err) { return std::strerror(err); }
 
-// OpenImageIO's stdio proxy with the write counted: a short write is an error OIIO's PNG writer
-// would otherwise let pass.
-class CheckedProxy final : public OIIO::Filesystem::IOFile {
-  public:
-    CheckedProxy(FILE* f, bool& failed) : IOFile(f, Write), failed_(failed) {}
-    size_t write(const void* buf, size_t size) override {
-        size_t n = IOFile::write(buf, size);
-        if (n != size) failed_ = true;
-        return n;
-    }
-    size_t pwrite(const void* buf, size_t size, int64_t offset) override {
-        size_t n = IOFile::pwrite(buf, size, offset);
-        if (n != size) failed_ = true;
-        return n;
-    }
-
-  private:
-    bool& failed_;
-};
-
 std::string directoryOf(const std::string& path) {
     fs::path dir = fs::path(path).parent_path();
     return dir.empty() ? "." : dir.string();
@@ -89,11 +69,6 @@ AtomicFile::~AtomicFile() {
 
 void AtomicFile::write(const void* data, size_t bytes) {
     if (bytes && std::fwrite(data, 1, bytes, file_) != bytes) failed_ = true;
-}
-
-OIIO::Filesystem::IOProxy* AtomicFile::proxy() {
-    if (!proxy_) proxy_ = std::make_unique<CheckedProxy>(file_, failed_);
-    return proxy_.get();
 }
 
 void AtomicFile::commit() {

@@ -68,11 +68,6 @@ RgbImage readWorkingSpaceImage(const std::string& path) {
     return image;
 }
 
-int ChannelImage::channel(const std::string& name) const {
-    auto it = std::find(channelNames.begin(), channelNames.end(), name);
-    return it == channelNames.end() ? -1 : int(it - channelNames.begin());
-}
-
 bool readChannelImage(const std::string& path, ChannelImage& image) {
     auto in = OIIO::ImageInput::open(path);
     if (!in) return false;

@@ -2,6 +2,7 @@
 # Renders the same set of scenes with two kiln binaries and compares every EXR channel of every
 # pixel (idiff, zero tolerance): the check that a refactor leaves images bit-identical.
 #   tools/images_identical.sh OLD_KILN NEW_KILN [OUTDIR]
+# (A kiln binary copied elsewhere as OLD_KILN needs its kiln_image.so copied beside it.)
 # The set: CS184 Lambertian, mirror + glass, microfacet, bounce-only, -H probes, BSDF-only and
 # light-only direct light, camera-only emitters, point lights, plan general, forced guiding, and
 # kiln's own textured glTF, principled grid, normal map, alpha blend, metallic-roughness texture,

@@ -7,7 +7,8 @@ build and write excluded) and their ratios to the first variant's, all from the 
       --variant "base=/tmp/kiln_old render scene.kiln -s 64 -q -o /tmp/a" \\
       --variant "new=build/kiln render scene.kiln -s 64 -q -o /tmp/b"
 
-Each variant is LABEL=COMMAND (split like a shell line, no shell features). One warm-up round is run
+Each variant is LABEL=COMMAND (split like a shell line, no shell features); a kiln binary copied
+elsewhere needs its kiln_image.so (the image module) copied beside it. One warm-up round is run
 and discarded so every variant starts with the files in the page cache.
 """
 import argparse

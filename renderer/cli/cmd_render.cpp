@@ -11,6 +11,7 @@
 #include <filesystem>
 
 #include "color/atomic_file.h"
+#include "color/image_module.h"
 #include "renderer/accel/recording_accelerator.h"
 #include "renderer/cli/commands.h"
 #include "renderer/cli/render_command.h"
@@ -368,6 +369,7 @@ int renderFrame(const std::vector<std::string>& args, LoadedScene& loaded,
     RenderJobOptions jobOptions = checkedJobOptions(c);
     applyQueueOptions(c, jobOptions);
     checkColour(c);
+    requireImageModule();  // the EXR and PNG writers, and any texture
     OutputPaths out = outputPaths(c, scenePath);
     checkOutputWritable(out);
     checkOutputsFit(c, jobOptions, out);

@@ -1,0 +1,17 @@
+#include "color/image_module.h"
+
+// Linked in (the tests, the Python module, or inside the module itself): nothing to load.
+void kiln::requireImageModule() {}
+
+extern "C" __attribute__((visibility("default"))) const kiln::ImageModule* kiln_image_module() {
+    using namespace kiln;
+    static const ImageModule module{&readImageHeader,     &readWorkingSpaceImage,
+                                    &readChannelImage,    &writeExr,
+                                    &exrLayers,           &exrPixel,
+                                    &exrHeader,           &writeSampleHeatMap,
+                                    &writePreview,        &displayTransform,
+                                    &createTextures,      &destroyTextures,
+                                    &addTexture,          &lookupTexture,
+                                    &lookupTextureChannel};
+    return &module;
+}

@@ -108,6 +108,9 @@ class Cs184Report {
     void renderFigure(size_t f, double scale, bool topOnly);
     void record(size_t scene, const ShotResult& r, const std::string& flags);
     void writePage();
+    void writeHeader();
+    void writeBvhTable();
+    void writeFigure(size_t f);
     void writeJson() const;
     std::string caption(const Shot& shot, const ShotPlan& plan, const ShotResult& r) const;
 
@@ -353,7 +356,8 @@ void Cs184Report::run() {
     logInfo("report: {} s of a {} s budget", fixed(secondsSince(o_.start), 1), fixed(o_.budget, 0));
 }
 
-void Cs184Report::writePage() {
+// The page's opening: how it was made, the budget and the load, how sizes and samples were chosen.
+void Cs184Report::writeHeader() {
     double total = secondsSince(o_.start);
     page_.paragraph(fmt::format(
         "Made by: {}. It took {} s of a {} s budget ({:.0f} %); load average {} at the start and "
@@ -378,76 +382,84 @@ void Cs184Report::writePage() {
         size_.width, size_.height, probes, 1 / kMinScale, kMainSize.width, kMainSize.height,
         needMain_, o_.view,
         o_.view == "CS184" ? " (the course's display: sqrt(2) exposure, gamma 2.2)" : ""));
+}
+
+// Part 2, task 3: the BVH timing table, the meshes' images and what the timings show.
+void Cs184Report::writeBvhTable() {
+    std::vector<std::vector<std::string>> rows;
+    std::vector<ReportPage::Image> images;
+    for (const TimingRow& row : timings_) {
+        rows.push_back(
+            {row.mesh, row.traversal, fixed(row.shot.buildSeconds, 4),
+             fixed(row.shot.stats.seconds, 3),
+             fmt::format("{:.3g}", double(row.shot.stats.rays) / row.shot.stats.seconds * 1e-6),
+             fixed(row.frameSeconds(), 3), row.shot.command});
+        if (row.traversal.rfind("Embree", 0) == 0)
+            images.push_back({row.shot.file,
+                              row.mesh + ", normal shading at 800x600 (" +
+                                  std::to_string(row.primitives) + " primitives)",
+                              row.shot.command});
+    }
+    for (const std::string& m : missingMeshes_)
+        rows.push_back({fs::path(m).filename().string(), "not timed", "-", "-", "-", "-",
+                        m + " is not in the scene library"});
+    if (rows.empty())
+        page_.paragraph("No BVH timing: this report was made with --bvh-scenes none.");
+    else
+        page_.table({"mesh", "traversal", "build s", "render s", "Mrays/s", "s per 800x600 frame",
+                     "command"},
+                    rows);
+    page_.images(images);
+    for (const std::string& p : timingProse(timings_, kTimingFloorSeconds)) page_.paragraph(p);
+}
+
+// One figure: a row of images per scene, then the paragraphs that discuss them.
+void Cs184Report::writeFigure(size_t f) {
+    const Figure& fig = figures_[f];
+    page_.heading(4, fig.title);
+    std::vector<SceneShots> discussed;
+    for (size_t s = 0; s < scenes_.size(); ++s) {
+        std::vector<ReportPage::Image> row;
+        SceneShots shots{fs::path(scenes_[s].path).filename().string(), {}};
+        for (size_t i = 0; i < fig.shots.size(); ++i) {
+            const ShotPlan& plan = plans_[f][s][i];
+            const ShotResult& r = results_[f][s][i];
+            if (plan.spp == 0) continue;
+            std::string command = r.command;
+            if (!fig.shots[i].layer.empty())
+                command += "  (the " + fig.shots[i].layer + " layer of its EXR)";
+            row.push_back({r.file, caption(fig.shots[i], plan, r), command});
+            if (!r.rateFile.empty())
+                row.push_back({r.rateFile,
+                               fmt::format("sample rate: {:.1f} samples per pixel on "
+                                           "average, {} to {}",
+                                           r.image.meanSpp, r.image.minSpp, r.image.maxSpp),
+                               r.command + "  (its .samples.png)"});
+            shots.shots.push_back(r);
+        }
+        page_.images(row);
+        discussed.push_back(shots);
+    }
+    for (const std::string& p : figureProse(fig, discussed)) page_.paragraph(p);
+    if (fig.key == "importance") {
+        std::vector<SceneShots> hemisphere;
+        for (size_t g = 0; g < figures_.size(); ++g)
+            if (figures_[g].key == "hemisphere")
+                for (size_t s = 0; s < scenes_.size(); ++s)
+                    hemisphere.push_back(
+                        {fs::path(scenes_[s].path).filename().string(), results_[g][s]});
+        for (const std::string& p : directComparison(hemisphere, discussed)) page_.paragraph(p);
+    }
+}
+
+void Cs184Report::writePage() {
+    writeHeader();
     for (const Task& t : courseTasks()) {
         page_.heading(t.task == 0 ? 2 : 3, t.heading);
         if (std::string intro = taskIntro(t.part, t.task); !intro.empty()) page_.paragraph(intro);
-        if (t.part == 2 && t.task == 3) {
-            std::vector<std::vector<std::string>> rows;
-            std::vector<ReportPage::Image> images;
-            for (const TimingRow& row : timings_) {
-                rows.push_back({row.mesh, row.traversal, fixed(row.shot.buildSeconds, 4),
-                                fixed(row.shot.stats.seconds, 3),
-                                fmt::format("{:.3g}", double(row.shot.stats.rays) /
-                                                          row.shot.stats.seconds * 1e-6),
-                                fixed(row.frameSeconds(), 3), row.shot.command});
-                if (row.traversal.rfind("Embree", 0) == 0)
-                    images.push_back({row.shot.file,
-                                      row.mesh + ", normal shading at 800x600 (" +
-                                          std::to_string(row.primitives) + " primitives)",
-                                      row.shot.command});
-            }
-            for (const std::string& m : missingMeshes_)
-                rows.push_back({fs::path(m).filename().string(), "not timed", "-", "-", "-", "-",
-                                m + " is not in the scene library"});
-            if (rows.empty())
-                page_.paragraph("No BVH timing: this report was made with --bvh-scenes none.");
-            else
-                page_.table({"mesh", "traversal", "build s", "render s", "Mrays/s",
-                             "s per 800x600 frame", "command"},
-                            rows);
-            page_.images(images);
-            for (const std::string& p : timingProse(timings_, kTimingFloorSeconds))
-                page_.paragraph(p);
-        }
-        for (size_t f = 0; f < figures_.size(); ++f) {
-            const Figure& fig = figures_[f];
-            if (fig.part != t.part || fig.task != t.task) continue;
-            page_.heading(4, fig.title);
-            std::vector<SceneShots> discussed;
-            for (size_t s = 0; s < scenes_.size(); ++s) {
-                std::vector<ReportPage::Image> row;
-                SceneShots shots{fs::path(scenes_[s].path).filename().string(), {}};
-                for (size_t i = 0; i < fig.shots.size(); ++i) {
-                    const ShotPlan& plan = plans_[f][s][i];
-                    const ShotResult& r = results_[f][s][i];
-                    if (plan.spp == 0) continue;
-                    std::string command = r.command;
-                    if (!fig.shots[i].layer.empty())
-                        command += "  (the " + fig.shots[i].layer + " layer of its EXR)";
-                    row.push_back({r.file, caption(fig.shots[i], plan, r), command});
-                    if (!r.rateFile.empty())
-                        row.push_back({r.rateFile,
-                                       fmt::format("sample rate: {:.1f} samples per pixel on "
-                                                   "average, {} to {}",
-                                                   r.image.meanSpp, r.image.minSpp, r.image.maxSpp),
-                                       r.command + "  (its .samples.png)"});
-                    shots.shots.push_back(r);
-                }
-                page_.images(row);
-                discussed.push_back(shots);
-            }
-            for (const std::string& p : figureProse(fig, discussed)) page_.paragraph(p);
-            if (fig.key == "importance") {
-                std::vector<SceneShots> hemisphere;
-                for (size_t g = 0; g < figures_.size(); ++g)
-                    if (figures_[g].key == "hemisphere")
-                        for (size_t s = 0; s < scenes_.size(); ++s)
-                            hemisphere.push_back(
-                                {fs::path(scenes_[s].path).filename().string(), results_[g][s]});
-                for (const std::string& p : directComparison(hemisphere, discussed))
-                    page_.paragraph(p);
-            }
-        }
+        if (t.part == 2 && t.task == 3) writeBvhTable();
+        for (size_t f = 0; f < figures_.size(); ++f)
+            if (figures_[f].part == t.part && figures_[f].task == t.task) writeFigure(f);
     }
     const char* name = o_.format == PageFormat::Html ? "index.html" : "index.md";
     page_.write((fs::path(o_.dir) / name).string(), o_.format);

@@ -33,7 +33,7 @@ std::string taskIntro(int part, int task) {
          "1 - b1 - b2 are all in [0, 1] and t lies in [t_min, t_max]; t_max then shrinks to t so "
          "that later tests find only nearer hits. The normal is interpolated with the "
          "barycentrics. kiln's reference BVH uses this test in double precision; Embree uses its "
-         "own watertight float test."},
+         "own single-precision test."},
         {{1, 4},
          "A sphere |p - c|^2 = R^2 and the ray o + t d give a quadratic a t^2 + b t + c = 0 with "
          "a = d.d, b = 2 (o - c).d, c = |o - c|^2 - R^2; the discriminant b^2 - 4ac < 0 means a "

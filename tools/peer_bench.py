@@ -189,11 +189,11 @@ def describe(name, out, resolution=None):
     return kiln_path, json_path, s
 
 
-def run_kiln(kiln, scene_path, s, args, threads, out_base, nice=False):
+def run_kiln(kiln, scene_path, s, args, threads, out_base):
     """One kiln render of the scene with ARGS (a list: sampler, spp, a variant's options):
     (sampling seconds, set-up seconds, EXR)."""
     w, h = s["resolution"]
-    cmd = (["nice", "-n", "10"] if nice else []) + [kiln, "render", scene_path] + kiln_options(s) + [
+    cmd = [kiln, "render", scene_path] + kiln_options(s) + [
         "-r", str(w), str(h), "-m", str(s["max_depth"]), "-t", str(threads),
         "--aov", "none", "-q", "-o", out_base] + args
     err = subprocess.run(cmd, capture_output=True, text=True, check=True).stderr
@@ -201,14 +201,13 @@ def run_kiln(kiln, scene_path, s, args, threads, out_base, nice=False):
     return float(m.group(3)), float(m.group(1)) + float(m.group(2)), out_base + ".exr"
 
 
-def run_cycles(blender, json_path, spp, threads, out_path, seed=7, nice=False):
+def run_cycles(blender, json_path, spp, threads, out_path, seed=7):
     """One Cycles render: (sampling seconds, set-up seconds, EXR). Sampling: Cycles' own "Rendered N
     samples in S seconds" (--debug-cycles); set-up: the scene built in Python and the render call
     less the sampling."""
     script = os.path.join(ROOT, "tools", "peer", "cycles_scene.py")
-    cmd = (["nice", "-n", "10"] if nice else []) + [
-        blender, "-b", "--factory-startup", "--debug-cycles", "--python", script, "--",
-        json_path, str(spp), str(threads), out_path, str(seed)]
+    cmd = [blender, "-b", "--factory-startup", "--debug-cycles", "--python", script, "--",
+           json_path, str(spp), str(threads), out_path, str(seed)]
     res = subprocess.run(cmd, capture_output=True, text=True)
     call = re.search(r"kiln-peer: render_seconds ([0-9.]+)", res.stdout)
     scene = re.search(r"kiln-peer: scene_seconds ([0-9.]+)", res.stdout)
@@ -237,6 +236,16 @@ def mean_rgb(exr):
                          text=True, check=True).stdout
     return [float(v) for v in re.search(r"Stats Avg: ([0-9.eE+-]+) ([0-9.eE+-]+) ([0-9.eE+-]+)",
                                         out).groups()]
+
+
+def complete_kiln_exr(path, spp):
+    """Whether a kiln EXR exists with all its samples: an interrupted kiln render (SIGTERM) still
+    writes its image, with the samples it reached in kiln:mean_spp."""
+    if not os.path.exists(path):
+        return False
+    out = subprocess.run(["oiiotool", "--info", "-v", path], capture_output=True, text=True).stdout
+    m = re.search(r"kiln:mean_spp: ([0-9.]+)", out)
+    return bool(m) and float(m.group(1)) >= spp
 
 
 def check_references(refs, base):
@@ -294,18 +303,17 @@ def main():
     # References use their own seed: a render sharing its first samples with its reference (both
     # renderers index samples the same way whatever the count) would understate its error.
     ref_tag = ".ref%d.%dx%d.seed%d" % (a.ref_spp, *s["resolution"], REF_SEED)
-    # (references render niced: their time is not measured)
     refs = {}
     for sampler in samplers:
         ref = base + ref_tag + ".kiln." + sampler
-        if not os.path.exists(ref + ".exr"):
+        if not complete_kiln_exr(ref + ".exr", a.ref_spp):
             run_kiln(a.kiln, kiln_scene, s,
                      ["--sampler", sampler, "-s", str(a.ref_spp), "--seed", str(REF_SEED)], a.threads,
-                     ref, nice=True)
+                     ref)
         refs["kiln " + sampler] = ref + ".exr"
     refs["cycles"] = base + ref_tag + ".cycles.exr"
     if not os.path.exists(refs["cycles"]):
-        run_cycles(a.blender, json_path, a.ref_spp, a.threads, refs["cycles"], REF_SEED, nice=True)
+        run_cycles(a.blender, json_path, a.ref_spp, a.threads, refs["cycles"], REF_SEED)
     means = check_references(refs, base)
     loads = ["load average %s at the start" % load_average()]
     print(loads[-1], flush=True)

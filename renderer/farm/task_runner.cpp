@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "renderer/core/json.h"
+#include "renderer/core/log.h"
 #include "renderer/farm/child_process.h"
 
 namespace kiln::farm {
@@ -16,25 +18,75 @@ namespace fs = std::filesystem;
 constexpr Outcome kOutcomes[] = {Outcome::Rendered, Outcome::Resumed,     Outcome::Skipped,
                                  Outcome::Failed,   Outcome::Interrupted, Outcome::NotRun};
 
-TaskResult runOne(const RenderTask& task, const RunOptions& options, size_t i, size_t n) {
+bool taskComplete(const RenderTask& task, const RunOptions& options) {
+    return isComplete(task.output,
+                      renderCommand(task, options.checkpointSeconds, options.quietChildren));
+}
+
+// What the batch reports about task i: its state ("rendering", "resuming", or an outcome), and
+// when known the exit code, the seconds and the batch's estimated seconds left.
+struct TaskReport {
+    size_t index, total;
+    const TaskResult& result;
+    std::string state;
+    double etaSeconds = -1;  // < 0: not known yet
+};
+
+void report(const RunOptions& options, const TaskReport& r) {
+    if (!options.report) return;
+    const RenderTask& task = r.result.task;
+    const bool ended = r.state != "rendering" && r.state != "resuming";
+    if (options.jsonEvents) {
+        Json line = {{"event", "task"},
+                     {"index", r.index + 1},
+                     {"total", r.total},
+                     {"scene", task.scene},
+                     {"output", task.output},
+                     {"state", r.state},
+                     {"exit_code", r.result.exitCode},
+                     {"seconds", r.result.seconds}};
+        if (r.etaSeconds >= 0) line["eta_seconds"] = r.etaSeconds;
+        logLine(jsonText(line, -1));
+        return;
+    }
+    std::string eta = r.etaSeconds >= 0 ? fmt::format(", batch ETA {:.1f}s", r.etaSeconds) : "";
+    if (r.state == "skipped")
+        logInfo("[{}/{}] {}: complete, skipped", r.index + 1, r.total, task.output);
+    else if (!ended)
+        logInfo("[{}/{}] {} -> {}: {}", r.index + 1, r.total, task.scene, task.output,
+                r.state == "resuming" ? "resuming from its checkpoint" : "rendering");
+    else
+        logInfo("[{}/{}] {}: {} (exit {}) in {:.2f}s{}", r.index + 1, r.total, task.output, r.state,
+                r.result.exitCode, r.result.seconds, eta);
+}
+
+// The batch's time so far, to estimate what is left: the mean time of the renders run (skipped
+// ones cost nothing) times the renders still to run.
+struct BatchClock {
+    size_t toRun = 0, ran = 0;
+    double seconds = 0;
+    double etaSeconds() const {
+        return ran ? seconds / double(ran) * double(toRun > ran ? toRun - ran : 0) : -1.0;
+    }
+};
+
+TaskResult runOne(const RenderTask& task, const RunOptions& options, size_t i, size_t n,
+                  BatchClock& clock) {
     TaskResult r{task};
     std::vector<std::string> command =
         renderCommand(task, options.checkpointSeconds, options.quietChildren);
     if (isComplete(task.output, command)) {
         r.outcome = Outcome::Skipped;
-        if (options.progress)
-            std::fprintf(options.progress, "kiln: [%zu/%zu] %s: complete, skipped\n", i + 1, n,
-                         task.output.c_str());
+        report(options, {i, n, r, "skipped", clock.etaSeconds()});
         return r;
     }
     bool resuming = hasCheckpoint(task.output);
-    if (options.progress)
-        std::fprintf(options.progress, "kiln: [%zu/%zu] %s -> %s: %s\n", i + 1, n,
-                     task.scene.c_str(), task.output.c_str(),
-                     resuming ? "resuming from its checkpoint" : "rendering");
+    report(options, {i, n, r, resuming ? "resuming" : "rendering", clock.etaSeconds()});
     fs::create_directories(fs::path(task.output).parent_path());
+    std::vector<std::string> run = command;
+    run.insert(run.end(), options.childArgs.begin(), options.childArgs.end());
     auto t0 = std::chrono::steady_clock::now();
-    r.exitCode = runForwardingSignals(kilnExecutable(), command);
+    r.exitCode = runForwardingSignals(kilnExecutable(), run);
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (r.exitCode == 0) {
         markComplete(task.output, command);
@@ -45,9 +97,8 @@ TaskResult runOne(const RenderTask& task, const RunOptions& options, size_t i, s
     r.outcome = r.exitCode == 0 ? (resuming ? Outcome::Resumed : Outcome::Rendered)
                 : saved         ? Outcome::Interrupted
                                 : Outcome::Failed;
-    if (options.progress)
-        std::fprintf(options.progress, "kiln: [%zu/%zu] %s: %s (exit %d) in %.2fs\n", i + 1, n,
-                     task.output.c_str(), outcomeName(r.outcome), r.exitCode, r.seconds);
+    ++clock.ran, clock.seconds += r.seconds;
+    report(options, {i, n, r, outcomeName(r.outcome), clock.etaSeconds()});
     return r;
 }
 
@@ -74,15 +125,26 @@ const char* outcomeName(Outcome o) {
 std::vector<TaskResult> runTasks(const std::vector<RenderTask>& tasks, const RunOptions& options) {
     std::vector<TaskResult> results;
     bool stopped = false;
+    BatchClock clock;
+    for (const RenderTask& t : tasks) clock.toRun += !taskComplete(t, options);
     for (size_t i = 0; i < tasks.size(); ++i) {
         if (stopped || lastForwardedSignal() != 0) {
             results.push_back({tasks[i]});
             continue;
         }
-        results.push_back(runOne(tasks[i], options, i, tasks.size()));
+        results.push_back(runOne(tasks[i], options, i, tasks.size(), clock));
         stopped = results.back().outcome == Outcome::Interrupted;
     }
     return results;
+}
+
+std::vector<std::string> dryRun(const std::vector<RenderTask>& tasks, const RunOptions& options) {
+    std::vector<std::string> plan;
+    for (const RenderTask& t : tasks)
+        plan.push_back(taskComplete(t, options)  ? "skip"
+                       : hasCheckpoint(t.output) ? "resume"
+                                                 : "render");
+    return plan;
 }
 
 int exitCodeOf(const std::vector<TaskResult>& results) {
@@ -95,7 +157,7 @@ int exitCodeOf(const std::vector<TaskResult>& results) {
 }
 
 std::string summaryLine(const std::vector<TaskResult>& results) {
-    std::string line = "kiln: " + std::to_string(results.size()) + " renders:";
+    std::string line = std::to_string(results.size()) + " renders:";
     double seconds = 0;
     for (const TaskResult& r : results) seconds += r.seconds;
     for (Outcome o : kOutcomes) {

@@ -10,6 +10,7 @@
 
 #include "renderer/cli/cli_args.h"
 #include "renderer/cli/commands.h"
+#include "renderer/cli/did_you_mean.h"
 #include "renderer/cli/queue_output.h"
 #include "renderer/core/log.h"
 #include "renderer/farm/child_process.h"
@@ -351,7 +352,9 @@ int runFarm(const std::vector<std::string>& args) {
     } catch (const farm::FarmInputError& e) {
         throw UsageError(e.what());
     }
-    throw UsageError("unknown farm command '" + args[0] + "'\n" + kFarmUsage);
+    throw UsageError("unknown farm command '" + args[0] + "'" +
+                     didYouMean(args[0], {"submit", "status", "merge", "resubmit"}) + "\n" +
+                     kFarmUsage);
 }
 
 }  // namespace kiln

@@ -9,6 +9,7 @@
 #include "renderer/build_info.h"
 #include "renderer/cli/cli_args.h"
 #include "renderer/cli/commands.h"
+#include "renderer/cli/did_you_mean.h"
 #include "renderer/cli/queue_output.h"
 #include "renderer/core/log.h"
 #include "scene/scene_error.h"
@@ -36,9 +37,21 @@ constexpr const char* kUsage =
     "  tools subdivide   1-to-4 midpoint subdivision of a mesh, written as binary PLY\n"
     "  report cs184      the CS184 PathTracer write-up (five parts) as one HTML page\n"
     "\n"
+    "  help COMMAND      that command's options (as 'kiln COMMAND --help')\n"
+    "\n"
     "'kiln <command> --help' lists each command's options.\n";
 
+const std::vector<std::string> kCommands{"render", "merge", "info",  "crosscheck", "bench",
+                                         "batch",  "farm",  "tools", "report",     "help"};
+
 int dispatch(const std::string& command, const std::vector<std::string>& args) {
+    // kiln help COMMAND [SUBCOMMAND]: that command's --help.
+    if (command == "help" && args.empty()) return std::fputs(kUsage, stdout), 0;
+    if (command == "help") {
+        std::vector<std::string> rest(args.begin() + 1, args.end());
+        rest.push_back("--help");
+        return dispatch(args[0], rest);
+    }
     if (command == "render") return kiln::runRender(args);
     if (command == "merge") return kiln::runMerge(args);
     if (command == "info") return kiln::runInfo(args);
@@ -48,7 +61,7 @@ int dispatch(const std::string& command, const std::vector<std::string>& args) {
     if (command == "farm") return kiln::runFarm(args);
     if (command == "tools") return kiln::runTools(args);
     if (command == "report") return kiln::runReport(args);
-    kiln::logError("unknown command '{}'", command);
+    kiln::logError("unknown command '{}'{}", command, kiln::didYouMean(command, kCommands));
     if (!kiln::jsonRequested(args).lines) std::fputs(kUsage, stderr);
     throw UnknownCommand("unknown command '" + command + "'");
 }

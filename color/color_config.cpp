@@ -113,20 +113,56 @@ std::string& bundledConfig() {
 
 void setBundledColorConfig(const std::string& path) { bundledConfig() = path; }
 
+namespace {
+
+// Where a config beside the binary would be (PREFIX/share/kiln/config.ocio for PREFIX/bin/kiln).
+fs::path installedConfig(const fs::path& exe) {
+    return (exe.parent_path() / KILN_CONFIG_FROM_BINARY).lexically_normal();
+}
+
+fs::path runningBinary() {
+    std::error_code ec;
+    fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    return ec ? fs::path() : exe;
+}
+
+// Without $OCIO or a config beside the binary: the source tree's, which a binary run from its
+// build directory uses; a binary moved elsewhere is told where kiln looked (a warning when the
+// source tree is still there, an error when it is gone).
+void checkFallback(ColorSetup& setup) {
+    std::error_code ec;
+    if (std::getenv("OCIO") && *std::getenv("OCIO")) return;
+    fs::path exe = runningBinary();
+    if (exe.empty() || setup.configPath == installedConfig(exe).string()) return;
+    if (setup.configPath == bundledConfig()) return;
+    std::string looked = fmt::format("$OCIO is unset and there is no {} beside {}",
+                                     installedConfig(exe).string(), exe.string());
+    if (!fs::exists(setup.configPath, ec))
+        throw std::invalid_argument(fmt::format(
+            "no OCIO config: {}, nor {} (set OCIO, or install kiln with cmake --install)", looked,
+            setup.configPath));
+    // The build tree's binary or another host (the Python module) uses the source tree's config
+    // as a matter of course.
+    const bool moved = exe.parent_path() != fs::path(KILN_BUILD_BINARY_DIR);
+    if (moved && exe.filename() == "kiln")
+        setup.warnings.push_back(
+            fmt::format("{}: using the source tree's {}", looked, setup.configPath));
+}
+
+}  // namespace
+
 std::string colorConfigPath() {
     if (const char* env = std::getenv("OCIO"); env && *env) return env;
     std::error_code ec;
     if (!bundledConfig().empty() && fs::exists(bundledConfig(), ec)) return bundledConfig();
-    fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-    if (!ec) {
-        fs::path installed = (exe.parent_path() / KILN_CONFIG_FROM_BINARY).lexically_normal();
-        if (fs::exists(installed, ec)) return installed.string();
-    }
+    fs::path exe = runningBinary();
+    if (!exe.empty() && fs::exists(installedConfig(exe), ec)) return installedConfig(exe).string();
     return std::string(KILN_SOURCE_DIR) + "/color/config.ocio";
 }
 
 ColorSetup checkColorConfig(const std::string& display, const std::string& view) {
     ColorSetup setup{colorConfigPath(), "", display, view, {}};
+    checkFallback(setup);
     try {
         OCIO::ConstConfigRcPtr config = OCIO::Config::CreateFromFile(setup.configPath.c_str());
         setup.sceneLinear = resolveSceneLinear(config);

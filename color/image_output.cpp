@@ -109,7 +109,7 @@ void addChannels(OIIO::ImageSpec& spec, const Film& film, const ExrOptions& opti
         add(c.name, c.colour || c.name.rfind("N.", 0) == 0 ? colourType : OIIO::TypeDesc::FLOAT);
     if (request.has(AovKind::Depth))
         spec.z_channel = spec.nchannels, add("Z", OIIO::TypeDesc::FLOAT);
-    if (request.has(AovKind::Samples)) add("samples.count", OIIO::TypeDesc::FLOAT);
+    if (request.has(AovKind::Samples)) add("samples.X", OIIO::TypeDesc::FLOAT);
     if (request.has(AovKind::Variance)) add("variance.V", OIIO::TypeDesc::FLOAT);
     for (int type = 0; type < 2; ++type)
         if (hasCrypto(film, type))

@@ -48,7 +48,7 @@ struct ExrOptions {
 };
 
 // Beauty R,G,B,A (A: coverage, colour premultiplied by it), every AOV of the film's layout as
-// "layer.channel", Z, samples.count, variance.V and the Cryptomatte layers when requested.
+// "layer.channel", Z, samples.X, variance.V and the Cryptomatte layers when requested.
 // Metadata keys are written as "kiln:KEY", numbers as numbers. Throws std::runtime_error.
 void writeExr(const std::string& path, const Film& film, const Metadata& metadata,
               const ExrOptions& options = {});

@@ -19,10 +19,16 @@ std::vector<uint32_t> idsOf(const std::vector<std::string>& names) {
 }  // namespace
 
 CryptoNames::CryptoNames(const Scene& scene) {
-    for (size_t m = 0; m < scene.meshes.size(); ++m)
-        meshes.push_back(nameOr(scene.meshes[m].name, "mesh", m));
-    for (size_t i = 0; i < scene.instances.size(); ++i)
-        instances.push_back(meshes[scene.instances[i].mesh] + "#" + std::to_string(i));
+    // Objects by the scene node that places them (as Cycles and Arnold), else by the mesh.
+    for (size_t m = 0; m < scene.meshes.size(); ++m) {
+        const TriangleMesh& mesh = scene.meshes[m];
+        meshes.push_back(nameOr(mesh.node.empty() ? mesh.name : mesh.node, "mesh", m));
+    }
+    for (size_t i = 0; i < scene.instances.size(); ++i) {
+        const Instance& inst = scene.instances[i];
+        instances.push_back(!inst.node.empty() ? inst.node
+                                               : meshes[inst.mesh] + "#" + std::to_string(i));
+    }
     for (size_t s = 0; s < scene.spheres.size(); ++s)
         spheres.push_back(nameOr(scene.spheres[s].name, "sphere", s));
     for (size_t m = 0; m < scene.materials.size(); ++m)

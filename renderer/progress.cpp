@@ -103,4 +103,38 @@ void Progress::printJson(double frac, double mrays, double t, double eta, bool f
     std::fputs((jsonText(line, -1) + "\n").c_str(), stderr);
 }
 
+StageProgress::StageProgress(std::string stage, bool heartbeat)
+    : stage_(std::move(stage)),
+      enabled_(style.load() == ProgressStyle::Json),
+      start_(std::chrono::steady_clock::now()) {
+    if (!enabled_) return;
+    print("start");
+    if (!heartbeat) return;
+    thread_ = std::thread([this] {
+        std::unique_lock lock(mutex_);
+        while (!cv_.wait_for(lock, std::chrono::seconds(1), [this] { return stop_; }))
+            print("running");
+    });
+}
+
+StageProgress::~StageProgress() {
+    if (!enabled_) return;
+    if (thread_.joinable()) {
+        {
+            std::lock_guard lock(mutex_);
+            stop_ = true;
+        }
+        cv_.notify_all();
+        thread_.join();
+    }
+    print("end");
+}
+
+void StageProgress::print(const char* state) const {
+    double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    Json line = {{"event", "stage"}, {"stage", stage_}, {"state", state}, {"stage_seconds", t}};
+    std::fputs((jsonText(line, -1) + "\n").c_str(), stderr);
+    std::fflush(stderr);
+}
+
 }  // namespace kiln

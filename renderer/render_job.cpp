@@ -10,6 +10,7 @@
 #include "integrators/path.h"
 #include "renderer/geometry/camera.h"
 #include "renderer/guide_training.h"
+#include "renderer/progress.h"
 
 namespace kiln {
 namespace {
@@ -77,6 +78,7 @@ double RenderJob::trainGuideOnce() const {
     double seconds = 0;
     std::call_once(guideTrained_, [&] {
         if (!guided_) return;
+        StageProgress stage("guide_training");
         auto start = std::chrono::steady_clock::now();
         auto& path = static_cast<PathIntegrator&>(*integrator_);
         guide_ = trainGuide(path, options_.settings);

@@ -221,6 +221,12 @@ NodeWorlds nodeWorlds(const aiScene* as, const ColladaExtras* extras) {
     return world;
 }
 
+// The object a node's meshes make, by the node's name; not the root, which holds a format's loose
+// meshes (an OBJ's groups, an STL's solids) under a name of the importer's.
+std::string objectName(const aiScene* as, const aiNode* node) {
+    return node == as->mRootNode ? std::string() : std::string(node->mName.C_Str());
+}
+
 Mat4 worldOf(const aiScene* as, const NodeWorlds& worlds, const aiString& name) {
     const aiNode* node = as->mRootNode->FindNode(name);
     for (const auto& [n, world] : worlds)
@@ -562,9 +568,12 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
     // instanced.
     NodeWorlds worlds = nodeWorlds(as, extras);
     std::vector<std::vector<Mat4>> placements(as->mNumMeshes);
+    std::vector<std::vector<std::string>> placingNodes(as->mNumMeshes);
     for (const auto& [node, world] : worlds)
-        for (unsigned i = 0; i < node->mNumMeshes; ++i)
+        for (unsigned i = 0; i < node->mNumMeshes; ++i) {
             placements[node->mMeshes[i]].push_back(world);
+            placingNodes[node->mMeshes[i]].push_back(objectName(as, node));
+        }
     Vec3d origin = adoptOrigin(scene, placedOrigin(as, placements));
     Mat4 toStored = Mat4::identity();
     for (int r = 0; r < 3; ++r) toStored.m[r][3] = -origin[r];
@@ -580,6 +589,7 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
         Mat4 inverse = bake ? xf.inverse() : Mat4::identity();
         TriangleMesh mesh;
         mesh.name = am->mName.C_Str();
+        if (bake) mesh.node = placingNodes[mi][0];
         mesh.positions.reserve(3 * am->mNumVertices + 1);
         for (unsigned v = 0; v < am->mNumVertices; ++v) {
             Vec3d p = toVec3d(am->mVertices[v]);
@@ -630,8 +640,9 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
         uint32_t meshIndex = uint32_t(scene.meshes.size());
         scene.meshes.push_back(std::move(mesh));
         if (!bake)
-            for (const Mat4& m : placements[mi])
-                scene.instances.push_back(Instance::place(meshIndex, toStored * m));
+            for (size_t k = 0; k < placements[mi].size(); ++k)
+                scene.instances.push_back(
+                    Instance::place(meshIndex, toStored * placements[mi][k], placingNodes[mi][k]));
     }
 
     if (extras) return;  // COLLADA lights and camera come from the CGL pass

@@ -280,7 +280,11 @@ class Parser {
         pugi::xml_node sphereNode = extraTechnique(geom).child("sphere");
         if (!sphereNode) return;
         Sphere s;
-        s.name = geom.attribute("name").as_string(geomId.c_str());
+        // The object is the node that places the sphere (CBspheres.dae's "Sphere2" instances
+        // "Sphere1-data"); the geometry's name when the node has none.
+        pugi::xml_node node = inst.parent();
+        s.name = node.attribute("name").as_string(
+            node.attribute("id").as_string(geom.attribute("name").as_string(geomId.c_str())));
         float radius = expectScalar(file_, sphereNode, "radius");
         if (!(radius > 0))
             throw SceneError(file_, "sphere '" + geomId + "' has radius " + std::to_string(radius));

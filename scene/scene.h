@@ -129,6 +129,9 @@ struct Camera {
 // Triangles of one mesh; per-triangle material ids index Scene::materials.
 struct TriangleMesh {
     std::string name;
+    // The scene node that places it, when the file names one (Cryptomatte's object name, as in
+    // Cycles and Arnold); empty: the mesh's own name stands for the object.
+    std::string node;
     // xyz per vertex; one extra padding float at the end because Embree reads vertices as 16 bytes.
     std::vector<float> positions;
     std::vector<uint32_t> indices;  // 3 per triangle
@@ -165,8 +168,9 @@ struct Instance {
     uint32_t mesh = 0;
     Mat4 objectToWorld;
     Mat4 worldToObject;
-    static Instance place(uint32_t mesh, const Mat4& objectToWorld) {
-        return {mesh, objectToWorld, objectToWorld.inverse()};
+    std::string node;  // the scene node of this placement, as TriangleMesh::node
+    static Instance place(uint32_t mesh, const Mat4& objectToWorld, std::string node = {}) {
+        return {mesh, objectToWorld, objectToWorld.inverse(), std::move(node)};
     }
 };
 

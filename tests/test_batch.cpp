@@ -198,7 +198,8 @@ TEST(Batch, SkipsCompleteOutputsAndReportsJson) {
     EXPECT_TRUE(fs::exists(dir / "out/orbit_1.png"));
     farm::CommandResult second = test::kiln({"batch", job, "--json", "-q"});
     ASSERT_EQ(second.exitCode, 0) << second.output;
-    auto json = nlohmann::json::parse(second.output.substr(second.output.find('{')));
+    // stdout's document (stderr's lines are JSON lines too with --json).
+    auto json = nlohmann::json::parse(second.output.substr(second.output.find("{\n")));
     EXPECT_EQ(json["counts"]["skipped"], 2);
     EXPECT_EQ(json["counts"]["rendered"], 0);
 }

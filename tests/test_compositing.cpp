@@ -257,7 +257,7 @@ TEST(Compositing, EveryAovHasALayerAndCameraMetadataAndNumbersAreNumbers) {
         for (const std::string& name : spec.channelnames)
             EXPECT_TRUE(name.find('.') != std::string::npos || name.size() == 1) << name;
         for (const char* c :
-             {"samples.count", "variance.V", "primid.id", "objectid.id", "Z", "CryptoMaterial00.R"})
+             {"samples.X", "variance.V", "primid.X", "objectid.X", "Z", "CryptoMaterial00.R"})
             EXPECT_GE(spec.channelindex(c), 0) << c;
         EXPECT_EQ(spec.z_channel, spec.channelindex("Z"));
         const OIIO::ParamValue* w2c = spec.find_attribute("worldToCamera", OIIO::TypeMatrix);

@@ -112,7 +112,7 @@ TEST(ExrOutput, ChannelsTypesAndMetadataRoundTrip) {
              {"R", "G", "B", "A", "emission.R", "direct.G", "indirect.B", "albedo.R", "N.X"})
             EXPECT_EQ(type(c), colour) << c;
         for (const char* c :
-             {"P.X", "P.Y", "P.Z", "Z", "samples.count", "variance.V", "primid.id", "objectid.id"})
+             {"P.X", "P.Y", "P.Z", "Z", "samples.X", "variance.V", "primid.X", "objectid.X"})
             EXPECT_EQ(type(c), OIIO::TypeDesc(OIIO::TypeDesc::FLOAT)) << c;
         EXPECT_EQ(spec.get_string_attribute("compression"), half ? "piz" : "zip");
         EXPECT_EQ(spec.get_int_attribute("kiln:spp"), 8);
@@ -122,7 +122,7 @@ TEST(ExrOutput, ChannelsTypesAndMetadataRoundTrip) {
         // Values come back: the sample counts exactly, the beauty to half precision.
         std::vector<float> px(size_t(spec.width) * spec.height * spec.nchannels);
         ASSERT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data()));
-        int n = spec.channelindex("samples.count"), r = spec.channelindex("R");
+        int n = spec.channelindex("samples.X"), r = spec.channelindex("R");
         for (int y = 0; y < f.height(); ++y)
             for (int x = 0; x < f.width(); ++x) {
                 size_t base = (size_t(y) * spec.width + x) * spec.nchannels;

@@ -109,7 +109,7 @@ TEST(RenderLoop, InterruptKeepsTrueSampleCountsAndWritesThem) {
     auto in = OIIO::ImageInput::open(path);
     ASSERT_TRUE(in);
     const OIIO::ImageSpec& spec = in->spec();
-    int samplesChannel = spec.channelindex("samples.count");
+    int samplesChannel = spec.channelindex("samples.X");
     ASSERT_GE(samplesChannel, 0);
     std::vector<float> pixels(size_t(spec.width) * spec.height * spec.nchannels);
     ASSERT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()));
@@ -130,7 +130,7 @@ TEST(ImageOutput, ExrRoundTripKeepsChannelsValuesAndMetadata) {
     auto in = OIIO::ImageInput::open(path);
     ASSERT_TRUE(in);
     const OIIO::ImageSpec& spec = in->spec();
-    for (const char* ch : {"R", "G", "B", "A", "samples.count"})
+    for (const char* ch : {"R", "G", "B", "A", "samples.X"})
         EXPECT_GE(spec.channelindex(ch), 0) << ch;
     EXPECT_EQ(spec.get_int_attribute("kiln:spp"), 8);
     EXPECT_EQ(spec.get_string_attribute("kiln:integrator"), "normals");
@@ -139,7 +139,7 @@ TEST(ImageOutput, ExrRoundTripKeepsChannelsValuesAndMetadata) {
     std::vector<float> px(size_t(spec.width) * spec.height * spec.nchannels);
     ASSERT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data()));
     int r = spec.channelindex("R"), b = spec.channelindex("B"),
-        n = spec.channelindex("samples.count");
+        n = spec.channelindex("samples.X");
     EXPECT_FLOAT_EQ(px[(3 * 8 + 5) * spec.nchannels + r], 0.5f);
     EXPECT_FLOAT_EQ(px[(3 * 8 + 5) * spec.nchannels + b], 100.0f);
     EXPECT_FLOAT_EQ(px[(3 * 8 + 5) * spec.nchannels + n], 6.0f);

@@ -31,7 +31,7 @@ oiiotool "$work/spheres.exr" --ch Z --subc 3.8 --mulc 0.45 --clamp:min=0:max=1 -
 
 # 4. A Cryptomatte matte: the coverage of every rank whose id equals the object's (from the
 #    manifest), summed. |id - v| * 1e30 is >= 1 for any other id of these magnitudes.
-id=$(exrheader "$work/spheres.exr" | grep -o '"leftWall-mesh":"[0-9a-f]*"' | cut -d'"' -f4)
+id=$(exrheader "$work/spheres.exr" | grep -o '"leftWall":"[0-9a-f]*"' | cut -d'"' -f4)
 value=$(python3 -c "import struct,sys; print(repr(struct.unpack('>f', bytes.fromhex('$id'))[0]))")
 args=()
 for layer in 00 01 02; do

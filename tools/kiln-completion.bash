@@ -1,16 +1,53 @@
 # bash completion for kiln (installed as share/bash-completion/completions/kiln).
-# Options come from 'kiln COMMAND --help' itself, so the completion never falls behind the binary.
+# Commands, subcommands, options and enumerated values come from 'kiln [COMMAND [SUB]] --help'
+# itself, so the completion never falls behind the binary: options are the --names of the help,
+# the values of an option are its "a|b|c" in the help (--aov's from its list of layers).
+_kiln_subcommands() {
+    case $1 in
+        bench) echo "accel plan accuracy" ;;
+        farm) echo "submit status merge resubmit" ;;
+        tools) echo "subdivide" ;;
+        report) echo "cs184" ;;
+        help) echo "render merge info crosscheck bench batch farm tools report" ;;
+    esac
+}
+
 _kiln() {
-    local cur=${COMP_WORDS[COMP_CWORD]}
-    local commands="render info crosscheck bench tools --help --version"
+    local cur=${COMP_WORDS[COMP_CWORD]} prev=${COMP_WORDS[COMP_CWORD - 1]}
+    local commands="render merge info crosscheck bench batch farm tools report help --help --version"
     if ((COMP_CWORD == 1)); then
         mapfile -t COMPREPLY < <(compgen -W "$commands" -- "$cur")
         return
     fi
-    local command=${COMP_WORDS[1]}
+    local command=${COMP_WORDS[1]} subs
+    subs=$(_kiln_subcommands "$command")
+    if ((COMP_CWORD == 2)) && [[ -n $subs && $cur != -* ]]; then
+        mapfile -t COMPREPLY < <(compgen -W "$subs" -- "$cur")
+        return
+    fi
+    local asked=("$command")
+    [[ -n $subs && $command != help && $command != farm ]] && asked+=("${COMP_WORDS[2]}")
+    [[ $command == farm && ${COMP_WORDS[2]} != submit ]] && asked+=("${COMP_WORDS[2]}")
+    [[ $command == farm && ${COMP_WORDS[2]} == submit ]] && asked=(render)
+    local help
+    help=$("${COMP_WORDS[0]}" "${asked[@]}" --help 2>/dev/null)
+    [[ $command == farm && ${COMP_WORDS[2]} == submit ]] &&
+        help+=$'\n'$("${COMP_WORDS[0]}" farm submit --help 2>/dev/null)
+    if [[ $prev == --* ]]; then
+        local values
+        if [[ $prev == --aov ]]; then
+            values=$(sed -n 's/.*comma-separated: \([^;]*\); or \([a-z, ]*\) .*/\1, \2/p' <<<"$help" | tr -d ',')
+        else
+            values=$(sed -n "s/^ *\(-[a-zA-Z], \)\{0,1\}$prev \([^ ]*|[^ ]*\).*/\2/p" <<<"$help" | tr '|' ' ')
+        fi
+        if [[ -n $values ]]; then
+            mapfile -t COMPREPLY < <(compgen -W "$values" -- "$cur")
+            return
+        fi
+    fi
     if [[ $cur == -* ]]; then
         local options
-        options=$("${COMP_WORDS[0]}" "$command" --help 2>/dev/null | grep -o -- '--[a-z][a-z0-9-]*' | sort -u)
+        options=$(grep -o -- '--[a-z][a-z0-9-]*' <<<"$help" | sort -u)
         mapfile -t COMPREPLY < <(compgen -W "$options" -- "$cur")
         return
     fi

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <utility>
 
+#include "renderer/cli/did_you_mean.h"
 #include "renderer/core/log.h"
 
 namespace kiln {
@@ -69,12 +70,19 @@ struct ArgParser::Impl {
         app.add_option("positional", positional)->group("");  // hidden: the synopsis names them
     }
     std::string usageHint() const { return "(see 'kiln " + command + " --help')"; }
+    // The declared option nearest to an unknown one ("--sp" -> "--spp").
+    std::string suggestion(const std::string& typed) const {
+        std::vector<std::string> names{"--help", "--log-level"};
+        for (const Declared& d : declared) names.push_back("--" + d.longName);
+        return didYouMean(typed.substr(0, typed.find('=')), names);
+    }
     // One line naming the flag, whatever CLI11 found wrong.
     UsageError translate(const CLI::ParseError& e) const {
         if (dynamic_cast<const CLI::ExtrasError*>(&e)) {
             std::vector<std::string> extra = app.remaining();
             std::string first = extra.empty() ? "" : extra.front();
-            return UsageError(fmt::format("unknown option '{}' {}", first, usageHint()));
+            return UsageError(
+                fmt::format("unknown option '{}'{} {}", first, suggestion(first), usageHint()));
         }
         std::string text = e.what();
         std::replace(text.begin(), text.end(), '\n', ' ');

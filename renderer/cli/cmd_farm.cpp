@@ -10,10 +10,13 @@
 
 #include "renderer/cli/cli_args.h"
 #include "renderer/cli/commands.h"
+#include "renderer/cli/did_you_mean.h"
+#include "renderer/cli/queue_output.h"
 #include "renderer/core/log.h"
 #include "renderer/farm/child_process.h"
 #include "renderer/farm/farm_status.h"
 #include "renderer/farm/job_file.h"
+#include "renderer/farm/slurm.h"
 #include "renderer/farm/task_runner.h"
 
 namespace kiln {
@@ -31,7 +34,9 @@ constexpr const char* kFarmUsage =
     "usage: kiln farm submit FILE.json|SCENE [render options] --shards N [--by "
     "samples|region|frames] [--frames-per-task K] [-d DIR] [-o OUT] [--partition P] [--time T] "
     "[--mem M]\n"
-    "       kiln farm status DIR | merge DIR | resubmit DIR\n";
+    "       [--sbatch-arg=--OPTION=VALUE ...]\n"
+    "       kiln farm status DIR [--json] | merge DIR | resubmit DIR\n"
+    "'kiln farm COMMAND --help' lists each one's options.\n";
 
 struct SubmitArgs {
     std::string input, dir, output;
@@ -62,6 +67,17 @@ ArgParser submitParser(SubmitArgs& a) {
         p.option(name, "", 1, "VALUE", std::string("sbatch --") + name, [&a, name](const auto& v) {
             a.sbatch.push_back(std::string("--") + name + "=" + v[0]);
         });
+    p.option("sbatch-arg", "", 1, "--OPTION[=VALUE]",
+             "any sbatch option for both jobs, e.g. --sbatch-arg=--account=fx "
+             "--sbatch-arg=--qos=high --sbatch-arg=--constraint=avx2 (repeatable; the = form)",
+             [&a](const auto& v) {
+                 if (v[0].rfind("-", 0) != 0 || v[0].find('\n') != std::string::npos)
+                     throw UsageError(
+                         "--sbatch-arg takes one sbatch option such as "
+                         "--sbatch-arg=--account=NAME, got '" +
+                         v[0] + "'");
+                 a.sbatch.push_back(v[0]);
+             });
     return p;
 }
 
@@ -89,11 +105,15 @@ SubmitArgs parseSubmit(const std::vector<std::string>& args) {
                                                        {"--keep-checkpoints", 0},
                                                        {"--partition", 1},
                                                        {"--time", 1},
-                                                       {"--mem", 1}};
+                                                       {"--mem", 1},
+                                                       {"--sbatch-arg", 1}};
     std::vector<std::string> farmArgs;
     for (size_t i = 1; i < args.size(); ++i) {
         int n = -1;
-        for (const auto& [name, count] : own) n = args[i] == name ? count : n;
+        for (const auto& [name, count] : own) {
+            n = args[i] == name ? count : n;
+            n = count && args[i].rfind(name + "=", 0) == 0 ? 0 : n;  // --mem=8G
+        }
         if (n < 0) {
             a.renderArgs.push_back(args[i]);
             continue;
@@ -157,6 +177,28 @@ std::vector<int> allShards(const farm::FarmJob& job) {
     return shards;
 }
 
+// Directories submit made, removed again when it fails: a failed submit leaves nothing behind
+// (no half-made job directory that farm status would misread).
+class CreatedDirs {
+  public:
+    void create(const fs::path& dir) {
+        fs::path top = dir;  // the outermost folder that does not exist yet
+        while (!top.parent_path().empty() && top.parent_path() != top &&
+               !fs::exists(top.parent_path()))
+            top = top.parent_path();
+        if (!fs::exists(top)) made_.push_back(top);
+        fs::create_directories(dir);
+    }
+    void keep() { made_.clear(); }
+    ~CreatedDirs() {
+        std::error_code ec;
+        for (auto it = made_.rbegin(); it != made_.rend(); ++it) fs::remove_all(*it, ec);
+    }
+
+  private:
+    std::vector<fs::path> made_;
+};
+
 int submitCommand(const std::vector<std::string>& args) {
     SubmitArgs a = parseSubmit(args);
     std::string dir = a.dir.empty() ? fs::path(a.input).stem().string() + ".farm" : a.dir;
@@ -177,20 +219,28 @@ int submitCommand(const std::vector<std::string>& args) {
         return 0;
     }
     checkRenderOptions(job);
-    fs::create_directories(fs::path(job.dir) / "shards");
+    if (farm::findSbatch().empty())
+        throw UsageError("sbatch is not on PATH (a Slurm client is needed; docs/farm.md)");
+    CreatedDirs made;
+    made.create(fs::path(job.dir) / "shards");
+    made.create(fs::path(job.dir) / "logs");
     for (const farm::Shard& s : job.shards)
-        for (const farm::RenderTask& t : s.tasks)
-            fs::create_directories(fs::path(t.output).parent_path());
-    for (const farm::Merge& m : job.merges)
-        fs::create_directories(fs::path(m.output).parent_path());
+        for (const farm::RenderTask& t : s.tasks) made.create(fs::path(t.output).parent_path());
+    for (const farm::Merge& m : job.merges) made.create(fs::path(m.output).parent_path());
     farm::Submission s;
     try {
         s = farm::submitShards(job, allShards(job));
     } catch (const std::runtime_error&) {
-        // Nothing was submitted: leave no manifest that would make a retry a no-op.
-        if (job.submissions.empty()) fs::remove(farm::manifestPath(job.dir));
+        // Nothing was submitted: leave no manifest that would make a retry a no-op (the folders
+        // submit made go too). Once the array is in, only its merge job failed: all stays.
+        if (job.submissions.empty())
+            for (const char* file : {"manifest.json", "shard.sbatch", "merge.sbatch"})
+                fs::remove(fs::path(job.dir) / file);
+        else
+            made.keep();
         throw;
     }
+    made.keep();
     std::printf("%ld\n", s.arrayJob);
     farmNote("{}: array job {} with {} shards by {}{}; kiln farm status {}", job.dir, s.arrayJob,
              job.shards.size(), farm::shardByName(job.by),
@@ -198,16 +248,40 @@ int submitCommand(const std::vector<std::string>& args) {
     return 0;
 }
 
-std::string dirArgument(const std::vector<std::string>& args, const char* what) {
-    if (args.size() != 2) throw UsageError(std::string("usage: kiln farm ") + what + " DIR");
-    return args[1];
+// The job directory of status, merge and resubmit, with -h/--help (and --json, where given).
+std::string dirArgument(const std::vector<std::string>& args, const char* what, bool* json,
+                        bool& help) {
+    ArgParser parser(std::string("farm ") + what, "DIR" + std::string(json ? " [--json]" : ""));
+    if (json)
+        parser.flag("json", "", "print the status as one JSON document on stdout (docs/output.md)",
+                    *json);
+    std::vector<std::string> pos =
+        parser.parse(std::vector<std::string>(args.begin() + 1, args.end()));
+    if ((help = parser.helpRequested())) {
+        std::fputs(parser.helpText().c_str(), stdout);
+        return "";
+    }
+    if (pos.size() != 1)
+        throw UsageError(std::string("usage: kiln farm ") + what + " DIR" +
+                         (json ? " [--json]" : ""));
+    return pos[0];
 }
 
 int statusCommand(const std::vector<std::string>& args) {
-    farm::FarmJob job = farm::readManifest(dirArgument(args, "status"));
+    bool json = false, help = false;
+    std::string dir = dirArgument(args, "status", &json, help);
+    if (help) return 0;
+    farm::FarmJob job = farm::readManifest(dir);
     farm::FarmStatus status = farm::farmStatus(job);
-    std::fputs(farm::statusText(job, status).c_str(), stdout);
-    return status.count(farm::ShardState::Failed) ? 1 : 0;
+    int code = status.count(farm::ShardState::Failed) ? 1 : 0;
+    if (!json) {
+        std::fputs(farm::statusText(job, status).c_str(), stdout);
+        return code;
+    }
+    Json result = {{"command", "farm status"}, {"status", exitStatus(code)}, {"exit_code", code}};
+    result.update(farm::statusJson(job, status));
+    printResult(result);
+    return code;
 }
 
 int runShardCommand(const std::vector<std::string>& args) {
@@ -217,8 +291,10 @@ int runShardCommand(const std::vector<std::string>& args) {
     const char* restarts = std::getenv("SLURM_RESTART_COUNT");
     farmNote("shard {} of {}, run {}", shard, job.dir, restarts ? std::atoi(restarts) + 1 : 1);
     // Sample and region shards keep theirs: they are what kiln merge reads.
-    farm::RunOptions run{job.checkpointSeconds, true, stderr,
-                         job.keepCheckpoints || job.by != farm::ShardBy::Frames};
+    farm::RunOptions run;
+    run.checkpointSeconds = job.checkpointSeconds;
+    run.quietChildren = true;
+    run.keepCheckpoints = job.keepCheckpoints || job.by != farm::ShardBy::Frames;
     int code = farm::exitCodeOf(farm::runTasks(job.shards[size_t(shard)].tasks, run));
     if (code == 130 && farm::lastForwardedSignal() == SIGTERM)
         farmNote("shard {}: {}", shard, farm::requeueSelfBeforeTimeLimit());
@@ -226,7 +302,10 @@ int runShardCommand(const std::vector<std::string>& args) {
 }
 
 int mergeCommand(const std::vector<std::string>& args) {
-    farm::FarmJob job = farm::readManifest(dirArgument(args, "merge"));
+    bool help = false;
+    std::string dir = dirArgument(args, "merge", nullptr, help);
+    if (help) return 0;
+    farm::FarmJob job = farm::readManifest(dir);
     for (size_t i = 0; i < job.shards.size(); ++i)
         if (!farm::shardComplete(job, int(i)))
             throw std::runtime_error(job.dir + ": shard " + std::to_string(i) +
@@ -247,7 +326,10 @@ int mergeCommand(const std::vector<std::string>& args) {
 }
 
 int resubmitCommand(const std::vector<std::string>& args) {
-    farm::FarmJob job = farm::readManifest(dirArgument(args, "resubmit"));
+    bool help = false;
+    std::string dir = dirArgument(args, "resubmit", nullptr, help);
+    if (help) return 0;
+    farm::FarmJob job = farm::readManifest(dir);
     std::vector<int> failed;
     for (const farm::ShardStatus& s : farm::farmStatus(job).shards)
         if (s.state == farm::ShardState::Failed) failed.push_back(s.shard);
@@ -281,7 +363,9 @@ int runFarm(const std::vector<std::string>& args) {
     } catch (const farm::FarmInputError& e) {
         throw UsageError(e.what());
     }
-    throw UsageError("unknown farm command '" + args[0] + "'\n" + kFarmUsage);
+    throw UsageError("unknown farm command '" + args[0] + "'" +
+                     didYouMean(args[0], {"submit", "status", "merge", "resubmit"}) + "\n" +
+                     kFarmUsage);
 }
 
 }  // namespace kiln

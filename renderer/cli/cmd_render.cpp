@@ -33,17 +33,17 @@ extern "C" void onCheckpointRequest(int) { checkpointRequestFlag().store(true); 
 
 namespace fs = std::filesystem;
 
-// Exit codes besides 0 (done), 1 (failure, e.g. a write) and 2 (bad input).
-constexpr int kExitTimeLimit = 3;      // --time-limit reached: checkpoint saved, --resume goes on
-constexpr int kExitInterrupted = 130;  // SIGINT/SIGTERM: checkpoint (if any) and image saved
-
 double seconds(std::chrono::steady_clock::time_point since) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
 }
 
 // Writability tried by creating a file (permission bits say nothing for root or read-only mounts),
-// so a job fails before loading, not after rendering.
-void checkOutputWritable(const OutputPaths& out) {
+// and no output's name taken by a directory, so a job fails before loading, not after rendering.
+void checkOutputWritable(const RenderCommand& c, const OutputPaths& out) {
+    std::vector<OutputWrite> outputs{{"exr", out.exr, ""}, {"preview", out.preview, ""}};
+    if (c.checkpoints()) outputs.push_back({"checkpoint", out.checkpoint, ""});
+    for (OutputWrite& o : outputs)
+        if (fs::is_directory(o.path)) throw OutputError({o.kind, o.path, "is a directory"});
     fs::path dir = fs::path(out.exr).parent_path();
     std::string probe = ((dir.empty() ? fs::path(".") : dir) / ".kiln-write-test-XXXXXX").string();
     int fd = ::mkstemp(probe.data());
@@ -56,8 +56,10 @@ void checkOutputWritable(const OutputPaths& out) {
 
 void applyQueueOptions(const RenderCommand& c, RenderJobOptions& options) {
     options.settings.progress = !c.quiet && c.progress != ProgressOutput::None;
-    Progress::setStyle(c.progress == ProgressOutput::Json ? ProgressStyle::Json
-                                                          : ProgressStyle::Text);
+    // JSON progress includes the stage lines (load, build, ...), unless progress is off.
+    Progress::setStyle(c.progress == ProgressOutput::Json && options.settings.progress
+                           ? ProgressStyle::Json
+                           : ProgressStyle::Text);
     // Machine output asked for: every message a JSON line too, so a queue parses all of stderr.
     if (c.json || c.progress == ProgressOutput::Json) setLogFormat(LogFormat::JsonLines);
 }
@@ -71,9 +73,10 @@ int& rendersInProcess() {
     return renders;
 }
 
-void printJsonResult(const RenderCommand& c, const Scene& scene, const OutputPaths& out,
-                     const std::string& heat, const RenderStats& stats, const Film& film,
-                     const RenderTimes& times) {
+// The --json result (docs/output.md): the exit code and its status, every output written and not.
+Json renderResult(const RenderCommand& c, const Scene& scene,
+                  const std::vector<OutputWrite>& writes, const RenderStats& stats,
+                  const Film& film, const RenderTimes& times, int exitCode) {
     std::vector<std::string> warnings = scene.warnings;
     warnings.insert(warnings.end(), c.warnings.begin(), c.warnings.end());
     if (stats.nonFiniteSamples)
@@ -81,11 +84,12 @@ void printJsonResult(const RenderCommand& c, const Scene& scene, const OutputPat
                            " non-finite samples were dropped");
     struct rusage usage {};
     getrusage(RUSAGE_SELF, &usage);
-    Json outputs = {{"exr", out.exr}, {"preview", out.preview}};
-    if (!heat.empty()) outputs["heatmap"] = heat;
-    Json result = {
-        {"scene", scene.sourcePath},
-        {"outputs", outputs},
+    Json result = {{"command", "render"},
+                   {"status", exitStatus(exitCode)},
+                   {"exit_code", exitCode},
+                   {"scene", scene.sourcePath}};
+    addOutputs(result, writes);
+    result.update(Json{
         {"seconds",
          {{"load", times.load},
           {"build", times.build},
@@ -102,11 +106,12 @@ void printJsonResult(const RenderCommand& c, const Scene& scene, const OutputPat
          {{"renders", rendersInProcess()},
           {"scene_loads", sceneLoadCount()},
           {"accelerator_builds", acceleratorBuildCount()}}},
+        {"time_limit_reached", stats.timeLimitReached},
         {"ocio_config", c.colourConfig},
         {"display", c.display},
         {"view", c.view},
-        {"warnings", warnings}};
-    std::puts(jsonText(result).c_str());
+        {"warnings", warnings}});
+    return result;
 }
 
 int printDebugSample(const RenderJob& job, const RenderCommand& c) {
@@ -234,10 +239,13 @@ void checkOutputsFit(const RenderCommand& c, const RenderJobOptions& o, const Ou
 // written (the checkpoint would only serve a later refinement); otherwise (a time limit, an
 // interruption, a shard for kiln merge, an image not written) it is an error: returns 1 then.
 int writeCheckpointAfterImages(RenderCommand& c, const LongRenderOptions& lo, LongRenderResult& r,
-                               const OutputPaths& out, int imageFailures) {
+                               const OutputPaths& out, int imageFailures,
+                               std::vector<OutputWrite>& writes) {
     try {
         writeFinalCheckpoint(lo, r);
+        if (!lo.checkpointPath.empty()) writes.push_back({"checkpoint", out.checkpoint, ""});
     } catch (const std::exception& e) {
+        writes.push_back({"checkpoint", out.checkpoint, e.what()});
         const RenderSettings& s = c.job.job.settings;
         const bool shard = c.rangeStart >= 0 || s.hasRegion();
         if (imageFailures == 0 && r.stats.complete && !shard) {
@@ -273,6 +281,7 @@ int renderLong(RenderCommand& c, const RenderJob& job, const Accelerator& accel,
     };
     lo.report = [](const std::string& text) { logInfo("{}", text); };
     LongRenderResult r = [&] {
+        StageProgress stage("render", false);  // the render's own progress lines say it lives
         try {
             return renderLongFilm(job, lo);
         } catch (const CheckpointError& e) {
@@ -281,29 +290,36 @@ int renderLong(RenderCommand& c, const RenderJob& job, const Accelerator& accel,
     }();
     auto t2 = std::chrono::steady_clock::now();
     std::string heatPath;
-    int failures =
-        writeOutputs(c, out, r.film,
-                     r.totals.metadata.empty() ? renderMetadata(job, c, scenePath, r.stats, r.film)
-                                               : r.totals.metadata,
-                     heatPath);
+    std::vector<OutputWrite> writes;
+    int failures = 0;
+    {
+        StageProgress stage("write");
+        failures = writeOutputs(c, out, r.film,
+                                r.totals.metadata.empty()
+                                    ? renderMetadata(job, c, scenePath, r.stats, r.film)
+                                    : r.totals.metadata,
+                                heatPath, {}, &writes);
+        failures += writeCheckpointAfterImages(c, lo, r, out, failures, writes);
+    }
     double writeTime = seconds(t2);
-    failures += writeCheckpointAfterImages(c, lo, r, out, failures);
     printSummary(scenePath, out, heatPath, r.stats, loadTime, buildTime, writeTime);
     if (job.guided())
         logInfo("path guiding {}; trained in {:.3f}s (counted in the render time)",
                 job.guidingText(), job.guideTrainingSeconds());
-    if (c.json)
-        printJsonResult(c, job.scene(), out, heatPath, r.stats, r.film,
-                        {loadTime, buildTime, writeTime});
-    if (failures) return 1;
-    if (r.stats.interrupted || r.stats.timeLimitReached) {
+    const bool stopped = r.stats.interrupted || r.stats.timeLimitReached;
+    int code = failures              ? 1
+               : !stopped            ? 0
+               : r.stats.interrupted ? kExitInterrupted
+                                     : kExitTimeLimit;
+    if (code != 0 && code != 1)
         logInfo("{}: wrote {}the image so far (per-pixel sample counts in the EXR)",
                 r.stats.interrupted ? "interrupted" : "time limit reached",
                 lo.checkpointPath.empty() ? "" : out.checkpoint + " and ");
-        return r.stats.interrupted ? kExitInterrupted : kExitTimeLimit;
-    }
-    if (c.traversalFloor) printTraversalFloor(accel, job, r.stats);
-    return 0;
+    if (code == 0 && c.traversalFloor) printTraversalFloor(accel, job, r.stats);
+    if (c.json)
+        printResult(renderResult(c, job.scene(), writes, r.stats, r.film,
+                                 {loadTime, buildTime, writeTime}, code));
+    return code;
 }
 
 // The one scene file among the positional arguments; anything more is not an option.
@@ -371,7 +387,7 @@ int renderFrame(const std::vector<std::string>& args, LoadedScene& loaded,
     checkColour(c);
     requireImageModule();  // the EXR and PNG writers, and any texture
     OutputPaths out = outputPaths(c, scenePath);
-    checkOutputWritable(out);
+    checkOutputWritable(c, out);
     checkOutputsFit(c, jobOptions, out);
 
     const bool reused = loaded.holds(scenePath, c);
@@ -379,7 +395,10 @@ int renderFrame(const std::vector<std::string>& args, LoadedScene& loaded,
     if (!reused) {
         loaded.clear();
         auto t0 = std::chrono::steady_clock::now();
-        loaded.scene = std::make_unique<Scene>(loadScene(scenePath, c.load));
+        loaded.scene = std::make_unique<Scene>([&] {
+            StageProgress stage("load");
+            return loadScene(scenePath, c.load);
+        }());
         loadTime = seconds(t0);
         loaded.path = scenePath, loaded.load = c.load, loaded.choice = c.accel;
         loaded.camera = loaded.scene->camera;
@@ -390,14 +409,20 @@ int renderFrame(const std::vector<std::string>& args, LoadedScene& loaded,
     if (!reused) {
         for (const std::string& w : scene.warnings) logWarning("{}: {}", scenePath, w);
         auto t1 = std::chrono::steady_clock::now();
-        loaded.accel = c.accel.build(scene, &jobOptions);
+        loaded.accel = [&] {
+            StageProgress stage("build");
+            return c.accel.build(scene, &jobOptions);
+        }();
         buildTime = seconds(t1);
     }
     if (++rendersInProcess() > 1)
         logInfo("this process: {} renders, {} scene loads, {} accelerator builds{}",
                 rendersInProcess(), sceneLoadCount(), acceleratorBuildCount(),
                 reused ? " (this render reuses the scene and accelerator of the one before)" : "");
-    RenderJob job(scene, *loaded.accel, jobOptions);
+    RenderJob job = [&] {
+        StageProgress stage("plan");
+        return RenderJob(scene, *loaded.accel, jobOptions);
+    }();
     warnHemisphereBlind(job, scenePath);
     if (c.debugX >= 0 || c.debugSample >= 0) return printDebugSample(job, c);
     // What the camera will see decides the black-image warning (a few thousand samples).

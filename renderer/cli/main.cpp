@@ -2,16 +2,24 @@
 // codes.
 #include <cstdio>
 #include <exception>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "renderer/build_info.h"
 #include "renderer/cli/cli_args.h"
 #include "renderer/cli/commands.h"
+#include "renderer/cli/did_you_mean.h"
+#include "renderer/cli/queue_output.h"
 #include "renderer/core/log.h"
 #include "scene/scene_error.h"
 
 namespace {
+
+// Logged where it is found (with the usage text when not JSON).
+struct UnknownCommand : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
 
 constexpr const char* kUsage =
     "usage: kiln <command> [options]\n"
@@ -30,7 +38,63 @@ constexpr const char* kUsage =
     "  tools subdivide   1-to-4 midpoint subdivision of a mesh, written as binary PLY\n"
     "  report cs184      the CS184 PathTracer write-up (five parts) as one HTML page\n"
     "\n"
+    "  help COMMAND      that command's options (as 'kiln COMMAND --help')\n"
+    "\n"
     "'kiln <command> --help' lists each command's options.\n";
+
+const std::vector<std::string> kCommands{"render",     "render-frames", "merge", "info",
+                                         "crosscheck", "bench",         "batch", "farm",
+                                         "tools",      "report",        "help"};
+
+int dispatch(const std::string& command, const std::vector<std::string>& args) {
+    // kiln help COMMAND [SUBCOMMAND]: that command's --help.
+    if (command == "help" && args.empty()) return std::fputs(kUsage, stdout), 0;
+    if (command == "help") {
+        std::vector<std::string> rest(args.begin() + 1, args.end());
+        rest.push_back("--help");
+        return dispatch(args[0], rest);
+    }
+    if (command == "render") return kiln::runRender(args);
+    if (command == "render-frames") return kiln::runRenderFrames(args);
+    if (command == "merge") return kiln::runMerge(args);
+    if (command == "info") return kiln::runInfo(args);
+    if (command == "crosscheck") return kiln::runCrosscheck(args);
+    if (command == "bench") return kiln::runBench(args);
+    if (command == "batch") return kiln::runBatch(args);
+    if (command == "farm") return kiln::runFarm(args);
+    if (command == "tools") return kiln::runTools(args);
+    if (command == "report") return kiln::runReport(args);
+    kiln::logError("unknown command '{}'{}", command, kiln::didYouMean(command, kCommands));
+    if (!kiln::jsonRequested(args).lines) std::fputs(kUsage, stderr);
+    throw UnknownCommand("unknown command '" + command + "'");
+}
+
+// The command's exit code; an error is logged and, with --json, stdout gets a failure result when
+// the command printed none.
+int run(const std::string& command, const std::vector<std::string>& args) {
+    std::string error;
+    std::vector<kiln::OutputWrite> notWritten;
+    int code = 0;
+    try {
+        return dispatch(command, args);
+    } catch (const UnknownCommand& e) {
+        code = 2, error = e.what();
+    } catch (const kiln::UsageError& e) {
+        kiln::logMessage(kiln::LogLevel::Error, e.what(), command);  // "kiln render: ..."
+        code = 2, error = e.what();
+        if (auto* output = dynamic_cast<const kiln::OutputError*>(&e))
+            notWritten.push_back(output->output());
+    } catch (const kiln::SceneError& e) {
+        kiln::logError("{}", e.what());
+        code = 2, error = e.what();
+    } catch (const std::exception& e) {
+        kiln::logError("{}", e.what());
+        code = 1, error = e.what();
+    }
+    if (kiln::jsonRequested(args).result && !kiln::resultPrinted())
+        kiln::printResult(kiln::failureResult(command, code, error, notWritten));
+    return code;
+}
 
 }  // namespace
 
@@ -46,28 +110,7 @@ int main(int argc, char** argv) {
     }
     std::string command = args[0];
     args.erase(args.begin());
-    try {
-        if (command == "render") return kiln::runRender(args);
-        if (command == "render-frames") return kiln::runRenderFrames(args);
-        if (command == "merge") return kiln::runMerge(args);
-        if (command == "info") return kiln::runInfo(args);
-        if (command == "crosscheck") return kiln::runCrosscheck(args);
-        if (command == "bench") return kiln::runBench(args);
-        if (command == "batch") return kiln::runBatch(args);
-        if (command == "farm") return kiln::runFarm(args);
-        if (command == "tools") return kiln::runTools(args);
-        if (command == "report") return kiln::runReport(args);
-        kiln::logError("unknown command '{}'", command);
-        std::fputs(kUsage, stderr);
-        return 2;
-    } catch (const kiln::UsageError& e) {
-        kiln::logMessage(kiln::LogLevel::Error, e.what(), command);  // "kiln render: ..."
-        return 2;
-    } catch (const kiln::SceneError& e) {
-        kiln::logError("{}", e.what());
-        return 2;
-    } catch (const std::exception& e) {
-        kiln::logError("{}", e.what());
-        return 1;
-    }
+    // Before parsing, so even a usage error is a JSON line for a queue.
+    if (kiln::jsonRequested(args).lines) kiln::setLogFormat(kiln::LogFormat::JsonLines);
+    return run(command, args);
 }

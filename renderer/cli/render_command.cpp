@@ -251,24 +251,30 @@ Metadata renderMetadata(const RenderJob& job, const RenderCommand& c, const std:
 
 int writeOutputs(const RenderCommand& c, const OutputPaths& out, const Film& film,
                  const Metadata& meta, std::string& heatPath,
-                 const std::function<void(const std::string&)>& onError) {
+                 const std::function<void(const std::string&)>& onError,
+                 std::vector<OutputWrite>* writes) {
     int failures = 0;
-    auto attempt = [&failures, &onError](auto&& write) {
+    auto attempt = [&failures, &onError, writes](const char* kind, const std::string& path,
+                                                 auto&& write) {
+        std::string error;
         try {
             write();
         } catch (const std::exception& e) {
+            error = e.what();
             if (onError)
-                onError(e.what());
+                onError(error);
             else
-                logError("{}", e.what());
+                logError("{}", error);
             ++failures;
         }
+        if (writes) writes->push_back({kind, path, error});
     };
-    attempt([&] { writeExr(out.exr, film, meta, c.exr); });
-    attempt([&] { writePreview(out.preview, film, c.display, c.view, c.exposure); });
+    attempt("exr", out.exr, [&] { writeExr(out.exr, film, meta, c.exr); });
+    attempt("preview", out.preview,
+            [&] { writePreview(out.preview, film, c.display, c.view, c.exposure); });
     if (c.heatMap || c.job.job.settings.adaptiveStep() > 0) {
         heatPath = fs::path(out.exr).replace_extension(".samples.png").string();
-        attempt([&] { writeSampleHeatMap(heatPath, film); });
+        attempt("heatmap", heatPath, [&] { writeSampleHeatMap(heatPath, film); });
     }
     return failures;
 }

@@ -13,6 +13,7 @@
 #include "renderer/cli/accel_options.h"
 #include "renderer/cli/camera_options.h"
 #include "renderer/cli/cli_args.h"
+#include "renderer/cli/queue_output.h"
 #include "renderer/cli/render_options.h"
 #include "renderer/render_job.h"
 #include "scene/scene_loader.h"
@@ -94,9 +95,11 @@ Metadata renderMetadata(const RenderJob& job, const RenderCommand& c, const std:
 
 // Writes OUT.exr, OUT.png and, with -a, --noise-threshold or --heatmap, OUT.samples.png (its path
 // in heatPath), each on its own: one failing write does not stop the others. Each failure's
-// message goes to onError (default: logged as an error); returns how many failed.
+// message goes to onError (default: logged as an error); returns how many failed. writes, when
+// given, receives each file and how its write went.
 int writeOutputs(const RenderCommand& c, const OutputPaths& out, const Film& film,
                  const Metadata& meta, std::string& heatPath,
-                 const std::function<void(const std::string&)>& onError = {});
+                 const std::function<void(const std::string&)>& onError = {},
+                 std::vector<OutputWrite>* writes = nullptr);
 
 }  // namespace kiln

@@ -65,4 +65,10 @@ void logMessage(LogLevel level, std::string_view message, std::string_view comma
     sink()(line);
 }
 
+void logLine(std::string_view line) {
+    std::string text = std::string(line) + "\n";
+    std::lock_guard lock(sinkMutex());
+    sink()(text);
+}
+
 }  // namespace kiln

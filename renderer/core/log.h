@@ -38,6 +38,9 @@ LogSink setLogSink(LogSink sink);
 // message is about ("kiln render: ..." for a usage error).
 void logMessage(LogLevel level, std::string_view message, std::string_view command = {});
 
+// A line as it is (a JSON event of the caller's), through the same sink, whatever the level.
+void logLine(std::string_view line);
+
 template <class... Args>
 void logError(fmt::format_string<Args...> format, Args&&... args) {
     logMessage(LogLevel::Error, fmt::format(format, std::forward<Args>(args)...));

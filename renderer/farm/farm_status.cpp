@@ -37,7 +37,7 @@ ShardState stateFromSlurm(const std::string& jobState) {
     static const std::set<std::string> pending{"PENDING",     "REQUEUED",    "REQUEUE_HOLD",
                                                "REQUEUE_FED", "CONFIGURING", "SUSPENDED",
                                                "RESIZING"};
-    if (pending.count(jobState)) return ShardState::Pending;
+    if (pending.count(jobState) || jobState == "NOT_SUBMITTED") return ShardState::Pending;
     if (jobState == "RUNNING" || jobState == "COMPLETING") return ShardState::Running;
     // FAILED, CANCELLED, TIMEOUT, NODE_FAIL, OUT_OF_MEMORY, BOOT_FAIL, DEADLINE, PREEMPTED; and
     // COMPLETED or UNKNOWN (Slurm forgot it) without complete outputs.
@@ -70,6 +70,7 @@ FarmStatus farmStatus(const FarmJob& job) {
         st.arrayJob = arrayOf[i];
         auto& tasks = arrays[st.arrayJob];
         if (auto it = tasks.find(int(i)); it != tasks.end()) st.slurm = it->second;
+        if (st.arrayJob == 0) st.slurm.state = "NOT_SUBMITTED";  // planned, never given to Slurm
         st.state = shardComplete(job, int(i)) ? ShardState::Done : stateFromSlurm(st.slurm.state);
         if (st.state == ShardState::Failed) {
             try {
@@ -105,6 +106,28 @@ std::string statusText(const FarmJob& job, const FarmStatus& status) {
         out << "\n";
     }
     return out.str();
+}
+
+Json statusJson(const FarmJob& job, const FarmStatus& status) {
+    Json counts = Json::object(), shards = Json::array();
+    for (ShardState state :
+         {ShardState::Done, ShardState::Running, ShardState::Pending, ShardState::Failed})
+        counts[shardStateName(state)] = status.count(state);
+    for (const ShardStatus& s : status.shards)
+        shards.push_back({{"shard", s.shard},
+                          {"state", shardStateName(s.state)},
+                          {"array_job", s.arrayJob},
+                          {"slurm_state", s.slurm.state},
+                          {"slurm_exit_code", s.slurm.exitCode},
+                          {"restarts", s.slurm.restarts},
+                          {"log_line", s.logLine}});
+    return {{"dir", job.dir},
+            {"by", shardByName(job.by)},
+            {"counts", counts},
+            {"merges", job.merges.size()},
+            {"merged", status.merged},
+            {"merge_state", job.merges.empty() || status.merged ? "done" : status.mergeJob.state},
+            {"shards", shards}};
 }
 
 }  // namespace kiln::farm

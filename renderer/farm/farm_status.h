@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "renderer/core/json.h"
 #include "renderer/farm/farm_job.h"
 #include "renderer/farm/slurm.h"
 
@@ -36,6 +37,9 @@ bool mergeComplete(const Merge& merge);
 ShardState stateFromSlurm(const std::string& jobState);
 FarmStatus farmStatus(const FarmJob& job);
 std::string statusText(const FarmJob& job, const FarmStatus& status);
+// The same as one JSON document (docs/output.md's farm-status and farm-shard): the counts, the
+// merge, and each shard's state, Slurm job, Slurm state, exit code, restarts and log line.
+Json statusJson(const FarmJob& job, const FarmStatus& status);
 // The line of a log to show for a failure: the last one with "error", else the last one that is
 // not a progress line of the shard runner.
 std::string lastErrorLine(const std::string& logText);

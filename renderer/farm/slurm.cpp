@@ -1,5 +1,7 @@
 #include "renderer/farm/slurm.h"
 
+#include <unistd.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <sstream>
@@ -104,6 +106,16 @@ Submission submitShards(FarmJob& job, const std::vector<int>& shards) {
         writeManifest(job);
     }
     return s;
+}
+
+std::string findSbatch() {
+    const char* path = std::getenv("PATH");
+    std::istringstream dirs(path ? path : "");
+    for (std::string dir; std::getline(dirs, dir, ':');) {
+        fs::path candidate = fs::path(dir.empty() ? "." : dir) / "sbatch";
+        if (::access(candidate.c_str(), X_OK) == 0) return candidate.string();
+    }
+    return "";
 }
 
 std::vector<int> parseArrayTaskIds(const std::string& text) {

@@ -46,6 +46,9 @@ std::string requeueSelfBeforeTimeLimit();
 // kill_invalid_depend keeps it waiting on a dependency that can never be met).
 void cancelIfPending(long job);
 
+// Where sbatch is on $PATH; empty when it is not (kiln farm submit refuses before it writes).
+std::string findSbatch();
+
 // The live query (empty map / UNKNOWN when Slurm no longer knows the job).
 std::map<int, SlurmTaskState> queryArray(long arrayJob);
 SlurmTaskState queryJob(long job);

@@ -123,9 +123,9 @@ AovLayout::AovLayout(const AovRequest& request) : request_(request) {
     if (request.has(AovKind::Normal)) colour("N", kNormal, "XYZ");
     if (request.has(AovKind::Position)) colour("P", kPosition, "XYZ");
     // Z, samples, variance and Cryptomatte have accumulators of their own in the film.
-    if (request.has(AovKind::PrimId)) channels_.push_back({"primid.id", false, true, kPrimId});
+    if (request.has(AovKind::PrimId)) channels_.push_back({"primid.X", false, true, kPrimId});
     if (request.has(AovKind::ObjectId))
-        channels_.push_back({"objectid.id", false, true, kObjectId});
+        channels_.push_back({"objectid.X", false, true, kObjectId});
 }
 
 void AovLayout::gather(const SampleRecord& r, double* out) const {

@@ -90,7 +90,7 @@ struct SampleRecord {
 
 // One EXR channel fed from a SampleRecord field.
 struct AovChannel {
-    std::string name;          // "direct.R", "N.X", "primid.id", ...
+    std::string name;          // "direct.R", "N.X", "primid.X", ...
     bool colour = true;        // may be written as half
     bool firstSample = false;  // ids: the first sample's value, never averaged
     int field = 0;             // index into the record's flattened values (see AovLayout::gather)

@@ -1,0 +1,118 @@
+// Help that helps: "did you mean" for a mistyped command, subcommand or option; kiln help COMMAND;
+// bash completion of every command, subcommand, option and enumerated value (the script run by
+// bash as completion runs it); the man page with every command's options and the environment.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "kiln_run.h"
+#include "renderer/cli/did_you_mean.h"
+#include "test_support.h"
+
+namespace kiln {
+namespace {
+
+TEST(Help, DidYouMeanForCommandsSubcommandsAndOptions) {
+    EXPECT_EQ(editDistance("rendr", "render"), 1u);
+    EXPECT_EQ(editDistance("", "abc"), 3u);
+    EXPECT_EQ(nearestName("stauts", {"submit", "status", "merge"}), "status");
+    EXPECT_EQ(nearestName("xyz", {"render", "info"}), "");
+    test::CliRun command = test::runKiln("rendr scene.dae");
+    EXPECT_EQ(command.code, 2);
+    EXPECT_NE(command.err.find("unknown command 'rendr' (did you mean 'render'?)"),
+              std::string::npos)
+        << command.err;
+    test::CliRun option = test::runKiln("render scene.dae --sp 4");
+    EXPECT_EQ(option.code, 2);
+    EXPECT_NE(option.err.find("(did you mean '--spp'?)"), std::string::npos) << option.err;
+    test::CliRun farm = test::runKiln("farm stauts job.farm");
+    EXPECT_EQ(farm.code, 2);
+    EXPECT_NE(farm.err.find("(did you mean 'status'?)"), std::string::npos) << farm.err;
+}
+
+TEST(Help, HelpCommandIsTheCommandsHelp) {
+    for (std::string command : {"render", "batch", "farm status", "bench accel"}) {
+        test::CliRun help = test::runKiln("help " + command);
+        test::CliRun direct = test::runKiln(command + " --help");
+        EXPECT_EQ(help.code, 0) << command << help.err;
+        EXPECT_EQ(help.out, direct.out) << command;
+        EXPECT_NE(help.out.find("usage: kiln " + command), std::string::npos) << help.out;
+    }
+    EXPECT_NE(test::runKiln("help").out.find("help COMMAND"), std::string::npos);
+}
+
+// COMPREPLY for a command line whose last word is being completed.
+std::string complete(const std::string& words) {
+    std::string script = "source " + test::repo("tools/kiln-completion.bash") + "; COMP_WORDS=(" +
+                         words + "); COMP_CWORD=$((${#COMP_WORDS[@]} - 1)); " +
+                         "_kiln; echo \"${COMPREPLY[*]}\"";
+    test::CliRun r = test::runProgram("bash", "-c " + test::shellQuoted(script));
+    EXPECT_EQ(r.code, 0) << r.err;
+    return " " + r.out.substr(0, r.out.find('\n')) + " ";
+}
+
+TEST(Help, CompletionKnowsEveryCommandSubcommandAndValue) {
+    const std::string kiln = KILN_BINARY;
+    std::string commands = complete(kiln + " ''");
+    for (const char* c : {"render", "merge", "info", "crosscheck", "bench", "batch", "farm",
+                          "tools", "report", "help"})
+        EXPECT_NE(commands.find(std::string(" ") + c + " "), std::string::npos) << c << commands;
+    EXPECT_EQ(complete(kiln + " farm ''"), " submit status merge resubmit ");
+    EXPECT_EQ(complete(kiln + " bench ''"), " accel plan accuracy ");
+    EXPECT_EQ(complete(kiln + " render s.dae --progress ''"), " bar json none ");
+    std::string aovs = complete(kiln + " render s.dae --aov ''");
+    for (const char* a : {"emission", "crypto_object", "variance", "all", "default"})
+        EXPECT_NE(aovs.find(std::string(" ") + a + " "), std::string::npos) << a << aovs;
+    EXPECT_NE(complete(kiln + " batch job.json --").find(" --dry-run "), std::string::npos);
+    EXPECT_NE(complete(kiln + " farm status --").find(" --json "), std::string::npos);
+    EXPECT_NE(complete(kiln + " farm submit s.dae --").find(" --sbatch-arg "), std::string::npos);
+    EXPECT_NE(complete(kiln + " farm submit s.dae --").find(" --spp "), std::string::npos);
+    EXPECT_EQ(complete(kiln + " farm submit s.dae --by ''"), " samples region frames ");
+}
+
+TEST(Help, ManPageHasEveryCommandsOptionsExitStatusEnvironmentAndFiles) {
+    std::string page = std::string(KILN_BUILD_DIR) + "/kiln.1";
+    if (!std::filesystem::exists(page)) GTEST_SKIP() << "no help2man at build time";
+    std::ifstream in(page);
+    std::string text((std::istreambuf_iterator<char>(in)), {});
+    for (const char* part :
+         {".SS kiln render", ".SS kiln batch", ".SS kiln farm submit", ".SS kiln farm status",
+          "--dry-run", "--sbatch-arg", "--time-limit", "EXIT STATUS", "ENVIRONMENT",
+          "KILN_TEXTURE_CACHE", "SLURM_ARRAY_TASK_ID", ".B OCIO", "FILES", "config.ocio"})
+        EXPECT_NE(text.find(part), std::string::npos) << part;
+}
+
+}  // namespace
+}  // namespace kiln
+
+namespace kiln {
+namespace {
+
+// A copy of the binary outside the build tree, with no share/kiln beside it, says where it looked
+// and which config it uses; given share/kiln/config.ocio beside it, it takes that one silently.
+TEST(Help, AMovedBinarySaysWhereItLookedForItsConfig) {
+    namespace fs = std::filesystem;
+    auto dir = test::scratchDir();
+    fs::create_directories(dir / "bin");
+    fs::copy_file(KILN_BINARY, dir / "bin/kiln", fs::copy_options::overwrite_existing);
+    test::ScopedEnv noOcio("OCIO", nullptr);
+    std::string render = (dir / "bin/kiln").string() + " render " +
+                         test::repo("scenes/cornell.dae") + " -r 8 6 -s 1 -q -o " +
+                         (dir / "x").string();
+    test::CliRun moved = test::runProgram(render, "");
+    EXPECT_EQ(moved.code, 0) << moved.err;
+    EXPECT_NE(moved.err.find("no " + (dir / "share/kiln/config.ocio").string() + " beside"),
+              std::string::npos)
+        << moved.err;
+    EXPECT_NE(moved.err.find("using the source tree's"), std::string::npos) << moved.err;
+    fs::create_directories(dir / "share/kiln");
+    fs::copy_file(test::repo("color/config.ocio"), dir / "share/kiln/config.ocio",
+                  fs::copy_options::overwrite_existing);
+    test::CliRun installed = test::runProgram(render + " --json", "");
+    EXPECT_EQ(installed.code, 0) << installed.err;
+    EXPECT_EQ(installed.err.find("source tree"), std::string::npos) << installed.err;
+    EXPECT_NE(installed.out.find((dir / "share/kiln/config.ocio").string()), std::string::npos);
+}
+
+}  // namespace
+}  // namespace kiln

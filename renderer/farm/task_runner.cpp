@@ -23,6 +23,10 @@ std::vector<std::string> commandOf(const RenderTask& task, const RunOptions& opt
     return renderCommand(task, options.checkpointSeconds, options.quietChildren);
 }
 
+bool taskComplete(const RenderTask& task, const RunOptions& options) {
+    return isComplete(task.output, commandOf(task, options));
+}
+
 // The command as a child runs it: with the report options, which the done marker leaves out.
 std::vector<std::string> withChildArgs(std::vector<std::string> command,
                                        const RunOptions& options) {
@@ -80,7 +84,7 @@ struct BatchClock {
 // Marks r skipped (and says so) when its output is complete.
 bool skippedAsComplete(TaskResult& r, const RunOptions& options, size_t i, size_t n,
                        const BatchClock& clock) {
-    if (!isComplete(r.task.output, commandOf(r.task, options))) return false;
+    if (!taskComplete(r.task, options)) return false;
     r.outcome = Outcome::Skipped;
     report(options, {i, n, r, "skipped", clock.etaSeconds()});
     return true;
@@ -221,7 +225,7 @@ std::vector<TaskResult> runTasks(const std::vector<RenderTask>& tasks, const Run
     std::vector<TaskResult> results;
     for (const RenderTask& t : tasks) results.push_back({t});
     BatchClock clock;
-    for (const RenderTask& t : tasks) clock.toRun += !isComplete(t.output, commandOf(t, options));
+    for (const RenderTask& t : tasks) clock.toRun += !taskComplete(t, options);
     auto interrupted = [&results] {
         return std::any_of(results.begin(), results.end(),
                            [](const TaskResult& r) { return r.outcome == Outcome::Interrupted; });

@@ -66,18 +66,31 @@ struct AovRequest {
 
 enum class Lobe { Diffuse = 0, Specular = 1, Transmission = 2 };
 
+// N colours that construction leaves unset (a Color zeroes itself): SampleRecord's per-lobe and
+// per-bounce sums, which reset() zeroes only when a render asks for them.
+template <size_t N>
+struct UnsetColours {
+    UnsetColours() {}  // NOLINT: deliberately no initialisation
+    Color& operator[](size_t i) { return v[i]; }
+    const Color& operator[](size_t i) const { return v[i]; }
+    union {
+        Color v[N];
+    };
+};
+
 // What one camera sample produced. Only the requested parts are filled; the per-lobe and per-bounce
-// arrays are zeroed by reset() only when requested (zeroing them for every sample cost about 10 %).
+// arrays are zeroed by reset() only when requested (zeroing them for every sample cost about 10 %;
+// they were still zeroed on construction, by Color's own initialisers, until UnsetColours).
 struct SampleRecord {
     Color L{0.0f};
     Color emission{0.0f}, direct{0.0f}, indirect{0.0f};
-    Color lobes[2][3];  // [0 direct / 1 indirect][Lobe]
-    Color bounces[kMaxBounceLayers];
+    UnsetColours<3> lobes[2];  // [0 direct / 1 indirect][Lobe]
+    UnsetColours<kMaxBounceLayers> bounces;
     void reset(const AovRequest& aovs) {
         if (!aovs.splitsLight()) return;
         for (auto& d : lobes)
-            for (Color& c : d) c = Color(0.0f);
-        for (int b = 0; b < aovs.bounceLayers; ++b) bounces[b] = Color(0.0f);
+            for (size_t l = 0; l < 3; ++l) d[l] = Color(0.0f);
+        for (int b = 0; b < aovs.bounceLayers; ++b) bounces[size_t(b)] = Color(0.0f);
     }
     Color albedo{0.0f};
     Vec3 normal{0.0f}, position{0.0f};

@@ -28,6 +28,7 @@ constexpr const char* kUsage =
     "  farm submit|status|merge|resubmit   renders split over a Slurm cluster\n"
     "  tools subdivide   1-to-4 midpoint subdivision of a mesh, written as binary PLY\n"
     "  report cs184      the CS184 PathTracer write-up (five parts) as one HTML page\n"
+    "  denoise IN.exr    denoise an EXR rendered with --denoise (NFOR, docs/denoise.md)\n"
     "\n"
     "'kiln <command> --help' lists each command's options.\n";
 
@@ -55,6 +56,7 @@ int main(int argc, char** argv) {
         if (command == "farm") return kiln::runFarm(args);
         if (command == "tools") return kiln::runTools(args);
         if (command == "report") return kiln::runReport(args);
+        if (command == "denoise") return kiln::runDenoise(args);
         kiln::logError("unknown command '{}'", command);
         std::fputs(kUsage, stderr);
         return 2;

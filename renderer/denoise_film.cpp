@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -10,14 +11,31 @@
 
 namespace kiln {
 
+namespace {
+
+// A pixel whose half holds no sample (a 1-spp render) takes the other half's values: the two
+// then agree there and the denoiser leaves the pixel nearly as it is.
+void borrowEmptyHalf(denoise::Halves& halves, int x, int y, const float samples[2]) {
+    for (int h = 0; h < 2; ++h)
+        if (samples[h] == 0 && samples[1 - h] > 0)
+            std::copy_n(halves.half[1 - h].at(x, y), kHalfChannels, halves.half[h].at(x, y));
+}
+
+}  // namespace
+
 denoise::Halves halvesOf(const Film& film) {
     denoise::Halves halves;
-    for (int h = 0; h < 2; ++h) {
-        denoise::Image& half = halves.half[h];
+    for (denoise::Image& half : halves.half)
         half = denoise::Image(film.width(), film.height(), kHalfChannels);
-        for (int y = 0; y < film.height(); ++y)
-            for (int x = 0; x < film.width(); ++x) film.halfMean(x, y, h, half.at(x, y));
-    }
+    for (int y = 0; y < film.height(); ++y)
+        for (int x = 0; x < film.width(); ++x) {
+            float samples[2];
+            for (int h = 0; h < 2; ++h) {
+                film.halfMean(x, y, h, halves.half[h].at(x, y));
+                samples[h] = float(film.halfSamples(x, y, h));
+            }
+            borrowEmptyHalf(halves, x, y, samples);
+        }
     return halves;
 }
 
@@ -67,7 +85,7 @@ denoise::Halves halvesOf(const ExrImage& exr, const std::string& path) {
     for (int k = 0; k < 2; ++k) halves.half[k] = denoise::Image(w, h, kHalfChannels);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
-            float n = 0;
+            float samples[2];
             for (int k = 0; k < 2; ++k) {
                 for (int c = 0; c < kHalfChannels + 1; ++c) {
                     float v = exr.value(x, y, channels[k][size_t(c)]);
@@ -77,9 +95,10 @@ denoise::Halves halvesOf(const ExrImage& exr, const std::string& path) {
                                                 std::to_string(x) + ", " + std::to_string(y) + ")");
                     if (c < kHalfChannels) halves.half[k].at(x, y)[c] = v;
                 }
-                n += exr.value(x, y, channels[k][kHalfChannels]);
+                samples[k] = exr.value(x, y, channels[k][kHalfChannels]);
             }
-            if (count >= 0 && n != exr.value(x, y, count))
+            borrowEmptyHalf(halves, x, y, samples);
+            if (count >= 0 && samples[0] + samples[1] != exr.value(x, y, count))
                 throw DenoiseInputError(path +
                                         ": the half-buffers' sample counts do not add up "
                                         "to samples.count at pixel (" +

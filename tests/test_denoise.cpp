@@ -158,6 +158,23 @@ TEST(Denoiser, LowersTheErrorOfASixteenSampleRender) {
         << "raw " << before.mean << " denoised " << after.mean;
 }
 
+// One sample per pixel leaves half B empty: it takes half A's values and the pixel stays as it is.
+TEST(Denoiser, ASingleSampleRenderComesBackUnchanged) {
+    test::LoadedSpheres s;
+    AovRequest aovs;
+    aovs.add(AovKind::DenoiseHalves);
+    Film film = test::renderJob(s.scene, *s.accel, test::jobOptions(40, 30, 1, {}, aovs));
+    std::vector<Color> out = *denoiseFilm(film, {});
+    for (int y = 0; y < 30; ++y)
+        for (int x = 0; x < 40; ++x)
+            for (int c = 0; c < 3; ++c) {
+                float raw = film.pixel(x, y)[c];
+                ASSERT_NEAR(out[size_t(y) * 40 + size_t(x)][c], raw,
+                            1e-6f * std::max(1.0f, std::fabs(raw)))
+                    << x << " " << y;
+            }
+}
+
 // kiln render --denoise: R,G,B denoised, the raw beauty as noisy.*, the halves and the header;
 // kiln denoise of that EXR gives the same R,G,B.
 TEST(DenoiseCommand, RenderAndDenoiseWriteTheDenoisedBeautyBesideTheNoisyOne) {

@@ -29,6 +29,8 @@ int runAccuracyCommand(const std::vector<std::string>& args) {
                       o.height = ArgParser::toInt("-r", v[1], 1, 8192);
                   });
     parser.flag("quick", "", "a handful of settings (smoke test)", o.quick);
+    parser.option("env", "e", 1, "MAP.exr", "add a lat-long environment light, as kiln render's",
+                  [&](const std::vector<std::string>& v) { o.environmentMap = v[0]; });
     parser.flag("denoise", "",
                 "only the spp sweep, raw and denoised (NFOR, render + denoise time; "
                 "docs/denoise.md)",

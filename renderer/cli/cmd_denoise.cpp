@@ -18,6 +18,8 @@ int runDenoise(const std::vector<std::string>& args) {
                   [&output](const std::vector<std::string>& v) { output = v[0]; });
     parser.intOption("threads", "t", "worker threads (default: all cores)", options.threads, 1,
                      4096);
+    parser.intOption("window", "", "the regression window's radius R: (2R+1)^2 pixels (default 4)",
+                     options.windowRadius, 1, 16);
     std::vector<std::string> inputs = parser.parse(args);
     if (parser.helpRequested()) {
         std::fputs(parser.helpText().c_str(), stdout);

@@ -31,7 +31,7 @@ struct Halves {
 
 struct Options {
     int threads = 0;        // 0: all cores
-    int windowRadius = 6;   // the regression's window: (2R+1)^2 pixels
+    int windowRadius = 4;   // the regression's window: (2R+1)^2 pixels
     int patchRadius = 3;    // NL-means patches: (2F+1)^2
     int featureWindow = 5;  // the feature prefilter's window radius
     int mseWindow = 5;      // the MSE and selection maps' smoothing window radius

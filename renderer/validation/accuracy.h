@@ -80,6 +80,7 @@ struct AccuracyOptions {
     // The spp sweep raw and denoised (group "denoised": render + denoise time, docs/denoise.md)
     // and nothing else.
     bool denoise = false;
+    std::string environmentMap;  // --env: a lat-long environment light added to the scene
 };
 
 struct AccuracyResult {

@@ -72,7 +72,8 @@ uint64_t fnv(const std::string& s, uint64_t h = 1469598103934665603ull) {
 Image reference(const Scene& scene, const Accelerator& accel, const AccuracyOptions& o, int depth,
                 double& seconds, bool& cached) {
     std::error_code ec;
-    std::string key = o.scene + "|" + std::to_string(fs::file_size(o.scene, ec)) + "|" +
+    std::string key = o.scene + "|" + o.environmentMap + "|" +
+                      std::to_string(fs::file_size(o.scene, ec)) + "|" +
                       std::to_string(fs::last_write_time(o.scene, ec).time_since_epoch().count()) +
                       "|" + std::to_string(o.width) + "x" + std::to_string(o.height) + "|" +
                       std::to_string(o.referenceSpp) + "|m" + std::to_string(depth) + "|" +
@@ -115,7 +116,9 @@ Image reference(const Scene& scene, const Accelerator& accel, const AccuracyOpti
 AccuracyResult runAccuracy(const AccuracyOptions& o) {
     AccuracyResult result;
     fs::create_directories(o.outDir);
-    Scene scene = loadScene(o.scene);
+    LoadOptions load;
+    load.environmentMap = o.environmentMap;
+    Scene scene = loadScene(o.scene, load);
     auto embree = makeEmbreeAccelerator(scene);
     auto start = std::chrono::steady_clock::now();
     auto elapsed = [&] {
@@ -123,7 +126,11 @@ AccuracyResult runAccuracy(const AccuracyOptions& o) {
     };
     bool cachedGi = false, cachedDirect = false;
     Image giRef = reference(scene, *embree, o, 100, result.referenceSeconds, cachedGi);
-    Image directRef = reference(scene, *embree, o, 1, result.referenceSeconds, cachedDirect);
+    // The denoised sweep compares full-depth renders only.
+    Image directRef = o.denoise
+                          ? Image{}
+                          : reference(scene, *embree, o, 1, result.referenceSeconds, cachedDirect);
+    cachedDirect |= o.denoise;
     result.referenceCached = cachedGi && cachedDirect;
     const RenderPlan plan = planFor(scene, *embree, AovRequest{});
     result.caustics = plan.caustics;

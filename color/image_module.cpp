@@ -5,13 +5,22 @@ void kiln::requireImageModule() {}
 
 extern "C" __attribute__((visibility("default"))) const kiln::ImageModule* kiln_image_module() {
     using namespace kiln;
-    static const ImageModule module{&readImageHeader,     &readWorkingSpaceImage,
-                                    &readChannelImage,    &writeExr,
-                                    &exrLayers,           &exrPixel,
-                                    &exrHeader,           &writeSampleHeatMap,
-                                    &writePreview,        &displayTransform,
-                                    &createTextures,      &destroyTextures,
-                                    &addTexture,          &lookupTexture,
-                                    &lookupTextureChannel};
+    static const ImageModule module{&readImageHeader,
+                                    &readWorkingSpaceImage,
+                                    &readChannelImage,
+                                    &writeExr,
+                                    &exrLayers,
+                                    &exrPixel,
+                                    &exrHeader,
+                                    &writeSampleHeatMap,
+                                    &writePreview,
+                                    &displayTransform,
+                                    &createTextures,
+                                    &destroyTextures,
+                                    &addTexture,
+                                    &lookupTexture,
+                                    &lookupTextureChannel,
+                                    &readExrImage,
+                                    &writeExrImage};
     return &module;
 }

@@ -1,11 +1,12 @@
-// The image module: every call of OpenImageIO in kiln (image_input, image_output, oiio_textures,
-// texture_convert, atomic_file_proxy) is built into kiln_image.so, which the kiln executable loads
-// with dlopen() at its first image call (image_stubs.cpp). OpenImageIO links about 250 libraries
-// whose relocation was all of kiln's start-up (docs/performance.md "Start-up"): kiln --version,
-// kiln info of an untextured scene and the batch and farm parents now never load them. The tests
-// and the Python module link the same code directly, without the module.
+// The image module: every call of OpenImageIO in kiln (image_input, image_output, exr_image,
+// oiio_textures, texture_convert, atomic_file_proxy) is built into kiln_image.so, which the kiln
+// executable loads with dlopen() at its first image call (image_stubs.cpp). OpenImageIO links about
+// 250 libraries whose relocation was all of kiln's start-up (docs/performance.md "Start-up"): kiln
+// --version, kiln info of an untextured scene and the batch and farm parents now never load them.
+// The tests and the Python module link the same code directly, without the module.
 #pragma once
 
+#include "color/exr_image.h"
 #include "color/image_input.h"
 #include "color/image_output.h"
 #include "color/texture_system.h"
@@ -29,6 +30,8 @@ struct ImageModule {
     decltype(&kiln::addTexture) addTexture;
     decltype(&kiln::lookupTexture) lookupTexture;
     decltype(&kiln::lookupTextureChannel) lookupTextureChannel;
+    decltype(&kiln::readExrImage) readExrImage;
+    decltype(&kiln::writeExrImage) writeExrImage;
 };
 
 // Loads the module now in the kiln executable (a no-op where the image code is linked in): kiln

@@ -17,19 +17,41 @@
 #include <stdexcept>
 
 #include "color/atomic_file.h"
+#include "color/oiio_write.h"
 
 namespace kiln {
+
+// Every image goes through an AtomicFile: a unique temporary name, every write checked, fsync,
+// rename.
+void writeAtomically(const std::string& path, const std::string& format, OIIO::ImageSpec spec,
+                     const OIIO::ImageBuf& buf, const char* what, OIIO::TypeDesc dataType) {
+    auto out = OIIO::ImageOutput::create(format);
+    if (!out) throw std::runtime_error(path + ": no " + format + " writer: " + OIIO::geterror());
+    if (dataType != OIIO::TypeDesc::UNKNOWN) {
+        spec.channelformats.clear();
+        spec.set_format(dataType);
+    }
+    AtomicFile file(path);
+    if (!out->set_ioproxy(file.proxy()) || !out->open(path, spec) || !buf.write(out.get()) ||
+        !out->close())
+        throw std::runtime_error(path + ": cannot write " + what + ": " + out->geterror() +
+                                 buf.geterror());
+    out.reset();
+    file.commit();
+}
+
 namespace {
 
-// Beauty RGB, opaque (the preview's input).
-OIIO::ImageBuf beautyBuffer(const Film& film) {
+// Beauty RGB (or the denoised one), opaque (the preview's input).
+OIIO::ImageBuf beautyBuffer(const Film& film, const std::vector<Color>* denoised) {
     OIIO::ImageSpec spec(film.width(), film.height(), 4, OIIO::TypeDesc::FLOAT);
     spec.channelnames = {"R", "G", "B", "A"};
     spec.alpha_channel = 3;
     OIIO::ImageBuf buf(spec);
     for (int y = 0; y < film.height(); ++y)
         for (int x = 0; x < film.width(); ++x) {
-            Color c = film.pixel(x, y);
+            Color c = denoised ? (*denoised)[size_t(y) * size_t(film.width()) + size_t(x)]
+                               : film.pixel(x, y);
             // Opaque: the preview shows the premultiplied beauty over black, as rendered.
             float px[4] = {c.x, c.y, c.z, 1.0f};
             buf.setpixel(x, y, px, 4);
@@ -65,26 +87,6 @@ std::string formatOf(const std::string& path) {
     return ext.empty() ? "png" : ext.substr(1);
 }
 
-// Every image goes through an AtomicFile: a unique temporary name, every write checked, fsync,
-// rename. spec's pixel type is what the file stores (dataType: all channels, when given).
-void writeAtomically(const std::string& path, const std::string& format, OIIO::ImageSpec spec,
-                     const OIIO::ImageBuf& buf, const char* what,
-                     OIIO::TypeDesc dataType = OIIO::TypeDesc::UNKNOWN) {
-    auto out = OIIO::ImageOutput::create(format);
-    if (!out) throw std::runtime_error(path + ": no " + format + " writer: " + OIIO::geterror());
-    if (dataType != OIIO::TypeDesc::UNKNOWN) {
-        spec.channelformats.clear();
-        spec.set_format(dataType);
-    }
-    AtomicFile file(path);
-    if (!out->set_ioproxy(file.proxy()) || !out->open(path, spec) || !buf.write(out.get()) ||
-        !out->close())
-        throw std::runtime_error(path + ": cannot write " + what + ": " + out->geterror() +
-                                 buf.geterror());
-    out.reset();
-    file.commit();
-}
-
 }  // namespace
 
 namespace {
@@ -105,6 +107,8 @@ void addChannels(OIIO::ImageSpec& spec, const Film& film, const ExrOptions& opti
     };
     for (const char* c : {"R", "G", "B", "A"}) add(c, colourType);
     spec.alpha_channel = 3;
+    if (options.denoised)
+        for (const char* c : {"noisy.R", "noisy.G", "noisy.B"}) add(c, colourType);
     for (const AovChannel& c : film.layout().channels())
         add(c.name, c.colour || c.name.rfind("N.", 0) == 0 ? colourType : OIIO::TypeDesc::FLOAT);
     if (request.has(AovKind::Depth))
@@ -117,15 +121,25 @@ void addChannels(OIIO::ImageSpec& spec, const Film& film, const ExrOptions& opti
                 for (const char* c : {"R", "G", "B", "A"})
                     add(fmt::format("{}{:02d}.{}", kCryptoLayers[type], layer, c),
                         OIIO::TypeDesc::FLOAT);
+    // Exact to float: kiln denoise reads them back.
+    if (film.hasHalves())
+        for (int h = 0; h < 2; ++h)
+            for (const std::string& name : halfBufferChannels(h)) add(name, OIIO::TypeDesc::FLOAT);
     spec.nchannels = int(spec.channelnames.size());
 }
 
 // One pixel's values in addChannels' order.
-void gatherPixel(const Film& film, int x, int y, std::vector<float>& px) {
+void gatherPixel(const Film& film, int x, int y, std::vector<float>& px,
+                 const ExrOptions& options) {
     const AovRequest& request = film.layout().request();
     px.clear();
     Color c = film.pixel(x, y);
-    px.insert(px.end(), {c.x, c.y, c.z, film.alpha(x, y)});
+    if (options.denoised) {
+        Color d = (*options.denoised)[size_t(y) * size_t(film.width()) + size_t(x)];
+        px.insert(px.end(), {d.x, d.y, d.z, film.alpha(x, y), c.x, c.y, c.z});
+    } else {
+        px.insert(px.end(), {c.x, c.y, c.z, film.alpha(x, y)});
+    }
     for (size_t a = 0; a < film.layout().channels().size(); ++a) px.push_back(film.aov(x, y, a));
     if (request.has(AovKind::Depth)) px.push_back(film.depth(x, y));
     if (request.has(AovKind::Samples)) px.push_back(float(film.samples(x, y)));
@@ -134,6 +148,13 @@ void gatherPixel(const Film& film, int x, int y, std::vector<float>& px) {
         if (hasCrypto(film, type))
             for (auto [id, coverage] : film.cryptoRanks(x, y, type))
                 px.push_back(id), px.push_back(coverage);
+    if (film.hasHalves())
+        for (int h = 0; h < 2; ++h) {
+            float half[kHalfChannels];
+            film.halfMean(x, y, h, half);
+            px.insert(px.end(), half, half + kHalfChannels);
+            px.push_back(float(film.halfSamples(x, y, h)));
+        }
 }
 
 // Integers as int (or double beyond int's range), other numbers as double: a reader gets numbers,
@@ -218,7 +239,7 @@ void writeExr(const std::string& path, const Film& film, const Metadata& metadat
     std::vector<float> px;
     for (int y = 0; y < film.height(); ++y)
         for (int x = 0; x < film.width(); ++x) {
-            gatherPixel(film, x, y, px);
+            gatherPixel(film, x, y, px, options);
             buf.setpixel(x + film.originX(), y + film.originY(), px.data(), spec.nchannels);
         }
     writeAtomically(path, "openexr", spec, buf, "EXR");
@@ -240,7 +261,7 @@ std::vector<ExrLayer> exrLayers(const Film& film) {
 }
 
 void exrPixel(const Film& film, int x, int y, std::vector<float>& values) {
-    gatherPixel(film, x, y, values);
+    gatherPixel(film, x, y, values, {});
 }
 
 std::map<std::string, ExrAttribute> exrHeader(const Film& film, const Metadata& metadata,
@@ -269,8 +290,9 @@ std::map<std::string, ExrAttribute> exrHeader(const Film& film, const Metadata& 
 }
 
 void writePreview(const std::string& path, const Film& film, const std::string& display,
-                  const std::string& view, float exposureStops) {
-    OIIO::ImageBuf linear = beautyBuffer(film);
+                  const std::string& view, float exposureStops,
+                  const std::vector<Color>* denoised) {
+    OIIO::ImageBuf linear = beautyBuffer(film, denoised);
     if (exposureStops != 0)
         OIIO::ImageBufAlgo::mul(linear, linear, std::exp2(exposureStops));  // --exposure
     OIIO::ImageBuf shown = toDisplay(linear, display, view);

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <variant>
@@ -45,10 +46,14 @@ struct ExrOptions {
     std::string colorSpace = "lin_rec709";
     // Cryptomatte manifests (JSON text) by layer name ("CryptoObject", "CryptoMaterial").
     std::map<std::string, std::string> cryptoManifests;
+    // A denoised beauty (premultiplied RGB per pixel, row-major) for R,G,B; the film's own beauty
+    // then goes to noisy.R/G/B, as Cycles' "Noisy Image" pass.
+    std::shared_ptr<const std::vector<Color>> denoised;
 };
 
 // Beauty R,G,B,A (A: coverage, colour premultiplied by it), every AOV of the film's layout as
-// "layer.channel", Z, samples.X, variance.V and the Cryptomatte layers when requested.
+// "layer.channel", Z, samples.X, variance.V and the Cryptomatte layers when requested, the
+// noisy beauty with a denoised one, the half-buffers (halfA.*, halfB.*) with DenoiseHalves.
 // Metadata keys are written as "kiln:KEY", numbers as numbers. Throws std::runtime_error.
 void writeExr(const std::string& path, const Film& film, const Metadata& metadata,
               const ExrOptions& options = {});
@@ -77,8 +82,10 @@ void writeSampleHeatMap(const std::string& path, const Film& film);
 
 // Display-referred 8-bit preview through the OCIO display/view (empty: the config's defaults),
 // from the config's scene_linear, the scene light first scaled by 2^exposureStops.
+// denoised: shown instead of the film's beauty (ExrOptions::denoised).
 void writePreview(const std::string& path, const Film& film, const std::string& display = "",
-                  const std::string& view = "", float exposureStops = 0);
+                  const std::string& view = "", float exposureStops = 0,
+                  const std::vector<Color>* denoised = nullptr);
 
 // The scene-linear -> display transform of one value (for tests and tools).
 float displayTransform(float linear, const std::string& display = "", const std::string& view = "");

@@ -68,8 +68,9 @@ void writeSampleHeatMap(const std::string& path, const Film& film) {
     module().writeSampleHeatMap(path, film);
 }
 void writePreview(const std::string& path, const Film& film, const std::string& display,
-                  const std::string& view, float exposureStops) {
-    module().writePreview(path, film, display, view, exposureStops);
+                  const std::string& view, float exposureStops,
+                  const std::vector<Color>* denoised) {
+    module().writePreview(path, film, display, view, exposureStops, denoised);
 }
 float displayTransform(float linear, const std::string& display, const std::string& view) {
     return module().displayTransform(linear, display, view);
@@ -87,6 +88,11 @@ Color lookupTexture(const OiioTextures& textures, int id, float s, float t, floa
 float lookupTextureChannel(const OiioTextures& textures, int id, int channel, float s, float t,
                            float width, const WrapModes& wrap) {
     return module().lookupTextureChannel(textures, id, channel, s, t, width, wrap);
+}
+
+void readExrImage(const std::string& path, ExrImage& image) { module().readExrImage(path, image); }
+void writeExrImage(const std::string& path, const ExrImage& image) {
+    module().writeExrImage(path, image);
 }
 
 }  // namespace kiln

@@ -21,7 +21,7 @@ Integrator::Integrator(const Scene& scene, const Accelerator& accel, const AovRe
 void Integrator::recordSurface(const Ray& ray, const Hit& hit, const SurfaceInteraction& si,
                                SampleRecord& r) const {
     const Material& m = scene_.materials[si.material];
-    if (aovs_.has(AovKind::Albedo)) {
+    if (aovs_.recordsAlbedo()) {
         Color base = colourVaries_
                          ? baseColourAt(scene_, m, hit, hit.t * length(ray.dir) * pixelSpread_)
                          : m.albedo;

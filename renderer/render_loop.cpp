@@ -159,7 +159,7 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator,
             size_t k = 0;
             for (auto [x, y, first] : queued) {
                 for (int s = first; s < waveEnd; ++s, ++k) {
-                    if (film.add(x, y, batch[k].record)) continue;
+                    if (film.add(x, y, batch[k].record, s)) continue;
                     // Dropped from the image, counted, and kept for replay (in whole-image
                     // pixels, as --pixel takes them).
                     ++badCount;

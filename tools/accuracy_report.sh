@@ -18,6 +18,9 @@ out=docs/accuracy.md
   echo "1 / (relMSE x time). Full tables: \`docs/accuracy/NAME/accuracy.csv\`. Renders go through RenderJob, on"
   echo "the render plan's specialised path with the AOVs measured, as \`kiln render\` runs them."
   echo
+  echo "The denoised curve (relMSE against time, raw and denoised, \`kiln bench accuracy SCENE --denoise\`) and"
+  echo "its figures are in [denoise.md](denoise.md) (\`tools/denoise_report.sh\`)."
+  echo
   for scene in "${scenes[@]}"; do
     name=$(basename "$scene"); name=${name%.*}
     build/kiln bench accuracy "$scene" --budget 120 -o "docs/accuracy/$name" > /dev/null

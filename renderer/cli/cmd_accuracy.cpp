@@ -29,6 +29,12 @@ int runAccuracyCommand(const std::vector<std::string>& args) {
                       o.height = ArgParser::toInt("-r", v[1], 1, 8192);
                   });
     parser.flag("quick", "", "a handful of settings (smoke test)", o.quick);
+    parser.option("env", "e", 1, "MAP.exr", "add a lat-long environment light, as kiln render's",
+                  [&](const std::vector<std::string>& v) { o.environmentMap = v[0]; });
+    parser.flag("denoise", "",
+                "only the spp sweep, raw and denoised (NFOR, render + denoise time; "
+                "docs/denoise.md)",
+                o.denoise);
     parser.option("aov", "", 1, "LIST",
                   "also measure the error of these colour AOV layers (e.g. direct,indirect)",
                   [&](const std::vector<std::string>& v) { o.aovs = v[0]; });

@@ -8,6 +8,7 @@
 #include "renderer/cli/cli_args.h"
 #include "renderer/cli/commands.h"
 #include "renderer/core/log.h"
+#include "renderer/denoise_film.h"
 #include "renderer/shard_merge.h"
 
 namespace kiln {
@@ -73,10 +74,13 @@ int runMerge(const std::vector<std::string>& args) {
     uint64_t shardBytes = 0;
     for (const std::string& s : shards) shardBytes += std::filesystem::file_size(s);
     auto t1 = std::chrono::steady_clock::now();
-    const Metadata& meta = merged.info.metadata;
-    writeExr(base + ".exr", merged.film, meta, exrOptionsOf(meta));
+    Metadata meta = merged.info.metadata;
+    ExrOptions exr = exrOptionsOf(meta);
+    // Shards rendered with --denoise carry the half-buffers: the merged frame is denoised too.
+    if (merged.film.hasHalves()) denoiseForOutputs(merged.film, 0, exr, meta);
+    writeExr(base + ".exr", merged.film, meta, exr);
     writePreview(base + ".png", merged.film, metaOr(meta, "display", "sRGB"),
-                 metaOr(meta, "view", "Standard"));
+                 metaOr(meta, "view", "Standard"), 0, exr.denoised.get());
     logInfo(
         "merged {} shards ({} samples, {:.1f} MiB) -> {}.exr, {}.png; read and combine {:.3f}s "
         "({:.0f} MiB/s), write {:.3f}s",

@@ -20,6 +20,7 @@ int runFarm(const std::vector<std::string>& args);             // kiln farm subm
 int runTools(const std::vector<std::string>& args);            // kiln tools subdivide
 int runAccuracyCommand(const std::vector<std::string>& args);  // kiln bench accuracy
 int runReport(const std::vector<std::string>& args);           // kiln report cs184
+int runDenoise(const std::vector<std::string>& args);          // kiln denoise IN.exr -o OUT
 
 // kiln render's checks of a command line (SCENE and options, without "render") that need no scene
 // and no output: the parser, option ranges and combinations, the camera override, the colour

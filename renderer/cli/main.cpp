@@ -37,14 +37,15 @@ constexpr const char* kUsage =
     "  farm submit|status|merge|resubmit   renders split over a Slurm cluster\n"
     "  tools subdivide   1-to-4 midpoint subdivision of a mesh, written as binary PLY\n"
     "  report cs184      the CS184 PathTracer write-up (five parts) as one HTML page\n"
+    "  denoise IN.exr    denoise an EXR rendered with --denoise (NFOR, docs/denoise.md)\n"
     "\n"
     "  help COMMAND      that command's options (as 'kiln COMMAND --help')\n"
     "\n"
     "'kiln <command> --help' lists each command's options.\n";
 
-const std::vector<std::string> kCommands{"render",     "render-frames", "merge", "info",
-                                         "crosscheck", "bench",         "batch", "farm",
-                                         "tools",      "report",        "help"};
+const std::vector<std::string> kCommands{"render",     "render-frames", "merge",   "info",
+                                         "crosscheck", "bench",         "batch",   "farm",
+                                         "tools",      "report",        "denoise", "help"};
 
 int dispatch(const std::string& command, const std::vector<std::string>& args) {
     // kiln help COMMAND [SUBCOMMAND]: that command's --help.
@@ -64,6 +65,7 @@ int dispatch(const std::string& command, const std::vector<std::string>& args) {
     if (command == "farm") return kiln::runFarm(args);
     if (command == "tools") return kiln::runTools(args);
     if (command == "report") return kiln::runReport(args);
+    if (command == "denoise") return kiln::runDenoise(args);
     kiln::logError("unknown command '{}'{}", command, kiln::didYouMean(command, kCommands));
     if (!kiln::jsonRequested(args).lines) std::fputs(kUsage, stderr);
     throw UnknownCommand("unknown command '" + command + "'");

@@ -6,6 +6,7 @@
 
 #include "renderer/build_info.h"
 #include "renderer/core/log.h"
+#include "renderer/denoise_film.h"
 #include "renderer/exr_scene.h"
 
 namespace kiln {
@@ -102,6 +103,14 @@ void addCompositingOptions(ArgParser& parser, RenderCommand& c) {
                       c.depth);
 }
 
+void addDenoiseOptions(ArgParser& parser, RenderCommand& c) {
+    OptionGroup group(parser, "Output");
+    parser.flag("denoise", "",
+                "keep even/odd half-buffers and write the beauty denoised (NFOR; the raw one as "
+                "noisy.R/G/B; docs/denoise.md)",
+                c.denoise);
+}
+
 // What a job queue drives: one JSON result on stdout, progress as JSON lines on stderr.
 void addQueueOptions(ArgParser& parser, RenderCommand& c) {
     OptionGroup group(parser, "Messages");
@@ -176,6 +185,7 @@ void addRenderOptions(ArgParser& parser, RenderCommand& c) {
     addLongRenderOptions(parser, c);
     addCompressionOption(parser, c);
     addCompositingOptions(parser, c);
+    addDenoiseOptions(parser, c);
     addQueueOptions(parser, c);
 }
 
@@ -183,6 +193,7 @@ RenderJobOptions renderJobOptions(const RenderCommand& c) {
     RenderJobOptions options = c.job.finish();
     applyLongRenderOptions(c, options);
     applyCompositingOptions(c, options);
+    if (c.denoise) options.aovs.add(AovKind::DenoiseHalves);
     return options;
 }
 
@@ -269,9 +280,20 @@ int writeOutputs(const RenderCommand& c, const OutputPaths& out, const Film& fil
         }
         if (writes) writes->push_back({kind, path, error});
     };
-    attempt("exr", out.exr, [&] { writeExr(out.exr, film, meta, c.exr); });
-    attempt("preview", out.preview,
-            [&] { writePreview(out.preview, film, c.display, c.view, c.exposure); });
+    ExrOptions exr = c.exr;
+    Metadata denoisedMeta = meta;
+    if (c.denoise && film.hasHalves()) {
+        try {  // a denoiser failure is an error, but the raw image is still written
+            denoiseForOutputs(film, c.job.job.settings.threads, exr, denoisedMeta);
+        } catch (const std::exception& e) {
+            logError("{}: denoising failed: {}", out.exr, e.what());
+            ++failures;
+        }
+    }
+    attempt("exr", out.exr, [&] { writeExr(out.exr, film, denoisedMeta, exr); });
+    attempt("preview", out.preview, [&] {
+        writePreview(out.preview, film, c.display, c.view, c.exposure, exr.denoised.get());
+    });
     if (c.heatMap || c.job.job.settings.adaptiveStep() > 0) {
         heatPath = fs::path(out.exr).replace_extension(".samples.png").string();
         attempt("heatmap", heatPath, [&] { writeSampleHeatMap(heatPath, film); });

@@ -46,6 +46,7 @@ struct RenderCommand {
     std::string colourConfig;           // the OCIO config in force
     DepthMode depth = DepthMode::Ray;
     bool heatMap = false, quiet = false, traversalFloor = false;
+    bool denoise = false;  // --denoise: half-buffers kept, the beauty denoised (docs/denoise.md)
     float aperture = -1, focus = -1;
     int debugX = -1, debugY = -1, debugSample = -1;
     // Long renders (docs/long-renders.md).

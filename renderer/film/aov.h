@@ -32,7 +32,11 @@ enum class AovKind : uint32_t {
     ObjectId,
     CryptoObject,
     CryptoMaterial,  // Cryptomatte layers (ranked id/coverage pairs), see film/cryptomatte.h
-    Count
+    Count,
+    // Not a layer users list (--aov, "all"): the film's even/odd half-buffers of colour and
+    // features for the denoiser (half_buffers.h), set by --denoise. A mask bit, so checkpoints,
+    // fingerprints and merges carry it with the AOVs.
+    DenoiseHalves = 31
 };
 
 // What Z holds: the distance along the camera ray, or camera-space z (the distance along the view
@@ -57,6 +61,8 @@ struct AovRequest {
     void add(AovKind k) { mask |= 1u << uint32_t(k); }
     // Any of the light-path AOVs (the integrator must classify its contributions).
     bool splitsLight() const;
+    // The integrator records the albedo (the AOV or the denoiser's feature).
+    bool recordsAlbedo() const { return has(AovKind::Albedo) || has(AovKind::DenoiseHalves); }
     // "emission,direct,..." or "all", "none", "default". Throws std::invalid_argument naming the
     // bad entry.
     static AovRequest parse(const std::string& list, int maxDepth);

@@ -22,6 +22,10 @@ Film::Film(int width, int height, const AovRequest& aovs)
     if (aovs.has(AovKind::Depth)) depth_.assign(n, kInfinity);
     if (aovs.has(AovKind::CryptoObject)) crypto_[0].resize(n * kCryptoSlots);
     if (aovs.has(AovKind::CryptoMaterial)) crypto_[1].resize(n * kCryptoSlots);
+    if (aovs.has(AovKind::DenoiseHalves)) {
+        halves_.resize(n * 2 * kHalfSums);
+        halfCount_.resize(n * 2);
+    }
 }
 
 void Film::setScaleExponent(int exponent) {
@@ -47,14 +51,20 @@ std::vector<FilmBuffer> Film::buffers() {
          crypto_[0].empty() ? 0u : uint32_t(kCryptoSlots), crypto_[0].data()},
         {"crypto_material", Accumulation::CryptoIds, sizeof(CryptoSlot),
          crypto_[1].empty() ? 0u : uint32_t(kCryptoSlots), crypto_[1].data()},
+        sums("denoise_halves", halves_, halves_.empty() ? 0 : 2 * kHalfSums),
+        {"denoise_half_samples", Accumulation::Count, sizeof(uint32_t),
+         halfCount_.empty() ? 0u : 2u, halfCount_.data()},
         // Last: merging reads the counts before the shard's are added (FirstSample).
         {"samples", Accumulation::Count, sizeof(uint32_t), 1, count_.data()},
     };
 }
 
-bool Film::add(int x, int y, const SampleRecord& r) {
+bool Film::add(int x, int y, const SampleRecord& r, int sample) {
     size_t i = index(x, y);
     uint32_t previous = count_[i]++;
+    const int half = halfOfSample(sample >= 0 ? uint32_t(sample) : previous);
+    // Counted like count_ (a dropped sample counts as black), so the halves add up to the pixel.
+    if (!halfCount_.empty()) ++halfCount_[2 * i + size_t(half)];
     size_t nc = layout_.channels().size();
     double values[256];
     if (nc) layout_.gather(r, values);
@@ -91,7 +101,38 @@ bool Film::add(int x, int y, const SampleRecord& r) {
         depth_[i] = std::min(depth_[i], request.depth == DepthMode::CameraZ ? r.cameraZ : r.depth);
     if (!crypto_[0].empty()) addCrypto(i, 0, r.cryptoObject);
     if (!crypto_[1].empty()) addCrypto(i, 1, r.cryptoMaterial);
+    if (!halves_.empty()) addToHalf(i, half, fixed, L * float(down_), r);
     return true;
+}
+
+void Film::addToHalf(size_t i, int half, const FixedSum colour[3], const Color& scaled,
+                     const SampleRecord& r) {
+    FixedSum* sums = &halves_[(2 * i + size_t(half)) * kHalfSums];
+    double values[kHalfSums];
+    for (int k = 0; k < 3; ++k) values[3 + k] = double(scaled[k]) * double(scaled[k]);
+    halfFeatures(r, values + 6);
+    for (int k = 0; k < 3; ++k) sums[k] += colour[k];
+    for (int k = 3; k < kHalfSums; ++k) {
+        FixedSum f = 0;
+        // Features are finite and in range (halfFeatures); a square beyond the range (a channel
+        // far above the luminance that was checked) is held at the range's end.
+        if (!toFixed(values[k], f)) toFixed(std::nextafter(kMaxSampleValue, 0.0), f);
+        sums[k] += f;
+    }
+}
+
+void Film::halfMean(int x, int y, int h, float out[kHalfChannels]) const {
+    size_t at = 2 * index(x, y) + size_t(h);
+    double n = halfCount_[at];
+    const FixedSum* sums = &halves_[at * kHalfSums];
+    for (int k = 0; k < 3; ++k) {
+        double s1 = fromFixed(sums[k]), s2 = fromFixed(sums[3 + k]);
+        out[k] = n > 0 ? float(s1 * up_ / n) : 0.0f;
+        // The sample variance over n, the variance of the half's mean.
+        out[3 + k] =
+            n >= 2 ? float(std::max(0.0, (s2 - s1 * s1 / n) / (n - 1)) / n * up_ * up_) : -1.0f;
+    }
+    for (int k = 6; k < kHalfChannels; ++k) out[k] = n > 0 ? float(fromFixed(sums[k]) / n) : 0.0f;
 }
 
 namespace {
@@ -176,9 +217,9 @@ void combineRun(const FilmBuffer& dst, const void* src, size_t dstPixel, size_t 
             break;
         }
         case Accumulation::Count: {
-            auto* d = static_cast<uint32_t*>(dst.data) + dstPixel;
+            auto* d = static_cast<uint32_t*>(dst.data) + dstPixel * per;
             auto* s = static_cast<const uint32_t*>(src);
-            for (size_t k = 0; k < pixels; ++k) d[k] += s[k];
+            for (size_t k = 0; k < pixels * per; ++k) d[k] += s[k];
             break;
         }
         case Accumulation::FirstSample: {

@@ -17,6 +17,7 @@
 #include "renderer/film/aov.h"
 #include "renderer/film/cryptomatte.h"
 #include "renderer/film/fixed_sum.h"
+#include "renderer/film/half_buffers.h"
 
 namespace kiln {
 
@@ -70,8 +71,9 @@ class Film {
     int scaleExponent() const { return scaleExponent_; }
 
     // Non-finite samples, and samples beyond the fixed-point range (kMaxSampleValue), are counted
-    // (the caller reports them) and never enter the image.
-    bool add(int x, int y, const SampleRecord& r);
+    // (the caller reports them) and never enter the image. sample: the sample's index, which picks
+    // its half-buffer (half_buffers.h); -1: the pixel's count so far (a film filled from index 0).
+    bool add(int x, int y, const SampleRecord& r, int sample = -1);
     bool add(int x, int y, const Color& c) {
         SampleRecord r;  // a sample that covered the pixel with this colour
         r.reset(layout_.request());
@@ -103,6 +105,13 @@ class Film {
     // ranks (0, 0).
     using CryptoRanks = std::array<std::pair<float, float>, kCryptoRanks>;
     CryptoRanks cryptoRanks(int x, int y, int type) const;
+    // With the DenoiseHalves request: half h's kHalfChannels values (half_buffers.h; colour in
+    // scene light) and how many samples it holds.
+    bool hasHalves() const { return !halves_.empty(); }
+    void halfMean(int x, int y, int h, float out[kHalfChannels]) const;
+    uint32_t halfSamples(int x, int y, int h) const {
+        return halfCount_[2 * index(x, y) + size_t(h)];
+    }
     // Adaptive sampling: the pixel met the confidence test and takes no more samples.
     bool converged(int x, int y) const { return converged_[index(x, y)] != 0; }
     void setConverged(int x, int y) { converged_[index(x, y)] = 1; }
@@ -134,8 +143,12 @@ class Film {
     std::vector<uint32_t> covered_;      // samples that covered the pixel (alpha)
     std::vector<float> depth_;           // nearest first-hit Z (with the Depth AOV)
     std::vector<CryptoSlot> crypto_[2];  // kCryptoSlots per pixel: objects, materials
+    std::vector<FixedSum> halves_;       // 2 x kHalfSums per pixel (DenoiseHalves)
+    std::vector<uint32_t> halfCount_;    // 2 per pixel: the samples of each half
     size_t sumChannels_ = 0, firstChannels_ = 0;
     void addCrypto(size_t i, int type, uint32_t id);
+    void addToHalf(size_t i, int half, const FixedSum colour[3], const Color& scaled,
+                   const SampleRecord& r);
 };
 
 }  // namespace kiln

@@ -77,6 +77,10 @@ struct AccuracyOptions {
     double budgetSeconds = 300;
     bool quick = false;  // a handful of settings (CI smoke run)
     std::string aovs;    // colour AOV layers whose error is measured too, e.g. "direct,indirect"
+    // The spp sweep raw and denoised (group "denoised": render + denoise time, docs/denoise.md)
+    // and nothing else.
+    bool denoise = false;
+    std::string environmentMap;  // --env: a lat-long environment light added to the scene
 };
 
 struct AccuracyResult {

@@ -72,6 +72,41 @@ void writeSweepComparison(const AccuracyResult& r, const std::vector<AccuracyRun
 
 }  // namespace
 
+namespace {
+
+// The denoised sweep against the raw one (docs/denoise.md): each spp's errors and times, and the
+// goals of issue 29 (denoised 16 spp below raw 256 spp; denoised 1024 spp not above raw 1024).
+void writeDenoisedComparison(const AccuracyResult& r, const std::vector<AccuracyRun>& uniform,
+                             std::ostringstream& md) {
+    std::map<int, const AccuracyRun*> raw, denoised;
+    for (const AccuracyRun& a : uniform) raw[a.spp] = &a;
+    for (const AccuracyRun& a : r.runs)
+        if (a.group == "denoised") denoised[a.spp] = &a;
+    if (denoised.empty()) return;
+    md << "\n- **Denoised** (NFOR; time: render + denoise) against raw at equal spp:\n\n"
+          "  | spp | raw relMSE | raw time (s) | denoised relMSE | denoised time (s) | denoised / "
+          "raw |\n  |---:|---:|---:|---:|---:|---:|\n";
+    for (const auto& [spp, d] : denoised) {
+        const AccuracyRun* a = raw.count(spp) ? raw[spp] : nullptr;
+        md << "  | " << spp << " | " << (a ? fmt(a->error.relMse) : "-") << " | "
+           << (a ? fmt(a->seconds) : "-") << " | " << fmt(d->error.relMse) << " | "
+           << fmt(d->seconds) << " | "
+           << (a && a->error.relMse > 0 ? fmt(d->error.relMse / a->error.relMse) : "-") << " |\n";
+    }
+    auto goal = [&](int denoisedSpp, int rawSpp, const char* what) {
+        if (!denoised.count(denoisedSpp) || !raw.count(rawSpp)) return;
+        double d = denoised[denoisedSpp]->error.relMse, a = raw[rawSpp]->error.relMse;
+        md << "  - " << what << ": denoised " << denoisedSpp << " spp " << fmt(d) << ", raw "
+           << rawSpp << " spp " << fmt(a) << ": **" << (d <= a ? "met" : "not met") << "**\n";
+    };
+    md << "\n";
+    goal(16, 256, "denoised 16 spp below raw 256 spp");
+    goal(64, 1024, "denoised 64 spp below raw 1024 spp");
+    goal(1024, 1024, "never worse than raw at 1024 spp");
+}
+
+}  // namespace
+
 void writeAccuracyReport(const AccuracyOptions& o, const AccuracyResult& r) {
     std::ostringstream csv;
     csv << "group,label,spp,mean_spp,light_samples,sampling,max_depth,roulette,adaptive_tolerance,"
@@ -98,6 +133,7 @@ void writeAccuracyReport(const AccuracyOptions& o, const AccuracyResult& r) {
     for (const AccuracyRun& a : r.runs) {
         std::string series = a.group == "spp" || a.group == "sampler" ? "path (GI), " + a.sampler
                              : a.group == "guiding"                   ? "path (GI), unguided"
+                             : a.group == "denoised"                  ? "path (GI), denoised"
                              : a.group == "strategy"                  ? "direct: " + a.sampling
                                                                       : "";
         if (a.group == "adaptive") series = "adaptive (GI)";
@@ -231,6 +267,7 @@ void writeAccuracyReport(const AccuracyOptions& o, const AccuracyResult& r) {
         }
         md << ")";
     }
+    writeDenoisedComparison(r, uniform, md);
     if (has("accel")) md << "\n- **Accelerators** (16 spp): ";
     for (const AccuracyRun& a : r.runs)
         if (a.group == "accel")

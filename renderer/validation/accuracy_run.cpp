@@ -9,6 +9,7 @@
 #include <filesystem>
 
 #include "color/image_input.h"
+#include "renderer/denoise_film.h"
 #include "renderer/render_job.h"
 #include "renderer/validation/accuracy.h"
 #include "scene/scene_loader.h"
@@ -25,6 +26,7 @@ struct Setting {
     float adaptiveTolerance = 0;
     bool referenceAccel = false;
     SamplerKind sampler = RenderSettings{}.sampler;
+    bool denoise = false;  // the image measured is the denoised one; its time counts
 };
 
 // One render with its time, rays and image.
@@ -40,6 +42,7 @@ Rendered render(const Scene& scene, const Accelerator& accel, const Setting& s, 
     RenderJobOptions options;
     options.path = s.path;
     options.aovs = aovs;
+    if (s.denoise) options.aovs.add(AovKind::DenoiseHalves);
     RenderSettings& settings = options.settings;
     settings.width = w, settings.height = h, settings.spp = s.spp, settings.seed = seed,
     settings.progress = false;
@@ -48,8 +51,16 @@ Rendered render(const Scene& scene, const Accelerator& accel, const Setting& s, 
     RenderJob job(scene, accel, options);
     Film film = job.makeFilm();
     RenderStats stats = job.render(film);
-    return {Image::fromFilm(film), stats.seconds, double(stats.samples) / (double(w) * h),
-            stats.rays, job.guided()};
+    Rendered r{Image::fromFilm(film), stats.seconds, double(stats.samples) / (double(w) * h),
+               stats.rays, job.guided()};
+    if (s.denoise) {
+        auto start = std::chrono::steady_clock::now();
+        r.image.pixels = *denoiseFilm(film, {});
+        r.image.variance.clear();
+        r.seconds +=
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+    return r;
 }
 
 uint64_t fnv(const std::string& s, uint64_t h = 1469598103934665603ull) {
@@ -61,7 +72,8 @@ uint64_t fnv(const std::string& s, uint64_t h = 1469598103934665603ull) {
 Image reference(const Scene& scene, const Accelerator& accel, const AccuracyOptions& o, int depth,
                 double& seconds, bool& cached) {
     std::error_code ec;
-    std::string key = o.scene + "|" + std::to_string(fs::file_size(o.scene, ec)) + "|" +
+    std::string key = o.scene + "|" + o.environmentMap + "|" +
+                      std::to_string(fs::file_size(o.scene, ec)) + "|" +
                       std::to_string(fs::last_write_time(o.scene, ec).time_since_epoch().count()) +
                       "|" + std::to_string(o.width) + "x" + std::to_string(o.height) + "|" +
                       std::to_string(o.referenceSpp) + "|m" + std::to_string(depth) + "|" +
@@ -104,7 +116,9 @@ Image reference(const Scene& scene, const Accelerator& accel, const AccuracyOpti
 AccuracyResult runAccuracy(const AccuracyOptions& o) {
     AccuracyResult result;
     fs::create_directories(o.outDir);
-    Scene scene = loadScene(o.scene);
+    LoadOptions load;
+    load.environmentMap = o.environmentMap;
+    Scene scene = loadScene(o.scene, load);
     auto embree = makeEmbreeAccelerator(scene);
     auto start = std::chrono::steady_clock::now();
     auto elapsed = [&] {
@@ -112,7 +126,11 @@ AccuracyResult runAccuracy(const AccuracyOptions& o) {
     };
     bool cachedGi = false, cachedDirect = false;
     Image giRef = reference(scene, *embree, o, 100, result.referenceSeconds, cachedGi);
-    Image directRef = reference(scene, *embree, o, 1, result.referenceSeconds, cachedDirect);
+    // The denoised sweep compares full-depth renders only.
+    Image directRef = o.denoise
+                          ? Image{}
+                          : reference(scene, *embree, o, 1, result.referenceSeconds, cachedDirect);
+    cachedDirect |= o.denoise;
     result.referenceCached = cachedGi && cachedDirect;
     const RenderPlan plan = planFor(scene, *embree, AovRequest{});
     result.caustics = plan.caustics;
@@ -125,7 +143,8 @@ AccuracyResult runAccuracy(const AccuracyOptions& o) {
         // break the budget.
         double perSpp = 0;
         for (const AccuracyRun& a : result.runs)
-            perSpp = std::max(perSpp, a.seconds / std::max(1.0, a.meanSpp));
+            if (a.group != "denoised")  // the denoiser's time does not grow with spp
+                perSpp = std::max(perSpp, a.seconds / std::max(1.0, a.meanSpp));
         double predicted = perSpp * s.spp;
         if (elapsed() - budgetStart + predicted > o.budgetSeconds) {
             result.skipped.push_back(group + " " + label);
@@ -159,6 +178,17 @@ AccuracyResult runAccuracy(const AccuracyOptions& o) {
         Setting s;
         s.spp = spp;
         run("spp", std::to_string(spp) + " spp", s, giRef);
+    }
+    if (o.denoise) {
+        // The denoised curve: every other spp of the raw sweep, render and denoise timed.
+        for (int spp = 1; spp <= maxSpp; spp *= 4) {
+            Setting s;
+            s.spp = spp;
+            s.denoise = true;
+            run("denoised", std::to_string(spp) + " spp denoised", s, giRef);
+        }
+        writeAccuracyReport(o, result);
+        return result;
     }
     // The same sweep with the other sampler: what the low-discrepancy sequence buys (or costs).
     SamplerKind other = RenderSettings{}.sampler == SamplerKind::Sobol ? SamplerKind::Independent

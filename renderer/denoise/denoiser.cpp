@@ -1,0 +1,175 @@
+#include "renderer/denoise/denoiser.h"
+
+#include <tbb/task_arena.h>
+
+#include <cmath>
+#include <string>
+
+#include "renderer/denoise/nl_means.h"
+#include "renderer/denoise/regression.h"
+
+namespace kiln::denoise {
+namespace {
+
+// Per half: colour, its variance, then the features.
+constexpr int kColour = 0, kVariance = 3, kFeatures = 6;
+// The two bandwidths NFOR chooses between per pixel (section 5.3).
+constexpr float kBandwidths[2] = {0.5f, 1.0f};
+// The variance maps from the halves' difference: one degree of freedom per pixel, averaged over
+// this box radius.
+constexpr int kVarianceRadius = 2;
+
+// The halves with non-finite values replaced by 0 (variances: by "unknown").
+Halves sanitized(const Halves& in) {
+    Halves out = in;
+    for (Image& half : out.half)
+        for (size_t i = 0; i < half.values.size(); ++i) {
+            const int c = int(i % size_t(half.channels));
+            if (!std::isfinite(half.values[i]))
+                half.values[i] = c >= kVariance && c < kFeatures ? -1.0f : 0.0f;
+        }
+    return out;
+}
+
+// Per channel: (a + b) / 2 and its variance (a - b)^2 / 4 (two independent halves).
+void meanAndVariance(const Image& a, const Image& b, Image& mean, Image& variance) {
+    mean = Image(a.width, a.height, a.channels), variance = mean;
+    for (size_t i = 0; i < a.values.size(); ++i) {
+        float d = a.values[i] - b.values[i];
+        mean.values[i] = 0.5f * (a.values[i] + b.values[i]);
+        variance.values[i] = 0.25f * d * d;
+    }
+}
+
+// The variance of the halves' mean colour from the halves' sample variances, (vA + vB) / 4;
+// where a half's is unknown, the estimate from their difference.
+Image sampleVariance(const Halves& in, const Image& fromDifference) {
+    Image v = fromDifference;
+    for (size_t p = 0; p < v.pixels(); ++p)
+        for (int c = 0; c < 3; ++c) {
+            size_t at = p * size_t(in.half[0].channels) + size_t(kVariance + c);
+            float a = in.half[0].values[at], b = in.half[1].values[at];
+            if (a >= 0 && b >= 0) v.values[p * 3 + size_t(c)] = 0.25f * (a + b);
+        }
+    return v;
+}
+
+struct FilterPair {
+    Image a, b;  // half A and half B filtered
+};
+
+// Step 2 and 3's estimate: each half regressed with the other as guide and features.
+FilterPair regressHalves(const Image colour[2], const Image features[2], const Image& variance,
+                         const Options& o, float k) {
+    NlMeansParams p{o.patchRadius, o.windowRadius, k, 2.0f};  // a half's variance: twice the mean's
+    return {collaborativeRegression(colour[0], colour[1], features[1], variance, p),
+            collaborativeRegression(colour[1], colour[0], features[0], variance, p)};
+}
+
+// The MSE of the pair's mean, estimated from the halves (each filtered half against the other
+// noisy half, less that half's variance and the filtered halves' own difference).
+Image estimatedMse(const Image colour[2], const FilterPair& f, const Image& variance) {
+    Image mse(f.a.width, f.a.height, 3);
+    for (size_t i = 0; i < mse.values.size(); ++i) {
+        float ea = colour[1].values[i] - f.a.values[i], eb = colour[0].values[i] - f.b.values[i];
+        float between = f.b.values[i] - f.a.values[i];
+        mse.values[i] =
+            0.5f * (ea * ea + eb * eb) - 2.0f * variance.values[i] - 0.25f * between * between;
+    }
+    return mse;
+}
+
+Image smoothedMap(const Image& map, const Image& guide, const Image& variance, const Options& o) {
+    return nlMeans(map, guide, variance, {1, o.mseWindow, 1.0f, 1.0f});
+}
+
+std::vector<Color> runNfor(const Halves& in, const Options& o) {
+    const int w = in.half[0].width, h = in.half[0].height;
+    const int nf = in.half[0].channels - kFeatures;
+    Image colour[2], features[2];
+    for (int k = 0; k < 2; ++k) {
+        colour[k] = channelsOf(in.half[k], kColour, 3);
+        features[k] = channelsOf(in.half[k], kFeatures, nf);
+    }
+    Image colourMean, colourVariance, featureMean, featureVariance;
+    meanAndVariance(colour[0], colour[1], colourMean, colourVariance);
+    meanAndVariance(features[0], features[1], featureMean, featureVariance);
+    colourVariance = sampleVariance(in, boxMean(colourVariance, kVarianceRadius));
+    featureVariance = boxMean(featureVariance, kVarianceRadius);
+
+    // 1. Feature prefiltering, each half guided by the other.
+    NlMeansParams featureParams{o.patchRadius, o.featureWindow, 0.5f, 2.0f};
+    Image filtered[2] = {nlMeans(features[0], features[1], featureVariance, featureParams),
+                         nlMeans(features[1], features[0], featureVariance, featureParams)};
+
+    // 2, 3. Two bandwidths, their MSE, the per-pixel choice.
+    FilterPair pass[2];
+    Image mse[2];
+    for (int b = 0; b < 2; ++b) {
+        pass[b] = regressHalves(colour, filtered, colourVariance, o, kBandwidths[b]);
+        mse[b] = smoothedMap(estimatedMse(colour, pass[b], colourVariance), colourMean,
+                             colourVariance, o);
+    }
+    Image choice(w, h, 3);
+    for (size_t i = 0; i < choice.values.size(); ++i)
+        choice.values[i] = mse[0].values[i] < mse[1].values[i] ? 0.0f : 1.0f;
+    choice = smoothedMap(choice, colourMean, colourVariance, o);
+    Image chosen[2] = {Image(w, h, 3), Image(w, h, 3)};
+    for (size_t i = 0; i < choice.values.size(); ++i) {
+        float t = choice.values[i];
+        chosen[0].values[i] = (1 - t) * pass[0].a.values[i] + t * pass[1].a.values[i];
+        chosen[1].values[i] = (1 - t) * pass[0].b.values[i] + t * pass[1].b.values[i];
+    }
+
+    // 4. The second pass over the averaged halves.
+    Image filteredMean, filteredVariance, combined, combinedVariance;
+    meanAndVariance(filtered[0], filtered[1], filteredMean, filteredVariance);
+    Image finalFeatures =
+        nlMeans(filteredMean, filteredMean, filteredVariance, {o.patchRadius, 2, 0.5f, 1.0f});
+    meanAndVariance(chosen[0], chosen[1], combined, combinedVariance);
+    Image result = collaborativeRegression(combined, combined, finalFeatures, combinedVariance,
+                                           {o.patchRadius, o.windowRadius, 1.0f, 1.0f});
+
+    std::vector<Color> out(result.pixels());
+    for (size_t p = 0; p < out.size(); ++p) {
+        Color c(result.values[3 * p], result.values[3 * p + 1], result.values[3 * p + 2]);
+        // A failed fit falls back to the noisy pixel rather than spread anything.
+        bool finite = std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z);
+        out[p] = finite ? c
+                        : Color(colourMean.values[3 * p], colourMean.values[3 * p + 1],
+                                colourMean.values[3 * p + 2]);
+    }
+    return out;
+}
+
+}  // namespace
+
+std::string problemWith(const Halves& halves) {
+    const Image &a = halves.half[0], &b = halves.half[1];
+    if (a.width <= 0 || a.height <= 0) return "the half-buffers are empty";
+    if (a.width != b.width || a.height != b.height)
+        return "the half-buffers differ in size (" + std::to_string(a.width) + "x" +
+               std::to_string(a.height) + " and " + std::to_string(b.width) + "x" +
+               std::to_string(b.height) + ")";
+    if (a.channels != b.channels || a.channels < kFeatures || a.channels > kFeatures + 13)
+        return "the half-buffers hold unusable channel counts";
+    return "";
+}
+
+std::vector<Color> denoise(const Halves& halves, const Options& options) {
+    Halves clean = sanitized(halves);
+    tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+    std::vector<Color> out;
+    arena.execute([&] { out = runNfor(clean, options); });
+    return out;
+}
+
+std::string describe(const Options& o) {
+    int window = 2 * o.windowRadius + 1, patch = 2 * o.patchRadius + 1;
+    return "NFOR (Bitterli et al. 2016): first-order regression on albedo, normal, depth from "
+           "the even/odd half-buffers; window " +
+           std::to_string(window) + "x" + std::to_string(window) + ", patch " +
+           std::to_string(patch) + "x" + std::to_string(patch) + ", bandwidths 0.5 and 1";
+}
+
+}  // namespace kiln::denoise

@@ -1,0 +1,43 @@
+// Non-local means weights (Buades et al. 2005) with the variance-cancelled patch distance of
+// Rousselle et al. 2012, "Adaptive rendering with non-local means filtering", as NFOR uses them
+// (Bitterli et al. 2016, section 5): the weight of neighbour q for pixel p compares the patches
+// around p and q of a guide image, each squared difference less what the guide's own noise
+// explains, over the noise.
+#pragma once
+
+#include <vector>
+
+#include "renderer/denoise/image.h"
+
+namespace kiln::denoise {
+
+struct NlMeansParams {
+    int patchRadius = 3;      // F: patches of (2F+1)^2 pixels
+    int windowRadius = 5;     // R: neighbours within (2R+1)^2
+    float k = 0.5f;           // bandwidth: larger averages more
+    float varianceScale = 1;  // the guide's variance is variance * varianceScale (2: a half)
+};
+
+// The weights of every neighbour offset for the pixels of one tile: weight(o, x, y) for offset o
+// (row-major over [-R, R]^2) and tile pixel (x, y); 0 where the neighbour lies outside the image.
+class TileWeights {
+  public:
+    // guide and variance have the same channels (variance: of each guide value).
+    void compute(const Image& guide, const Image& variance, const Rect& tile,
+                 const NlMeansParams& params);
+    int offsets() const { return (2 * radius_ + 1) * (2 * radius_ + 1); }
+    const float* offset(int o) const { return &weights_[size_t(o) * pixels_]; }
+
+  private:
+    int radius_ = 0;
+    size_t pixels_ = 0;
+    std::vector<float> weights_, distance_, rows_;
+};
+
+// The NL-means filter of image (any channels) with weights from guide and variance; one weight
+// per neighbour for all channels. TBB-parallel over tiles, each pixel written by one tile:
+// bit-identical for any thread count.
+Image nlMeans(const Image& image, const Image& guide, const Image& variance,
+              const NlMeansParams& params);
+
+}  // namespace kiln::denoise

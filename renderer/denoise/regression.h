@@ -1,0 +1,18 @@
+// NFOR's collaborative first-order regression (Bitterli et al. 2016, section 5.2): around each
+// pixel p, a weighted least-squares fit of colour on [1, screen offset, feature - feature(p)]
+// over the window, with NL-means weights from a guide; the fitted plane is evaluated at every
+// window pixel and each pixel's result is the weighted mean of all fits that cover it.
+#pragma once
+
+#include "renderer/denoise/image.h"
+#include "renderer/denoise/nl_means.h"
+
+namespace kiln::denoise {
+
+// colour: 3 channels; guide and variance: 3 channels (the guide's per-channel variance);
+// features: any number. Deterministic: the fits are added in a fixed order whatever the threads
+// (tiles of four classes, tiles of one class never writing the same pixel).
+Image collaborativeRegression(const Image& colour, const Image& guide, const Image& features,
+                              const Image& variance, const NlMeansParams& params);
+
+}  // namespace kiln::denoise

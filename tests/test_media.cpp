@@ -316,6 +316,24 @@ TEST(Media, KilnFileReadsMediaAndPlanNamesThem) {
     bad("<medium name=\"m\" sigma=\"1 1 1\"/>", "unknown attribute 'sigma'");
 }
 
+TEST(Media, MediaAndWalkImagesDoNotDependOnThreadsOrTiles) {
+    for (const char* scene : {"scenes/coloured_glass.kiln", "scenes/lucy_subsurface.kiln"}) {
+        Scene s = loadScene(test::repo(scene));
+        auto accel = makeEmbreeAccelerator(s);
+        RenderJobOptions one = test::jobOptions(24, 24, 4), two = one;
+        one.settings.threads = 1, one.settings.tileSize = 8;
+        two.settings.threads = 2, two.settings.tileSize = 32;
+        Film a = test::renderJob(s, *accel, one), b = test::renderJob(s, *accel, two);
+        double total = 0;
+        for (int y = 0; y < 24; ++y)
+            for (int x = 0; x < 24; ++x) {
+                ASSERT_EQ(a.pixel(x, y), b.pixel(x, y)) << scene << " " << x << " " << y;
+                total += luminance(a.pixel(x, y));
+            }
+        EXPECT_GT(total, 0.0) << scene;
+    }
+}
+
 TEST(Media, ScenesWithoutMediaDoNotNameThem) {
     Scene s = loadScene(test::cs184("sky/CBspheres_lambertian.dae"));
     auto accel = makeEmbreeAccelerator(s);

@@ -1,7 +1,5 @@
 #include "integrators/emitter_environment.h"
 
-#include <cmath>
-
 #include "renderer/core/warp.h"
 
 namespace kiln {
@@ -20,22 +18,16 @@ bool EnvironmentEmitter::sample(const Vec3&, float u1, float u2, LightSample& ou
         out.Li = env_.constant;
         return maxComponent(out.Li) > 0;
     }
-    float u, v, pdfUV;
-    env_.distribution.sample(u1, u2, u, v, pdfUV);
-    float sinTheta = std::sin(v * kPi);
-    if (pdfUV == 0 || sinTheta == 0) return false;
-    out.wi = env_.direction(u, v);
-    out.pdf = pdfUV / (2 * kPi * kPi * sinTheta);
-    out.Li = env_.lookup(out.wi);
+    EnvironmentSample s;
+    if (!env_.sample(u1, u2, s)) return false;
+    out.wi = s.dir;
+    out.pdf = s.pdf;
+    out.Li = s.radiance;
     return maxComponent(out.Li) > 0;
 }
 
 float EnvironmentEmitter::pdf(const Vec3&, const Vec3& wi, const Vec3&, const Vec3&) const {
-    if (env_.pixels.empty()) return uniformSpherePdf();
-    float u, v;
-    env_.coordinates(wi, u, v);
-    float sinTheta = std::sin(v * kPi);
-    return sinTheta > 0 ? env_.distribution.pdf(u, v) / (2 * kPi * kPi * sinTheta) : 0.0f;
+    return env_.pixels.empty() ? uniformSpherePdf() : env_.pdf(wi);
 }
 
 }  // namespace kiln

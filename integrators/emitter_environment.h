@@ -15,6 +15,9 @@ class EnvironmentEmitter {
 
     float power(float r) const;
     bool sample(const Vec3& ref, float u1, float u2, LightSample& out) const;
+    void prefetch(float u1, float u2) const {
+        if (!env_.pixels.empty()) env_.prefetch(u1, u2);
+    }
     float pdf(const Vec3& ref, const Vec3& wi, const Vec3& x, const Vec3& n) const;
     Color escaped(const Vec3& dir, bool) const { return env_.lookup(dir); }
     Color emitted(const Vec3&, const Vec3&, const Vec3&) const { return l_.radiance; }

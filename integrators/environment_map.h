@@ -1,31 +1,56 @@
-// A lat-long environment map in memory and its importance-sampling distribution.
+// A lat-long environment map in memory and its importance-sampling tables.
 #pragma once
 
 #include <vector>
 
+#include "renderer/core/angle_table.h"
 #include "renderer/core/distribution.h"
 #include "scene/scene.h"
 
 namespace kiln {
 
+// A point of the map drawn by importance: its (u, v), direction, density and radiance.
+struct EnvironmentSample {
+    float u = 0, v = 0;
+    Vec3 dir;
+    float pdf = 0;  // solid angle
+    Color radiance;
+};
+
 // A lat-long environment map in memory (scaled, in the working space), looked up bilinearly
-// (nearest texel for scenes built without the loader), with its importance-sampling distribution.
+// (nearest texel for scenes built without the loader), with its importance-sampling tables: a row
+// by inversion of the rows' marginal, then a column by inversion of the row's own distribution
+// (guide tables: expected O(1), one 16-byte read in the common case). Inversion keeps the
+// sampler's stratification: an alias table for the columns (one read always) had 1.16-1.25x the
+// error at equal samples on the env-lit Lucy.
 struct EnvironmentMap {
     int width = 0, height = 0;
     std::vector<Color> pixels;
-    Color constant{0.0f};  // used when there is no image (uniform environment)
-    Distribution2D distribution;
+    Color constant{0.0f};        // used when there is no image (uniform environment)
+    Distribution1D rows;         // by each row's total weight
+    Distribution1DRows columns;  // within each row
     float scale = 1;
     float rotation = 0;     // radians about +Y (right-handed: counterclockwise seen from above)
     bool bilinear = false;  // between texel centres (the loader's maps); else nearest texel
+    // sin, cos of theta = v pi and of phi = (u - 0.5) 2 pi - rotation.
+    AngleTable theta{0.0, 3.14159265358979323846, 128};
+    AngleTable phi{-3.14159265358979323846, 2 * 3.14159265358979323846, 256};
+
     Color lookup(const Vec3& dir) const;
+    Color lookup(float u, float v) const;          // (u, v) in [0,1)^2
     Color bilinearLookup(float u, float v) const;  // (u, v) in [0,1)^2
     Vec3 direction(float u, float v) const;        // (u, v) in [0,1)^2 -> unit direction
     void coordinates(const Vec3& dir, float& u, float& v) const;
+    // Asks memory for the first table entry sample(u1, u2) reads (the row's is in cache).
+    void prefetch(float u1, float u2) const;
+    // Importance sampling (a map with pixels): false where the drawn point has no density.
+    bool sample(float u1, float u2, EnvironmentSample& out) const;
+    // Solid-angle density of sample() drawing the unit direction dir.
+    float pdf(const Vec3& dir) const;
 };
 
-// The light's map in memory: scaled, non-finite and negative texels zeroed, with its distribution
-// (a uniform environment when the light has no image).
+// The light's map in memory: scaled, non-finite and negative texels zeroed, with its sampling
+// tables (a uniform environment when the light has no image).
 EnvironmentMap loadEnvironment(const Light& l);
 
 }  // namespace kiln

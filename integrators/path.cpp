@@ -1,5 +1,6 @@
 #include "integrators/path.h"
 
+#include <array>
 #include <type_traits>
 #include <utility>
 
@@ -506,39 +507,59 @@ void PathIntegrator::sampleDirectLight(const Vertex& v, const B& bsdf, const Vec
                                        bool lightOnly, Scratch& w) const {
     const bool eachOnce = rules_.eachDeltaLightOnce;
     const int samples = rules_.lightSamplesPerVertex(opt_.lightSamples, lights_.size());
-    const float nLight = float(opt_.lightSamples);
-    const float perSample = eachOnce ? 1.0f : nLight;
-    for (int k = 0; k < samples; ++k) {
-        float pmf = 1.0f, u1 = 0.5f, u2 = 0.5f;
-        size_t li = size_t(k);
-        if (!eachOnce) {
+    // In chunks: every sample's numbers drawn (in the order a loop of single samples draws them)
+    // and its first table entry asked for, then the lights sampled, then the estimates queued, so
+    // the cache misses of an environment map's tables overlap instead of following one another.
+    constexpr int kChunk = 8;
+    std::array<LightDraw, kChunk> draws;
+    std::array<LightSample, kChunk> found;
+    std::array<bool, kChunk> sampled;
+    for (int k0 = 0; k0 < samples; k0 += kChunk) {
+        const int m = std::min(kChunk, samples - k0);
+        for (int j = 0; j < m; ++j) {
+            LightDraw& d = draws[size_t(j)];
+            d = {size_t(k0 + j), 1.0f, 0.5f, 0.5f};
+            if (eachOnce) continue;
             if (lights_.size() == 1) {  // the one light: no choice to draw
                 v.sampler.skip1D();
-                li = 0, pmf = lights_.selectPmf(0);
+                d.light = 0, d.pmf = lights_.selectPmf(0);
             } else {
-                li = lights_.select(v.sampler.next1D(), pmf);
+                d.light = lights_.select(v.sampler.next1D(), d.pmf);
             }
             auto [a, b] = v.sampler.next2D();
-            u1 = a, u2 = b;
+            d.u1 = a, d.u2 = b;
+            lights_.prefetch(d.light, d.u1, d.u2);
         }
-        LightSample ls;
-        if (!lights_.sample(li, v.si.p, u1, u2, ls) || pmf == 0) continue;
-        Vec3 wi = v.frame.toLocal(ls.wi);
-        Color f = bsdf.eval(wo, wi) * std::abs(wi.z);
-        // Geometric side check: no light from behind the actual surface through a bent normal.
-        if (maxComponent(f) <= 0 || (dot(ls.wi, v.si.ng) <= 0 && !bsdf.hasTransmission())) continue;
-        float pl = pmf * ls.pdf;
-        float weight = 1.0f;
-        if constexpr (!F::deltaLightsOnly)
-            if (!ls.delta && opt_.sampling != DirectSampling::Light && !lightOnly &&
-                lights_.hittable(li))
-                weight = misWeight(nLight, pl, 1, bsdf.pdf(wo, wi));
-        w.shadowRays.push_back(ls.infinite ? spawnRay(v.si, ls.wi)
-                                           : spawnRayTo(v.si, ls.p, ls.pError));
-        if constexpr (F::media) w.shadowMedia.push_back(v.st.medium);
-        w.pending.push_back(
-            {v.path, v.bounce + 1, v.lobe(), v.st.beta * f * ls.Li * (weight / (pl * perSample))});
+        for (size_t j = 0; j < size_t(m); ++j)
+            sampled[j] =
+                lights_.sample(draws[j].light, v.si.p, draws[j].u1, draws[j].u2, found[j]) &&
+                draws[j].pmf != 0;
+        for (size_t j = 0; j < size_t(m); ++j)
+            if (sampled[j]) queueLightSample<F>(v, bsdf, wo, lightOnly, draws[j], found[j], w);
     }
+}
+
+// One light sample's estimate, its shadow ray queued (MIS-weighted against the BSDF's sampling).
+template <class F, class B>
+void PathIntegrator::queueLightSample(const Vertex& v, const B& bsdf, const Vec3& wo,
+                                      bool lightOnly, const LightDraw& d, const LightSample& ls,
+                                      Scratch& w) const {
+    const float nLight = float(opt_.lightSamples);
+    const float perSample = rules_.eachDeltaLightOnce ? 1.0f : nLight;
+    Vec3 wi = v.frame.toLocal(ls.wi);
+    Color f = bsdf.eval(wo, wi) * std::abs(wi.z);
+    // Geometric side check: no light from behind the actual surface through a bent normal.
+    if (maxComponent(f) <= 0 || (dot(ls.wi, v.si.ng) <= 0 && !bsdf.hasTransmission())) return;
+    float pl = d.pmf * ls.pdf;
+    float weight = 1.0f;
+    if constexpr (!F::deltaLightsOnly)
+        if (!ls.delta && opt_.sampling != DirectSampling::Light && !lightOnly &&
+            lights_.hittable(d.light))
+            weight = misWeight(nLight, pl, 1, bsdf.pdf(wo, wi));
+    w.shadowRays.push_back(ls.infinite ? spawnRay(v.si, ls.wi) : spawnRayTo(v.si, ls.p, ls.pError));
+    if constexpr (F::media) w.shadowMedia.push_back(v.st.medium);
+    w.pending.push_back(
+        {v.path, v.bounce + 1, v.lobe(), v.st.beta * f * ls.Li * (weight / (pl * perSample))});
 }
 
 // -H (CS184's estimate_direct_lighting_hemisphere): -l uniform hemisphere rays, each adding the

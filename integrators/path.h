@@ -96,6 +96,14 @@ class PathIntegrator final : public Integrator {
     template <class F, class B>
     void sampleDirectLight(const Vertex& v, const B& bsdf, const Vec3& wo, bool lightOnly,
                            Scratch& w) const;
+    // A light sample's numbers: the light, its selection probability, the point on it.
+    struct LightDraw {
+        size_t light;
+        float pmf, u1, u2;
+    };
+    template <class F, class B>
+    void queueLightSample(const Vertex& v, const B& bsdf, const Vec3& wo, bool lightOnly,
+                          const LightDraw& d, const LightSample& ls, Scratch& w) const;
     template <class B>
     void queueHemisphereProbes(const Vertex& v, const B& bsdf, const Vec3& wo, Scratch& w) const;
     template <class B>

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <bit>
 #include <chrono>
 #include <filesystem>
@@ -257,9 +258,17 @@ void warnFloatResolution(Scene& scene) {
     }
 }
 
+std::atomic<uint64_t>& loadCounter() {
+    static std::atomic<uint64_t> count{0};
+    return count;
+}
+
 }  // namespace
 
+uint64_t sceneLoadCount() { return loadCounter().load(); }
+
 Scene loadScene(const std::string& path, const LoadOptions& options) {
+    ++loadCounter();
     auto start = std::chrono::steady_clock::now();
     Scene scene;
     scene.sourcePath = path;

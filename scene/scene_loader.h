@@ -23,6 +23,8 @@ struct LoadOptions {
     // --material-override: replaces every material that does not emit (spec or file, see
     // parseMaterialOverride); empty: the file's materials.
     std::string materialOverride;
+
+    bool operator==(const LoadOptions&) const = default;  // the same load (kiln render-frames)
 };
 
 // --camera's names (Auto is the default, not a name to give).
@@ -50,6 +52,9 @@ constexpr const char* kDiffuseOverride = "diffuse";
 
 // Throws SceneError (one line: file and problem) on anything it cannot load.
 Scene loadScene(const std::string& path, const LoadOptions& options = {});
+// How many times this process has called loadScene (what kiln render-frames reports, so a batch
+// shows it loaded each scene once).
+uint64_t sceneLoadCount();
 
 // Checks the geometry: finite vertices, indices in range, something to render (triangles of zero
 // area do not count; a mesh made only of them is a warning).

@@ -3,6 +3,8 @@
 
 #include <OpenImageIO/imagebuf.h>
 
+#include <nlohmann/json.hpp>
+
 #include "renderer/farm/child_process.h"
 #include "test_support.h"
 
@@ -10,6 +12,18 @@ namespace kiln::test {
 
 inline farm::CommandResult kiln(const std::vector<std::string>& args) {
     return farm::runCapturing(KILN_BINARY, args);
+}
+
+// A job file of one scene's turntable of `frames` frames (camera "orbit") with `args`.
+inline std::string writeTurntableJob(const std::filesystem::path& file, const std::string& output,
+                                     const std::string& scene, const nlohmann::json& args,
+                                     int frames) {
+    nlohmann::json camera = {{"name", "orbit"}, {"turntable", frames}};
+    nlohmann::json job = {{"output", output},
+                          {"scenes", nlohmann::json::array({scene})},
+                          {"args", args},
+                          {"cameras", nlohmann::json::array({camera})}};
+    return writeFile(file, job.dump());
 }
 
 // Every channel of every pixel of two EXRs, compared as bits: "" when equal, else what differs.

@@ -189,13 +189,9 @@ TEST(CameraOptions, TurntableAndOverrideThroughKilnRender) {
 // Two frames render; a second run skips both.
 TEST(Batch, SkipsCompleteOutputsAndReportsJson) {
     fs::path dir = test::scratchDir();
-    std::string job = test::writeFile(dir / "job.json", R"({
-      "output": "out/{camera}_{frame}",
-      "scenes": [")" + test::cs184("sky/CBspheres_lambertian.dae") +
-                                                            R"("],
-      "args": ["-r", 16, 12, "-s", 2],
-      "cameras": [{"name": "orbit", "turntable": 2}]
-    })");
+    std::string job = test::writeTurntableJob(dir / "job.json", "out/{camera}_{frame}",
+                                              test::cs184("sky/CBspheres_lambertian.dae"),
+                                              {"-r", 16, 12, "-s", 2}, 2);
     farm::CommandResult first = test::kiln({"batch", job, "--json", "-q"});
     ASSERT_EQ(first.exitCode, 0) << first.output;
     EXPECT_TRUE(fs::exists(dir / "out/orbit_0.exr"));
@@ -253,6 +249,89 @@ TEST(Batch, InterruptedRenderResumesBitForBit) {
     one.insert(one.end(), options.begin(), options.end());
     ASSERT_EQ(test::kiln(one).exitCode, 0);
     EXPECT_EQ(test::exrDifference((dir / "one.exr").string(), (dir / "resumed.exr").string()), "");
+}
+
+// Issue #28: the frames of one scene that differ only in camera (a turntable and a camera path)
+// render in one child from one scene load and one accelerator build, which the child's own
+// counters say; every frame is the one-frame render bit for bit; a second batch skips them all.
+TEST(Batch, FramesOfOneSceneLoadItOnceAndEqualSingleRenders) {
+    fs::path dir = test::scratchDir();
+    const std::string scene = test::cs184("sky/CBspheres_lambertian.dae");
+    std::string job = test::writeFile(dir / "job.json", R"({
+      "output": "out/{camera}_{frame}",
+      "scenes": [")" + scene + R"("],
+      "args": ["-r", 16, 12, "-s", 2],
+      "cameras": [{"name": "orbit", "turntable": 4},
+                  {"name": "fly", "path": [{"position": [0, 1, 4]}, {"position": [1, 1, 4], "fov": 50}]}]
+    })");
+    farm::CommandResult r = test::kiln({"batch", job, "-q"});
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("6 renders from one scene load"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("this process: 6 renders, 1 scene loads, 1 accelerator builds"),
+              std::string::npos)
+        << r.output;
+    std::vector<farm::RenderTask> tasks = farm::readJobFile(job);
+    ASSERT_EQ(tasks.size(), 6u);
+    for (size_t k = 0; k < tasks.size(); ++k) {
+        std::vector<std::string> alone{"render", scene, "-q", "-o", (dir / "alone").string()};
+        alone.insert(alone.end(), tasks[k].args.begin(), tasks[k].args.end());
+        ASSERT_EQ(test::kiln(alone).exitCode, 0);
+        EXPECT_EQ(test::exrDifference((dir / "alone.exr").string(), tasks[k].output + ".exr"), "")
+            << tasks[k].output;
+    }
+    farm::CommandResult again = test::kiln({"batch", job, "-q", "--json"});
+    ASSERT_EQ(again.exitCode, 0) << again.output;
+    EXPECT_NE(again.output.find("\"skipped\": 6"), std::string::npos) << again.output;
+}
+
+// A frame that fails in the middle of a run (its EXR path is a directory) fails alone: the frames
+// before it are done, the ones after it render in the next child, the batch exits 1.
+TEST(Batch, AFailedFrameDoesNotStopTheFramesAfterIt) {
+    fs::path dir = test::scratchDir();
+    std::string job = test::writeTurntableJob(dir / "job.json", "out/{frame}",
+                                              test::cs184("sky/CBspheres_lambertian.dae"),
+                                              {"-r", 8, 6, "-s", 1}, 4);
+    fs::create_directories(dir / "out/1.exr");
+    farm::CommandResult r = test::kiln({"batch", job, "-q", "--json"});
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    auto json = nlohmann::json::parse(r.output.substr(r.output.find("{\n")));
+    EXPECT_EQ(json["counts"]["rendered"], 3);
+    EXPECT_EQ(json["counts"]["failed"], 1);
+    EXPECT_EQ(json["renders"][1]["outcome"], "failed");
+    for (const char* done : {"out/0.done", "out/2.done", "out/3.done"})
+        EXPECT_TRUE(fs::exists(dir / done)) << done;
+    EXPECT_FALSE(fs::exists(dir / "out/1.done"));
+}
+
+// kiln render-frames reloads when the load options change (--env-strength here) and reuses the
+// scene when only the camera or the render options do.
+TEST(RenderFrames, ReloadsOnlyForOtherLoadOptions) {
+    fs::path dir = test::scratchDir();
+    const std::string scene = test::cs184("sky/CBspheres_lambertian.dae");
+    auto frame = [&](const std::string& name, std::vector<std::string> extra) {
+        std::vector<std::string> args{
+            scene, "-r", "8", "6", "-s", "1", "-q", "-o", (dir / name).string()};
+        args.insert(args.end(), extra.begin(), extra.end());
+        return args;
+    };
+    std::vector<std::string> args{"render-frames"};
+    for (const auto& f :
+         {frame("a", {}), frame("b", {"--fov", "40", "-s", "2"}),
+          frame("c", {"--emitters", "camera"}), frame("d", {"--emitters", "camera"})}) {
+        if (args.size() > 1) args.push_back("--then");
+        args.insert(args.end(), f.begin(), f.end());
+    }
+    farm::CommandResult r = test::kiln(args);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("this process: 4 renders, 2 scene loads, 2 accelerator builds"),
+              std::string::npos)
+        << r.output;
+    for (const char* name : {"a.done", "b.done", "c.done", "d.done"})
+        EXPECT_TRUE(fs::exists(dir / name)) << name;
+    // Without -o there is no marker to write: refused before anything renders.
+    farm::CommandResult bad = test::kiln({"render-frames", scene, "-r", "8", "6", "-q"});
+    EXPECT_EQ(bad.exitCode, 2) << bad.output;
+    EXPECT_NE(bad.output.find("needs -o"), std::string::npos) << bad.output;
 }
 
 }  // namespace

@@ -52,6 +52,15 @@ TEST(FarmPlan, RegionSplitsIntoStripesAndFramesIntoRuns) {
               7u);
     EXPECT_TRUE(byFrames.merges.empty());
     EXPECT_EQ(farm::planFarmJob(frames, farm::ShardBy::Frames, 50, "/j").shards.size(), 7u);
+    // Chunks of a fixed size, the last one shorter (--frames-per-task).
+    std::vector<farm::RenderTask> ten(10, kTask);
+    for (size_t i = 0; i < ten.size(); ++i) ten[i].output += std::to_string(i);
+    farm::FarmJob chunked = farm::planFarmJob(ten, farm::ShardBy::Frames, 1, "/j", 4);
+    ASSERT_EQ(chunked.shards.size(), 3u);
+    EXPECT_EQ(chunked.shards[0].tasks.size(), 4u);
+    EXPECT_EQ(chunked.shards[1].tasks.size(), 4u);
+    EXPECT_EQ(chunked.shards[1].tasks[0].output, "/o/final4");
+    EXPECT_EQ(chunked.shards[2].tasks.size(), 2u);
     EXPECT_THROW(farm::parseShardBy("tiles"), farm::FarmInputError);
 }
 
@@ -121,7 +130,9 @@ TEST(FarmSubmit, RefusesBadInputBeforeSubmitting) {
         {{scene, "-r", "16", "12", "--bogus", "--shards", "2"}, "--bogus"},
         {{scene, "--shards", "2", "--by", "tiles"}, "--by takes"},
         {{scene, "-s", "2", "--shards", "4", "--by", "samples"}, "cannot make 4 sample shards"},
-        {{(dir / "missing.obj").string(), "--shards", "2"}, "does not exist"}};
+        {{(dir / "missing.obj").string(), "--shards", "2"}, "does not exist"},
+        {{scene, "--frames-per-task", "2", "--by", "samples"}, "--frames-per-task splits"},
+        {{scene, "--frames-per-task", "0"}, "--frames-per-task"}};
     for (const auto& [args, message] : bad) {
         std::vector<std::string> all{"farm", "submit"};
         all.insert(all.end(), args.begin(), args.end());
@@ -272,12 +283,8 @@ TEST_F(FarmCluster, RequeuedShardResumesFromItsCheckpoint) {
 // the same file again submits nothing.
 TEST_F(FarmCluster, TurntableOfEightFramesRunsAsAnArrayOnce) {
     fs::path dir = test::scratchDir();
-    std::string file = test::writeFile(dir / "turntable.json", R"({
-      "output": "frames/{scene}_{frame:02}",
-      "scenes": [")" + scene() + R"("],
-      "args": ["-r", 16, 12, "-s", 1, "-t", 1],
-      "cameras": [{"name": "orbit", "turntable": 8}]
-    })");
+    std::string file = test::writeTurntableJob(dir / "turntable.json", "frames/{scene}_{frame:02}",
+                                               scene(), {"-r", 16, 12, "-s", 1, "-t", 1}, 8);
     std::vector<std::string> args{
         file, "--shards", "8", "--by", "frames", "-d", (dir / "job").string()};
     farm::CommandResult r = submit(args);
@@ -293,6 +300,30 @@ TEST_F(FarmCluster, TurntableOfEightFramesRunsAsAnArrayOnce) {
     EXPECT_EQ(again.exitCode, 0) << again.output;
     EXPECT_NE(again.output.find("nothing submitted"), std::string::npos) << again.output;
     EXPECT_EQ(farm::readManifest((dir / "job").string()).submissions.size(), 1u);
+}
+
+// Issue #28: --frames-per-task 4 makes an 8-frame turntable two array tasks, each of which loads
+// the scene once for its four frames (the shard log says so); the frames equal one-frame renders.
+TEST_F(FarmCluster, FramesPerTaskLoadsTheSceneOncePerTask) {
+    fs::path dir = test::scratchDir();
+    std::string file = test::writeTurntableJob(dir / "turntable.json", "frames/{frame}", scene(),
+                                               {"-r", 16, 12, "-s", 1, "-t", 1}, 8);
+    std::string jobDir = (dir / "job").string();
+    farm::CommandResult r = submit({file, "--frames-per-task", "4", "-d", jobDir});
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    farm::FarmJob job = farm::readManifest(jobDir);
+    ASSERT_EQ(job.shards.size(), 2u);
+    farm::FarmStatus s = waitFor(jobDir, finished);
+    ASSERT_EQ(s.count(ShardState::Done), 2u);
+    for (int shard = 0; shard < 2; ++shard) {
+        std::string log = farm::readFileText(farm::shardLogPath(job, shard));
+        EXPECT_NE(log.find("this process: 4 renders, 1 scene loads, 1 accelerator builds"),
+                  std::string::npos)
+            << log;
+    }
+    std::string reference =
+        referenceRender(dir, {"-r", "16", "12", "-s", "1", "--turntable", "8", "--frame", "5"});
+    EXPECT_EQ(test::exrDifference((dir / "frames/5.exr").string(), reference), "");
 }
 
 // A shard whose scene cannot be read fails; farm status shows it failed with its log line, and

@@ -2,24 +2,31 @@
 """Equal-error peer benchmark: time for kiln and for Blender's Cycles to reach the same relative MSE on
 the same scene, each against its own converged reference (a benchmark, not a test).
 
-  tools/peer_bench.py [--scene lucy_env|box_bunny|box_metal] [--spp 16,32,64,128,256] [--ref-spp 2048]
-                      [--repeats 3] [--threads 2] [--resolution W H] [--out out/peer]
-                      [--samplers independent,sobol] [--variant LABEL=ARGS[@P1,...]]... [--check]
+  tools/peer_bench.py [--scene NAME] [--spp 16,64,256] [--ref-spp 1024] [--repeats 2] [--threads 2]
+                      [--resolution W H] [--out out/peer] [--samplers sobol]
+                      [--variant LABEL=ARGS[@P1,...]]... [--check] [--write-scenes DIR]
 
 Scenes: lucy_env (an environment-lit mesh), box_bunny (a closed box lit by an emissive ceiling quad, a
-diffuse bunny inside), box_metal (the same box, the bunny in rough chrome). Before timing, the two
-converged references are put side by side (OUT/SCENE.refs.png) and their mean RGB printed: the scenes
-are identical when those agree (--check stops there).
+diffuse bunny inside), box_metal (the same box, the bunny in rough chrome), glossy_env (a GGX conductor
+bunny on a diffuse floor under the environment), room_uplight (a closed room lit only by an uplighter
+facing the ceiling, a diffuse bunny on its floor). Before timing, the two converged references are put
+side by side (OUT/SCENE.refs.png) and their mean RGB printed: the scenes are identical when those agree
+(--check stops there). --write-scenes DIR writes every scene's .kiln (and quads .dae) there and stops
+(scenes/peer holds them).
 
 A --variant is another kiln series (e.g. "l4=-l 4", or "noise=-s 1024 --noise-threshold {p}@0.2,0.1,0.05":
 one point per spp step), its error measured against the first sampler's reference (every variant
 converges to the same image). For every spp the renderers run interleaved (kiln per sampler and
-variant, then Cycles), --repeats times; times are
-medians. Error: `kiln bench compare TEST REF --keep-reference-noise` (luminance relMSE, the same formula
-for both renderers, neither reference's noise subtracted). Time: kiln's build + render (the EXR write
-and the file load excluded), Cycles' render call (scene sync, BVH build and sampling). The error levels
-are Cycles' errors at the middle and the largest spp of the sweep; each renderer's time to reach a level
-is interpolated log-log along its own series. Prints a table and writes OUT/SCENE.md and OUT/SCENE.csv.
+variant, then Cycles), --repeats times; times are medians, and the load average is printed at every
+step. Error: `kiln bench compare TEST REF --keep-reference-noise` (luminance relMSE, the same formula
+for both renderers, neither reference's noise subtracted). Time is sampling time only on both sides:
+kiln's `render` figure (the tile loop, with guide training where the plan guides) and Cycles' own
+"Rendered N samples in S seconds" (Blender's --debug-cycles report; N is checked). Scene set-up is
+reported beside it: kiln's load + build, Cycles' OBJ import and scene build in Python plus its render
+call less the sampling (sync, BVH build, the EXR write). Bounces match: kiln -m N is Cycles
+max_bounces N - 1. The error levels are Cycles' errors at the middle and the largest spp of the sweep;
+each renderer's time to reach a level is interpolated log-log along its own series. Prints a table and
+writes OUT/SCENE.md and OUT/SCENE.csv.
 """
 import argparse
 import csv
@@ -36,7 +43,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SHARED = os.path.normpath(os.path.join(ROOT, "..", "shared"))
 sys.dont_write_bytecode = True  # no __pycache__ in the checkout
 sys.path.insert(0, os.path.join(ROOT, "tools", "peer"))
-from box import box_quads, write_dae  # noqa: E402
+from box import box_quads, floor_quad, room_quads, write_dae  # noqa: E402
 
 sys.path.insert(0, os.path.join(ROOT, "tools"))
 from bench_common import parse_variant, time_at  # noqa: E402
@@ -66,6 +73,7 @@ def fit_matrix(path, center, size):
 # conductor; Cycles: Glossy BSDF, Beckmann, roughness sqrt(alpha), colour 1, which equals kiln's only when
 # its Fresnel is 1 at every angle: eta 0 makes it exactly 1 for any k).
 CHROME = {"alpha": 0.15, "eta": [0.0, 0.0, 0.0], "k": [1.0, 1.0, 1.0]}
+GLOSSY = {"alpha": 0.1, "eta": [0.0, 0.0, 0.0], "k": [1.0, 1.0, 1.0]}  # with "microfacet": "ggx"
 
 # The closed box (tools/peer/box.py): 2 wide, 2 high, 3.2 deep, the camera inside near the front wall.
 BOX = {"lo": [-1.0, 0.0, -1.0], "hi": [1.0, 2.0, 2.2], "light_half": 0.3, "radiance": [12.0, 12.0, 12.0]}
@@ -78,21 +86,60 @@ SCENES = {
                     "fit": ([0, 0, 0], 1.0)}],
         "camera": {"position": [0.0, 0.55, 1.9], "look_at": [0.0, 0.5, 0.0], "up": [0, 1, 0],
                    "fov": 36.0},
-        "environment": "envmaps/courtyard.exr", "resolution": [320, 240], "max_depth": 5,
+        "environment": "envmaps/courtyard.exr", "resolution": [300, 400], "max_depth": 5,
     },
     # A closed box lit only by an emissive quad in its ceiling, a diffuse bunny inside.
     "box_bunny": {
-        "box": BOX, "camera": BOX_CAMERA, "resolution": [320, 240], "max_depth": 5,
+        "box": BOX, "camera": BOX_CAMERA, "resolution": [400, 300], "max_depth": 5,
         "meshes": [{"mesh": "meshes/stanford-bunny.obj", "material": {"albedo": [0.73, 0.73, 0.73]},
                     "fit": ([0.0, 0.0, -0.1], 1.0)}],
     },
     # Glossy metal: the same box, the bunny in rough chrome (Beckmann alpha 0.15, Fresnel 1).
     "box_metal": {
-        "box": BOX, "camera": BOX_CAMERA, "resolution": [320, 240], "max_depth": 5,
+        "box": BOX, "camera": BOX_CAMERA, "resolution": [400, 300], "max_depth": 5,
         "meshes": [{"mesh": "meshes/stanford-bunny.obj", "material": CHROME,
                     "fit": ([0.0, 0.0, -0.1], 1.2)}],
     },
+    # A glossy GGX conductor (alpha 0.1, Fresnel 1) on a diffuse floor, lit only by the courtyard map.
+    "glossy_env": {
+        "floor": (3.0, [0.5, 0.5, 0.5]), "microfacet": "ggx",
+        "meshes": [{"mesh": "meshes/stanford-bunny.obj", "material": GLOSSY,
+                    "fit": ([0.0, 0.0, 0.0], 1.0)}],
+        "camera": {"position": [0.0, 0.7, 2.3], "look_at": [0.0, 0.4, 0.0], "up": [0, 1, 0],
+                   "fov": 32.0},
+        "environment": "envmaps/courtyard.exr", "resolution": [400, 300], "max_depth": 5,
+    },
+    # An indirect-lit interior: a closed room lit only by an uplighter (an emitting pedestal top facing
+    # the ceiling, in the back left corner), a diffuse bunny on the floor.
+    "room_uplight": {
+        "room": {"lo": [-1.5, 0.0, -1.5], "hi": [1.5, 2.4, 2.0], "pedestal_xz": [-1.0, -1.0],
+                 "half": 0.15, "height": 0.9, "radiance": [40.0, 36.0, 30.0]},
+        "meshes": [{"mesh": "meshes/stanford-bunny.obj", "material": {"albedo": [0.73, 0.73, 0.73]},
+                    "fit": ([0.2, 0.0, -0.3], 0.9)}],
+        "camera": {"position": [0.0, 1.3, 1.9], "look_at": [-0.1, 0.8, 0.0], "up": [0, 1, 0],
+                   "fov": 55.0},
+        "resolution": [400, 300], "max_depth": 6,
+    },
 }
+
+
+def scene_quads(s):
+    """The scene's quads (name, material, corners): the box, the room or the floor it has, if any."""
+    if "box" in s:
+        b = s["box"]
+        return box_quads(b["lo"], b["hi"], b["light_half"], b["radiance"])
+    if "room" in s:
+        r = s["room"]
+        return room_quads(r["lo"], r["hi"], r["pedestal_xz"], r["half"], r["height"], r["radiance"])
+    if "floor" in s:
+        return floor_quad(*s["floor"])
+    return []
+
+
+def kiln_options(s):
+    """kiln render options the scene needs besides its file (the environment, the microfacet model)."""
+    env = ["--env", os.path.join(SHARED, s["environment"])] if s.get("environment") else []
+    return env + (["--microfacet", s["microfacet"]] if s.get("microfacet") else [])
 
 
 def kiln_material(name, m):
@@ -103,7 +150,8 @@ def kiln_material(name, m):
 
 
 def describe(name, out, resolution=None):
-    """The scene as kiln reads it (.kiln [+ box .dae] + --env) and as the Cycles script reads it (JSON)."""
+    """The scene as kiln reads it (.kiln [+ quads .dae] + kiln_options) and as the Cycles script reads
+    it (JSON). The .kiln names its files relative to its own folder."""
     s = dict(SCENES[name])
     if resolution:
         s["resolution"] = resolution
@@ -111,20 +159,21 @@ def describe(name, out, resolution=None):
     desc = {"meshes": [], "camera": cam, "resolution": s["resolution"],
             # kiln's -m counts path vertices after the camera (1 = direct light); Cycles' bounces
             # count indirect bounces (0 = direct light).
-            "max_bounces": s["max_depth"] - 1}
-    lines = ["<kiln-scene>"]
-    if "box" in s:
-        b = s["box"]
-        quads = box_quads(b["lo"], b["hi"], b["light_half"], b["radiance"])
-        write_dae(os.path.join(out, name + ".box.dae"), quads)
-        lines.append('  <include file="%s.box.dae"/>' % name)
+            "max_bounces": s["max_depth"] - 1, "microfacet": s.get("microfacet", "beckmann")}
+    opts = " ".join(os.path.relpath(o, out) if o.startswith(SHARED) else o for o in kiln_options(s))
+    lines = ["<kiln-scene>", "  <!-- %s: kiln render %s.kiln %s-m %d -->"
+             % (name, name, opts + " " if opts else "", s["max_depth"])]
+    quads = scene_quads(s)
+    if quads:
+        write_dae(os.path.join(out, name + ".quads.dae"), quads)
+        lines.append('  <include file="%s.quads.dae"/>' % name)
         desc["quads"] = [{"name": n, "material": m, "corners": c} for n, m, c in quads]
     for i, m in enumerate(s["meshes"]):
         mesh = os.path.join(SHARED, m["mesh"])
         matrix = fit_matrix(mesh, *m["fit"])
         lines.append("  " + kiln_material("m%d" % i, m["material"]))
         lines.append('  <mesh file="%s" material="m%d"><matrix values="%s"/></mesh>'
-                     % (mesh, i, " ".join("%.9g" % v for v in matrix)))
+                     % (os.path.relpath(mesh, out), i, " ".join("%.9g" % v for v in matrix)))
         desc["meshes"].append({"file": mesh, "matrix": matrix, "material": m["material"]})
     lines.append('  <camera position="%s" look-at="%s" up="%s" fov="%g"/>\n</kiln-scene>\n'
                  % (" ".join(map(str, cam["position"])), " ".join(map(str, cam["look_at"])),
@@ -140,27 +189,41 @@ def describe(name, out, resolution=None):
     return kiln_path, json_path, s
 
 
-def run_kiln(kiln, scene_path, s, args, threads, out_base):
-    """One kiln render of the scene with ARGS (a list: sampler, spp, a variant's options)."""
+def run_kiln(kiln, scene_path, s, args, threads, out_base, nice=False):
+    """One kiln render of the scene with ARGS (a list: sampler, spp, a variant's options):
+    (sampling seconds, set-up seconds, EXR)."""
     w, h = s["resolution"]
-    env = ["--env", os.path.join(SHARED, s["environment"])] if s.get("environment") else []
-    cmd = [kiln, "render", scene_path] + env + [
+    cmd = (["nice", "-n", "10"] if nice else []) + [kiln, "render", scene_path] + kiln_options(s) + [
         "-r", str(w), str(h), "-m", str(s["max_depth"]), "-t", str(threads),
         "--aov", "none", "-q", "-o", out_base] + args
     err = subprocess.run(cmd, capture_output=True, text=True, check=True).stderr
-    m = re.search(r"build ([0-9.]+)s, render ([0-9.]+)s", err)
-    return float(m.group(1)) + float(m.group(2)), out_base + ".exr"
+    m = re.search(r"time load ([0-9.]+)s, build ([0-9.]+)s, render ([0-9.]+)s", err)
+    return float(m.group(3)), float(m.group(1)) + float(m.group(2)), out_base + ".exr"
 
 
-def run_cycles(blender, json_path, spp, threads, out_path, seed=7):
+def run_cycles(blender, json_path, spp, threads, out_path, seed=7, nice=False):
+    """One Cycles render: (sampling seconds, set-up seconds, EXR). Sampling: Cycles' own "Rendered N
+    samples in S seconds" (--debug-cycles); set-up: the scene built in Python and the render call
+    less the sampling."""
     script = os.path.join(ROOT, "tools", "peer", "cycles_scene.py")
-    cmd = [blender, "-b", "--factory-startup", "--python", script, "--",
-           json_path, str(spp), str(threads), out_path, str(seed)]
+    cmd = (["nice", "-n", "10"] if nice else []) + [
+        blender, "-b", "--factory-startup", "--debug-cycles", "--python", script, "--",
+        json_path, str(spp), str(threads), out_path, str(seed)]
     res = subprocess.run(cmd, capture_output=True, text=True)
-    m = re.search(r"kiln-peer: render_seconds ([0-9.]+)", res.stdout)
-    if res.returncode != 0 or not m:
+    call = re.search(r"kiln-peer: render_seconds ([0-9.]+)", res.stdout)
+    scene = re.search(r"kiln-peer: scene_seconds ([0-9.]+)", res.stdout)
+    sampled = re.findall(r"^Rendered (\d+) samples in ([0-9.]+) seconds", res.stdout + res.stderr,
+                         re.M)
+    if res.returncode != 0 or not call or not scene or not sampled:
         sys.exit("Cycles failed:\n" + res.stdout[-3000:] + res.stderr[-3000:])
-    return float(m.group(1)), out_path
+    n, seconds = int(sampled[-1][0]), float(sampled[-1][1])
+    if n != spp:
+        sys.exit("Cycles rendered %d samples, not %d" % (n, spp))
+    return seconds, float(scene.group(1)) + float(call.group(1)) - seconds, out_path
+
+
+def load_average():
+    return " ".join("%.1f" % v for v in os.getloadavg())
 
 
 def rel_mse(kiln, test, ref):
@@ -196,12 +259,12 @@ REF_SEED = 1007  # test renders use each renderer's default seed (kiln 0, Cycles
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     ap.add_argument("--scene", default="lucy_env", choices=sorted(SCENES))
-    ap.add_argument("--spp", default="16,32,64,128,256")
-    ap.add_argument("--ref-spp", type=int, default=2048)
-    ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--spp", default="16,64,256")
+    ap.add_argument("--ref-spp", type=int, default=1024)
+    ap.add_argument("--repeats", type=int, default=2)
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--resolution", type=int, nargs=2, help="override the scene's image size")
-    ap.add_argument("--samplers", default="independent,sobol")
+    ap.add_argument("--samplers", default="sobol")
     ap.add_argument("--variant", action="append", default=[],
                     help="a kiln variant, LABEL=ARGS[@P1,P2,...] as in tools/estimator_bench.py: one\n"
                          "point per --spp step ({p} in ARGS; default the step's spp); its error is\n"
@@ -211,7 +274,16 @@ def main():
     ap.add_argument("--blender", default="blender")
     ap.add_argument("--check", action="store_true",
                     help="only make the references and compare them (side by side, mean RGB)")
+    ap.add_argument("--write-scenes", metavar="DIR",
+                    help="write every scene's .kiln and quads .dae into DIR and stop")
     a = ap.parse_args()
+    if a.repeats < 2:
+        sys.exit("--repeats: at least 2 (medians of interleaved pairs)")
+    if a.write_scenes:
+        os.makedirs(a.write_scenes, exist_ok=True)
+        for name in sorted(SCENES):
+            os.remove(describe(name, a.write_scenes)[1])  # the Cycles JSON names absolute paths
+        return
     os.makedirs(a.out, exist_ok=True)
     spps = [int(v) for v in a.spp.split(",")]
     samplers = a.samplers.split(",")
@@ -222,18 +294,21 @@ def main():
     # References use their own seed: a render sharing its first samples with its reference (both
     # renderers index samples the same way whatever the count) would understate its error.
     ref_tag = ".ref%d.%dx%d.seed%d" % (a.ref_spp, *s["resolution"], REF_SEED)
+    # (references render niced: their time is not measured)
     refs = {}
     for sampler in samplers:
         ref = base + ref_tag + ".kiln." + sampler
         if not os.path.exists(ref + ".exr"):
             run_kiln(a.kiln, kiln_scene, s,
                      ["--sampler", sampler, "-s", str(a.ref_spp), "--seed", str(REF_SEED)], a.threads,
-                     ref)
+                     ref, nice=True)
         refs["kiln " + sampler] = ref + ".exr"
     refs["cycles"] = base + ref_tag + ".cycles.exr"
     if not os.path.exists(refs["cycles"]):
-        run_cycles(a.blender, json_path, a.ref_spp, a.threads, refs["cycles"], REF_SEED)
+        run_cycles(a.blender, json_path, a.ref_spp, a.threads, refs["cycles"], REF_SEED, nice=True)
     means = check_references(refs, base)
+    loads = ["load average %s at the start" % load_average()]
+    print(loads[-1], flush=True)
     if a.check:
         return
 
@@ -245,41 +320,66 @@ def main():
         if len(points) != len(spps):
             sys.exit("variant %s: %d points for %d spp steps" % (label, len(points), len(spps)))
         series.append(("kiln " + label, args, points, refs["kiln " + samplers[0]]))
-    rows = []  # (renderer, spp step, median seconds, relMSE)
+    rows = []  # (renderer, spp step, median sampling seconds, relMSE, median set-up seconds)
     for step, spp in enumerate(spps):
         times = {label: [] for label, *_ in series}
         times["cycles"] = []
+        setups = {k: [] for k in times}
         images = {}
         for _ in range(a.repeats):  # interleaved: A B C, A B C, ...
             for n, (label, args, points, _) in enumerate(series):
-                t, img = run_kiln(a.kiln, kiln_scene, s,
-                                  shlex.split(args.replace("{p}", points[step])), a.threads,
-                                  "%s.kiln.v%d.%d" % (base, n, spp))
+                t, setup, img = run_kiln(a.kiln, kiln_scene, s,
+                                         shlex.split(args.replace("{p}", points[step])), a.threads,
+                                         "%s.kiln.v%d.%d" % (base, n, spp))
                 times[label].append(t)
+                setups[label].append(setup)
                 images[label] = img
-            t, img = run_cycles(a.blender, json_path, spp, a.threads, "%s.cycles.%d.exr" % (base, spp))
+            t, setup, img = run_cycles(a.blender, json_path, spp, a.threads,
+                                       "%s.cycles.%d.exr" % (base, spp))
             times["cycles"].append(t)
+            setups["cycles"].append(setup)
             images["cycles"] = img
         for label, *_, ref in series + [("cycles", refs["cycles"])]:
             rows.append((label, spp, statistics.median(times[label]),
-                         rel_mse(a.kiln, images[label], ref)))
-            print("%-18s %5d spp %8.3f s  relMSE %.5g" % rows[-1], flush=True)
+                         rel_mse(a.kiln, images[label], ref), statistics.median(setups[label])))
+            print("%-18s %5d spp %8.3f s  relMSE %.5g  set-up %.3f s" % rows[-1], flush=True)
+        loads.append("load average %s after %d spp" % (load_average(), spp))
+        print(loads[-1], flush=True)
 
-    cycles = [(t, e) for k, _, t, e in rows if k == "cycles"]
-    levels = [e for k, spp, t, e in rows if k == "cycles" and spp in (spps[len(spps) // 2], spps[-1])]
-    lines = ["| error level (Cycles at) | renderer | time to reach | / Cycles |", "|---|---|---:|---:|"]
-    for level, spp in zip(levels, (spps[len(spps) // 2], spps[-1])):
-        tc, _ = time_at(cycles, level)
-        for k in [label for label, *_ in series] + ["cycles"]:
-            tk, mark = time_at([(t, e) for kk, _, t, e in rows if kk == k], level)
-            lines.append("| %.4g (%d spp) | %s | %.3f s%s | %.2f |" % (level, spp, k, tk, mark, tk / tc))
-    table = "\n".join(lines)
+    table = summary_table(rows, [label for label, *_ in series], spps)
     print("\n" + table)
     with open(base + ".csv", "w", newline="") as f:
-        csv.writer(f).writerows([("renderer", "spp", "median_seconds", "relmse")] + rows)
+        csv.writer(f).writerows([("renderer", "spp", "median_sampling_seconds", "relmse",
+                                  "median_setup_seconds")] + rows)
     with open(base + ".md", "w") as f:
-        f.write("`tools/peer_bench.py %s`\n\n%s\n\n%s\n"
-                % (" ".join(sys.argv[1:]), table, "\n".join(means)))
+        f.write("`tools/peer_bench.py %s`\n\n%s\n\n%s\n\n%s\n"
+                % (" ".join(sys.argv[1:]), table, "\n".join(means), "; ".join(loads)))
+
+
+def summary_table(rows, kiln_labels, spps):
+    """Per error level (Cycles' at the middle and the largest spp), each renderer's sampling time to
+    reach it and its ratio to Cycles'; then each renderer's errors, sampling time per sample at the
+    largest spp (and its ratio to Cycles') and median set-up."""
+    cycles = [(t, e) for k, _, t, e, _ in rows if k == "cycles"]
+    marks = (spps[len(spps) // 2], spps[-1])
+    levels = [e for k, spp, t, e, _ in rows if k == "cycles" and spp in marks]
+    lines = ["| error level (Cycles at) | renderer | sampling time to reach | / Cycles |",
+             "|---|---|---:|---:|"]
+    for level, spp in zip(levels, marks):
+        tc, _ = time_at(cycles, level)
+        for k in kiln_labels + ["cycles"]:
+            tk, mark = time_at([(t, e) for kk, _, t, e, _ in rows if kk == k], level)
+            lines.append("| %.4g (%d spp) | %s | %.3f s%s | %.2f |" % (level, spp, k, tk, mark, tk / tc))
+    per_sample = {k: t / spp for k, spp, t, _, _ in rows if spp == spps[-1]}
+    lines += ["", "| renderer | relMSE at %s spp | sampling s at %s spp | per sample / Cycles' (%d spp) "
+              "| set-up s (median) |" % ("/".join(map(str, spps)), "/".join(map(str, spps)), spps[-1]),
+              "|---|---|---|---:|---:|"]
+    for k in kiln_labels + ["cycles"]:
+        mine = [r for r in rows if r[0] == k]
+        lines.append("| %s | %s | %s | %.2f | %.3f |" % (
+            k, " / ".join("%.3g" % r[3] for r in mine), " / ".join("%.3f" % r[2] for r in mine),
+            per_sample[k] / per_sample["cycles"], statistics.median(r[4] for r in mine)))
+    return "\n".join(lines)
 
 
 if __name__ == "__main__":

@@ -49,6 +49,8 @@ struct EmbreeOptions {
     // (docs/robustness.md).
     bool watertight = false;
     int threads = 0;  // 0 = all
+
+    bool operator==(const EmbreeOptions&) const = default;
 };
 
 enum class BvhSplit { Sah, MeanCentroid, Midpoint };
@@ -76,6 +78,8 @@ struct EnumNames<BvhSplit> {
 struct ReferenceBvhOptions {
     BvhSplit split = BvhSplit::Sah;
     int maxLeafSize = 4;
+
+    bool operator==(const ReferenceBvhOptions&) const = default;
 };
 
 std::unique_ptr<Accelerator> makeEmbreeAccelerator(const Scene& scene,

@@ -3,12 +3,23 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstdio>
 #include <thread>
 
 #include "renderer/accel/brute_force.h"
 
 namespace kiln {
+namespace {
+
+std::atomic<uint64_t>& buildCounter() {
+    static std::atomic<uint64_t> count{0};
+    return count;
+}
+
+}  // namespace
+
+uint64_t acceleratorBuildCount() { return buildCounter().load(); }
 
 void AcceleratorChoice::addOptions(ArgParser& parser, bool withKind) {
     OptionGroup group(parser, "Accelerator");
@@ -46,6 +57,7 @@ double bruteForceSeconds(const Scene& scene, const RenderJobOptions& render) {
 
 std::unique_ptr<Accelerator> AcceleratorChoice::build(const Scene& scene,
                                                       const RenderJobOptions* render) const {
+    ++buildCounter();
     if (kind == AcceleratorKind::BruteForce) {
         double estimate = render ? bruteForceSeconds(scene, *render) : 0;
         if (estimate > kBruteForceLimitSeconds)

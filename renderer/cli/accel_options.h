@@ -28,6 +28,12 @@ struct AcceleratorChoice {
     // kBruteForceLimitSeconds is refused (UsageError naming the estimate) before any work.
     std::unique_ptr<Accelerator> build(const Scene& scene,
                                        const RenderJobOptions* render = nullptr) const;
+
+    bool operator==(const AcceleratorChoice&) const = default;
 };
+
+// How many accelerators AcceleratorChoice::build has built in this process (kiln render-frames
+// reports it beside sceneLoadCount()).
+uint64_t acceleratorBuildCount();
 
 }  // namespace kiln

@@ -29,13 +29,14 @@ void farmNote(fmt::format_string<Args...> format, Args&&... args) {
 
 constexpr const char* kFarmUsage =
     "usage: kiln farm submit FILE.json|SCENE [render options] --shards N [--by "
-    "samples|region|frames] [-d DIR] [-o OUT] [--partition P] [--time T] [--mem M]\n"
+    "samples|region|frames] [--frames-per-task K] [-d DIR] [-o OUT] [--partition P] [--time T] "
+    "[--mem M]\n"
     "       kiln farm status DIR | merge DIR | resubmit DIR\n";
 
 struct SubmitArgs {
     std::string input, dir, output;
     farm::ShardBy by = farm::ShardBy::Frames;
-    int shards = 1, checkpointSeconds = 60;
+    int shards = 1, checkpointSeconds = 60, framesPerTask = 0;
     bool keepCheckpoints = false;
     std::vector<std::string> renderArgs, sbatch;
 };
@@ -45,6 +46,10 @@ ArgParser submitParser(SubmitArgs& a) {
     ArgParser p("farm submit", "FILE.json|SCENE [render options] --shards N [options]");
     p.intOption("shards", "n", "array tasks to split the work into", a.shards, 1, 100000);
     p.enumOption("by", "how to split (default frames)", a.by);
+    p.intOption("frames-per-task", "",
+                "by frames: K frames to each array task instead of --shards (one scene load "
+                "per task)",
+                a.framesPerTask, 1, 1 << 20);
     p.option("dir", "d", 1, "DIR", "job directory (default: FILE or SCENE name + .farm)",
              [&a](const auto& v) { a.dir = v[0]; });
     p.option("output", "o", 1, "OUT", "SCENE form: output base (default DIR/SCENE name)",
@@ -75,6 +80,7 @@ SubmitArgs parseSubmit(const std::vector<std::string>& args) {
     const std::vector<std::pair<std::string, int>> own{{"--shards", 1},
                                                        {"-n", 1},
                                                        {"--by", 1},
+                                                       {"--frames-per-task", 1},
                                                        {"--dir", 1},
                                                        {"-d", 1},
                                                        {"--output", 1},
@@ -96,6 +102,10 @@ SubmitArgs parseSubmit(const std::vector<std::string>& args) {
         i += size_t(n);
     }
     parser.parse(farmArgs);
+    if (a.framesPerTask > 0 && (a.by != farm::ShardBy::Frames || a.shards != 1))
+        throw UsageError(
+            "--frames-per-task splits by frames and sets the task count: not with "
+            "--by samples|region or --shards");
     return a;
 }
 
@@ -150,7 +160,8 @@ std::vector<int> allShards(const farm::FarmJob& job) {
 int submitCommand(const std::vector<std::string>& args) {
     SubmitArgs a = parseSubmit(args);
     std::string dir = a.dir.empty() ? fs::path(a.input).stem().string() + ".farm" : a.dir;
-    farm::FarmJob job = farm::planFarmJob(submitTasks(a, dir), a.by, a.shards, dir);
+    farm::FarmJob job =
+        farm::planFarmJob(submitTasks(a, dir), a.by, a.shards, dir, a.framesPerTask);
     job.kiln = farm::kilnExecutable();
     job.checkpointSeconds = a.checkpointSeconds;
     job.keepCheckpoints = a.keepCheckpoints;

@@ -17,6 +17,7 @@
 #include "renderer/core/json.h"
 #include "renderer/core/log.h"
 #include "renderer/core/memory.h"
+#include "renderer/farm/render_task.h"
 #include "renderer/frame_probe.h"
 #include "renderer/long_render.h"
 #include "renderer/progress.h"
@@ -64,6 +65,11 @@ struct RenderTimes {
     double load = 0, build = 0, write = 0;
 };
 
+int& rendersInProcess() {
+    static int renders = 0;
+    return renders;
+}
+
 void printJsonResult(const RenderCommand& c, const Scene& scene, const OutputPaths& out,
                      const std::string& heat, const RenderStats& stats, const Film& film,
                      const RenderTimes& times) {
@@ -91,6 +97,10 @@ void printJsonResult(const RenderCommand& c, const Scene& scene, const OutputPat
         {"nonfinite_samples", stats.nonFiniteSamples},
         {"peak_memory_bytes", uint64_t(usage.ru_maxrss) * 1024},
         {"interrupted", stats.interrupted},
+        {"process",  // more than one render when kiln render-frames ran it
+         {{"renders", rendersInProcess()},
+          {"scene_loads", sceneLoadCount()},
+          {"accelerator_builds", acceleratorBuildCount()}}},
         {"ocio_config", c.colourConfig},
         {"display", c.display},
         {"view", c.view},
@@ -247,7 +257,7 @@ int writeCheckpointAfterImages(RenderCommand& c, const LongRenderOptions& lo, Lo
     return 0;
 }
 
-int renderLong(RenderCommand& c, const RenderJob& job, const std::unique_ptr<Accelerator>& accel,
+int renderLong(RenderCommand& c, const RenderJob& job, const Accelerator& accel,
                const std::string& scenePath, const OutputPaths& out, double loadTime,
                double buildTime) {
     LongRenderOptions lo;
@@ -291,7 +301,7 @@ int renderLong(RenderCommand& c, const RenderJob& job, const std::unique_ptr<Acc
                 lo.checkpointPath.empty() ? "" : out.checkpoint + " and ");
         return r.stats.interrupted ? kExitInterrupted : kExitTimeLimit;
     }
-    if (c.traversalFloor) printTraversalFloor(*accel, job, r.stats);
+    if (c.traversalFloor) printTraversalFloor(accel, job, r.stats);
     return 0;
 }
 
@@ -312,6 +322,100 @@ RenderJobOptions checkedJobOptions(const RenderCommand& c) {
         throw UsageError("--pixel and --sample go together");
     return jobOptions;
 }
+
+// The scene and accelerator of the last render of this process, kept for the next render that
+// loads the same file with the same load and accelerator options (kiln render-frames): only its
+// camera differs, which each render sets afresh from the camera as loaded.
+struct LoadedScene {
+    std::string path;
+    LoadOptions load;
+    AcceleratorChoice choice;
+    std::unique_ptr<Scene> scene;
+    Camera camera;  // as loaded, before any render's camera options
+    std::unique_ptr<Accelerator> accel;
+
+    // Brute force is built for each render: its refusal depends on the render's size and samples.
+    bool holds(const std::string& scenePath, const RenderCommand& c) const {
+        return accel && scenePath == path && c.load == load && c.accel == choice &&
+               choice.kind != AcceleratorKind::BruteForce;
+    }
+    void clear() {  // the accelerator before the scene it points into
+        accel.reset();
+        scene.reset();
+    }
+};
+
+// kiln render's steps for one command line (SCENE and options): the checks, the scene and its
+// accelerator (those `loaded` holds when it holds them for this render), the render and its
+// outputs. With `output` (kiln render-frames) the command must name its output base with -o, which
+// `output` receives.
+int renderFrame(const std::vector<std::string>& args, LoadedScene& loaded,
+                std::string* output = nullptr) {
+    RenderCommand c;
+    ArgParser parser("render", "SCENE [options]   (writes OUT.exr and OUT.png)");
+    addRenderOptions(parser, c);
+    std::vector<std::string> pos = parser.parse(args);
+    if (parser.helpRequested()) {
+        if (output) throw UsageError("--help is not a render option");
+        std::fputs(parser.helpText().c_str(), stdout);
+        std::fputs(kExitCodes, stdout);
+        return 0;
+    }
+    checkOneScene(pos);
+    if (output && (*output = c.output).empty())
+        throw UsageError("every render of kiln render-frames needs -o OUT (it writes OUT.done)");
+    const std::string& scenePath = pos[0];
+    RenderJobOptions jobOptions = checkedJobOptions(c);
+    applyQueueOptions(c, jobOptions);
+    checkColour(c);
+    OutputPaths out = outputPaths(c, scenePath);
+    checkOutputWritable(out);
+    checkOutputsFit(c, jobOptions, out);
+
+    const bool reused = loaded.holds(scenePath, c);
+    double loadTime = 0, buildTime = 0;
+    if (!reused) {
+        loaded.clear();
+        auto t0 = std::chrono::steady_clock::now();
+        loaded.scene = std::make_unique<Scene>(loadScene(scenePath, c.load));
+        loadTime = seconds(t0);
+        loaded.path = scenePath, loaded.load = c.load, loaded.choice = c.accel;
+        loaded.camera = loaded.scene->camera;
+    }
+    Scene& scene = *loaded.scene;
+    scene.camera = loaded.camera;
+    applyCameraOptions(scene, c);
+    if (!reused) {
+        for (const std::string& w : scene.warnings) logWarning("{}: {}", scenePath, w);
+        auto t1 = std::chrono::steady_clock::now();
+        loaded.accel = c.accel.build(scene, &jobOptions);
+        buildTime = seconds(t1);
+    }
+    if (++rendersInProcess() > 1)
+        logInfo("this process: {} renders, {} scene loads, {} accelerator builds{}",
+                rendersInProcess(), sceneLoadCount(), acceleratorBuildCount(),
+                reused ? " (this render reuses the scene and accelerator of the one before)" : "");
+    RenderJob job(scene, *loaded.accel, jobOptions);
+    warnHemisphereBlind(job, scenePath);
+    if (c.debugX >= 0 || c.debugSample >= 0) return printDebugSample(job, c);
+    // What the camera will see decides the black-image warning (a few thousand samples).
+    if (std::optional<std::string> black = blackImageWarning(probeFrame(job), c.exposure)) {
+        logWarning("{}: {}", scenePath, *black);
+        c.warnings.push_back(*black);
+    }
+
+    addSceneToOutputs(c, scene, jobOptions);
+    return renderLong(c, job, *loaded.accel, scenePath, out, loadTime, buildTime);
+}
+
+constexpr const char* kRenderFramesUsage =
+    "usage: kiln render-frames SCENE [render options] -o OUT [--then SCENE [render options] -o "
+    "OUT]...\n"
+    "Renders one kiln render command line after another in this process; a render that loads the "
+    "same scene with the same load and accelerator options as the one before (frames that differ "
+    "only in camera) reuses its scene and accelerator. Writes OUT.done (the command line) after "
+    "each finished render and stops at the first that does not exit 0, with its exit status. "
+    "kiln batch and farm shards run their frames of one scene this way (docs/farm.md).\n";
 
 }  // namespace
 
@@ -334,43 +438,32 @@ int runRender(const std::vector<std::string>& args) {
     // From the start a signal stops the work and saves what it has (a farm may send SIGTERM or
     // SIGUSR1 while the scene loads).
     SignalScope signals;
-    RenderCommand c;
-    ArgParser parser("render", "SCENE [options]   (writes OUT.exr and OUT.png)");
-    addRenderOptions(parser, c);
-    std::vector<std::string> pos = parser.parse(args);
-    if (parser.helpRequested()) {
-        std::fputs(parser.helpText().c_str(), stdout);
-        std::fputs(kExitCodes, stdout);
-        return 0;
-    }
-    checkOneScene(pos);
-    const std::string& scenePath = pos[0];
-    RenderJobOptions jobOptions = checkedJobOptions(c);
-    applyQueueOptions(c, jobOptions);
-    checkColour(c);
-    OutputPaths out = outputPaths(c, scenePath);
-    checkOutputWritable(out);
-    checkOutputsFit(c, jobOptions, out);
+    LoadedScene loaded;
+    return renderFrame(args, loaded);
+}
 
-    auto t0 = std::chrono::steady_clock::now();
-    Scene scene = loadScene(scenePath, c.load);
-    double loadTime = seconds(t0);
-    applyCameraOptions(scene, c);
-    for (const std::string& w : scene.warnings) logWarning("{}: {}", scenePath, w);
-    auto t1 = std::chrono::steady_clock::now();
-    std::unique_ptr<Accelerator> accel = c.accel.build(scene, &jobOptions);
-    double buildTime = seconds(t1);
-    RenderJob job(scene, *accel, jobOptions);
-    warnHemisphereBlind(job, scenePath);
-    if (c.debugX >= 0 || c.debugSample >= 0) return printDebugSample(job, c);
-    // What the camera will see decides the black-image warning (a few thousand samples).
-    if (std::optional<std::string> black = blackImageWarning(probeFrame(job), c.exposure)) {
-        logWarning("{}: {}", scenePath, *black);
-        c.warnings.push_back(*black);
+int runRenderFrames(const std::vector<std::string>& args) {
+    if (args.empty() || args[0] == "--help" || args[0] == "-h") {
+        std::fputs(kRenderFramesUsage, args.empty() ? stderr : stdout);
+        return args.empty() ? 2 : 0;
     }
-
-    addSceneToOutputs(c, scene, jobOptions);
-    return renderLong(c, job, accel, scenePath, out, loadTime, buildTime);
+    std::vector<std::vector<std::string>> frames{{}};
+    for (const std::string& a : args)
+        if (a == "--then")
+            frames.emplace_back();
+        else
+            frames.back().push_back(a);
+    SignalScope signals;
+    LoadedScene loaded;
+    for (const std::vector<std::string>& frame : frames) {
+        if (renderCancelFlag().load()) return kExitInterrupted;  // signalled between two renders
+        std::string output;
+        if (int code = renderFrame(frame, loaded, &output)) return code;
+        std::vector<std::string> command{"render"};
+        command.insert(command.end(), frame.begin(), frame.end());
+        farm::markComplete(output, command);
+    }
+    return 0;
 }
 
 }  // namespace kiln

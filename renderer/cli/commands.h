@@ -8,6 +8,9 @@
 namespace kiln {
 
 int runRender(const std::vector<std::string>& args);
+// kiln render-frames: render command lines joined by --then, one scene load for frames that differ
+// only in camera (what kiln batch and farm shards run).
+int runRenderFrames(const std::vector<std::string>& args);
 int runMerge(const std::vector<std::string>& args);  // kiln merge SHARD.ckpt... -o OUT
 int runInfo(const std::vector<std::string>& args);
 int runCrosscheck(const std::vector<std::string>& args);

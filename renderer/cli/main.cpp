@@ -18,6 +18,7 @@ constexpr const char* kUsage =
     "\n"
     "commands:\n"
     "  render SCENE      render a scene to EXR + PNG\n"
+    "  render-frames SCENE ... --then SCENE ...   several renders from one scene load\n"
     "  merge SHARD...    combine render shards (--sample-range, --crop) into EXR + PNG\n"
     "  info SCENE        describe a scene (--json for the machine-readable form)\n"
     "  crosscheck SCENE  trace the same rays through Embree and the reference BVH and compare\n"
@@ -47,6 +48,7 @@ int main(int argc, char** argv) {
     args.erase(args.begin());
     try {
         if (command == "render") return kiln::runRender(args);
+        if (command == "render-frames") return kiln::runRenderFrames(args);
         if (command == "merge") return kiln::runMerge(args);
         if (command == "info") return kiln::runInfo(args);
         if (command == "crosscheck") return kiln::runCrosscheck(args);

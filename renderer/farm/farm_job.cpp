@@ -61,16 +61,19 @@ ShardBy parseShardBy(const std::string& text) {
 const char* shardByName(ShardBy by) { return toString(by); }
 
 FarmJob planFarmJob(const std::vector<RenderTask>& tasks, ShardBy by, int shards,
-                    const std::string& dir) {
+                    const std::string& dir, int framesPerTask) {
     FarmJob job;
     job.dir = fs::absolute(dir).lexically_normal().string();
     job.by = by;
     if (by == ShardBy::Frames) {
-        int n = std::min<int>(shards, int(tasks.size()));
-        job.shards.resize(size_t(n));
-        // Contiguous runs of frames, the first ones one longer when they do not divide evenly.
+        const size_t chunk = size_t(std::max(framesPerTask, 0));
+        const size_t n = chunk ? (tasks.size() + chunk - 1) / chunk
+                               : std::min(size_t(std::max(shards, 1)), tasks.size());
+        job.shards.resize(n);
+        // Contiguous runs of frames: chunks of framesPerTask, or the first runs one longer when
+        // the renders do not divide evenly into `shards`.
         for (size_t t = 0; t < tasks.size(); ++t)
-            job.shards[t * size_t(n) / tasks.size()].tasks.push_back(tasks[t]);
+            job.shards[chunk ? t / chunk : t * n / tasks.size()].tasks.push_back(tasks[t]);
         return job;
     }
     for (size_t t = 0; t < tasks.size(); ++t) {

@@ -53,11 +53,13 @@ struct FarmJob {
     std::vector<Submission> submissions;
 };
 
-// Splits the tasks into shards: by frames, `shards` groups of whole renders; by samples or
-// region, every render in `shards` parts (--sample-range / --crop) rendered into DIR/shards and
-// merged. Throws FarmInputError when a render cannot be split that many ways.
+// Splits the tasks into shards: by frames, `shards` groups of whole renders, or with
+// framesPerTask > 0 runs of that many renders (the last one shorter: Deadline's and OpenCue's
+// chunk size); by samples or region, every render in `shards` parts (--sample-range / --crop)
+// rendered into DIR/shards and merged. Throws FarmInputError when a render cannot be split that
+// many ways. A shard's frames of one scene render from one scene load (task_runner.h).
 FarmJob planFarmJob(const std::vector<RenderTask>& tasks, ShardBy by, int shards,
-                    const std::string& dir);
+                    const std::string& dir, int framesPerTask = 0);
 
 // The merge command line (without the program) and its marker check.
 std::vector<std::string> mergeCommand(const Merge& merge);

@@ -1,5 +1,6 @@
-"""The closed box of the peer benchmark's box scenes: quads kiln reads from a generated COLLADA file and
-Cycles builds from the same corner list (tools/peer/cycles_scene.py).
+"""The quads of the peer benchmark's scenes (the closed box, the uplit room, a floor): kiln reads them
+from a generated COLLADA file and Cycles builds them from the same corner list
+(tools/peer/cycles_scene.py).
 
 The box is closed on all six sides (the camera sits inside it), so no light leaves it except through
 the back of the emitter: the emitting quad fills a hole in the ceiling, flush with it, and faces down.
@@ -38,6 +39,35 @@ def box_quads(lo, hi, light_half, radiance):
         ("ceiling_right", white, quad(lx1, x1, y1, y1, lz0, lz1, "y")),
         ("light", emit, quad(lx0, lx1, y1, y1, lz0, lz1, "y")),
     ]
+
+
+def room_quads(lo, hi, pedestal_xz, half, height, radiance):
+    """A closed room (white, red left wall, green right wall, no light in the ceiling) lit only by an
+    uplighter: a pedestal whose top is an emitting quad facing the ceiling. The pedestal's sides and
+    the floor close it, so the emitter's back side lights only its inside, which no camera path
+    reaches (both renderers emit from both sides)."""
+    (x0, y0, z0), (x1, y1, z1) = lo, hi
+    white = {"albedo": WHITE}
+    px, pz = pedestal_xz
+    a0, a1, b0, b1 = px - half, px + half, pz - half, pz + half
+    return [
+        ("floor", white, quad(x0, x1, y0, y0, z0, z1, "y")),
+        ("ceiling", white, quad(x0, x1, y1, y1, z0, z1, "y")),
+        ("back", white, quad(x0, x1, y0, y1, z0, z0, "z")),
+        ("front", white, quad(x0, x1, y0, y1, z1, z1, "z")),
+        ("left", {"albedo": RED}, quad(x0, x0, y0, y1, z0, z1, "x")),
+        ("right", {"albedo": GREEN}, quad(x1, x1, y0, y1, z0, z1, "x")),
+        ("pedestal_back", white, quad(a0, a1, y0, y0 + height, b0, b0, "z")),
+        ("pedestal_front", white, quad(a0, a1, y0, y0 + height, b1, b1, "z")),
+        ("pedestal_left", white, quad(a0, a0, y0, y0 + height, b0, b1, "x")),
+        ("pedestal_right", white, quad(a1, a1, y0, y0 + height, b0, b1, "x")),
+        ("uplighter", {"emission": radiance}, quad(a0, a1, y0 + height, y0 + height, b0, b1, "y")),
+    ]
+
+
+def floor_quad(half, albedo):
+    """A square floor at y = 0 (for meshes under an environment)."""
+    return [("floor", {"albedo": albedo}, quad(-half, half, 0.0, 0.0, -half, half, "y"))]
 
 
 def write_dae(path, quads):

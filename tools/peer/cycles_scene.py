@@ -2,7 +2,9 @@
 # with exactly N samples, a 1-pixel box filter, no denoising, no adaptive sampling, no clamping and a
 # fixed seed, and writes a linear EXR. Run by tools/peer_bench.py:
 #   blender -b --factory-startup --python tools/peer/cycles_scene.py -- SCENE.json SPP THREADS OUT.exr
-# It prints "kiln-peer: render_seconds S" (the render call: Cycles' scene sync, BVH build and sampling).
+# It prints "kiln-peer: scene_seconds S" (the scene built in Python: OBJ import, nodes) and
+# "kiln-peer: render_seconds S" (the render call: Cycles' scene sync, BVH build, sampling, EXR write);
+# run with --debug-cycles, Cycles itself prints "Rendered N samples in S seconds" (the sampling).
 import json
 import math
 import sys
@@ -21,9 +23,9 @@ def clear():
     bpy.ops.wm.read_factory_settings(use_empty=True)
 
 
-def make_material(name, m):
-    """kiln's material in Cycles: Lambert as a Diffuse BSDF (roughness 0), kiln's Beckmann conductor as a
-    Glossy BSDF with the Beckmann distribution (Cycles squares its roughness: alpha = r^2) and colour 1
+def make_material(name, m, distribution="BECKMANN"):
+    """kiln's material in Cycles: Lambert as a Diffuse BSDF (roughness 0), kiln's microfacet conductor as
+    a Glossy BSDF with the same distribution (Cycles squares its roughness: alpha = r^2) and colour 1
     (Cycles' Glossy BSDF has no Fresnel; the scenes use eta 0, where kiln's conductor Fresnel is 1),
     emission as an Emission shader of strength 1 (its colour is the radiance, kiln's units)."""
     mat = bpy.data.materials.new(name)
@@ -37,7 +39,7 @@ def make_material(name, m):
         socket = node.outputs["Emission"]
     elif "alpha" in m:
         node = nodes.new("ShaderNodeBsdfGlossy")
-        node.distribution = "BECKMANN"
+        node.distribution = distribution
         node.inputs["Color"].default_value = (1.0, 1.0, 1.0, 1.0)
         node.inputs["Roughness"].default_value = math.sqrt(m["alpha"])
         socket = node.outputs["BSDF"]
@@ -55,7 +57,7 @@ def has_normals(path):
         return any(line.startswith("vn ") for line in f)
 
 
-def import_mesh(path, matrix, material):
+def import_mesh(path, matrix, material, distribution):
     # forward Y, up Z: the file's coordinates as they are (kiln's scene space, Y up), so the
     # camera and the environment mapping below use kiln's numbers unchanged.
     bpy.ops.wm.obj_import(filepath=path, forward_axis="Y", up_axis="Z")
@@ -63,7 +65,7 @@ def import_mesh(path, matrix, material):
     from mathutils import Matrix
     obj.matrix_world = Matrix([matrix[0:4], matrix[4:8], matrix[8:12], matrix[12:16]])
     obj.data.materials.clear()
-    obj.data.materials.append(make_material(obj.name, material))
+    obj.data.materials.append(make_material(obj.name, material, distribution))
     # kiln interpolates the file's vertex normals and shades flat where the file has none
     smooth = has_normals(path)
     for poly in obj.data.polygons:
@@ -182,9 +184,11 @@ def configure(scene_desc, spp, threads, out, seed):
 
 def main():
     desc, spp, threads, out, seed = args()
+    scene_start = time.perf_counter()
     clear()
+    distribution = desc.get("microfacet", "beckmann").upper()  # kiln --microfacet: beckmann, ggx
     for mesh in desc["meshes"]:
-        import_mesh(mesh["file"], mesh["matrix"], mesh["material"])
+        import_mesh(mesh["file"], mesh["matrix"], mesh["material"], distribution)
     for q in desc.get("quads", []):
         add_quad(q)
     add_camera(desc["camera"], *desc["resolution"])
@@ -194,6 +198,7 @@ def main():
         black_world()
     configure(desc, spp, threads, out, seed)
     start = time.perf_counter()
+    print("kiln-peer: scene_seconds %.4f" % (start - scene_start), flush=True)
     bpy.ops.render.render(write_still=True)
     print("kiln-peer: render_seconds %.4f" % (time.perf_counter() - start), flush=True)
 

@@ -1,25 +1,34 @@
 #!/usr/bin/env bash
 # The equal-error benchmark in one run (a benchmark, not a test): kiln against Blender's Cycles on
-# the three comparison scenes (tools/peer_bench.py), then against the CS184 course program on
-# CBbunny (tools/peer/cs184_bench.py), with the settings docs/performance.md quotes. Fresh
-# references in OUT (made by this build); the tables are collected in OUT/summary.md.
-#   tools/peer/equal_error.sh [OUT] [extra peer_bench.py arguments, e.g. --variant "rr3=--rr-start 3"]
+# the comparison scenes (tools/peer_bench.py: sampling time only on both sides, set-up reported
+# apart, references with their own seed, matched bounces, interleaved repeats, medians, the load
+# average at every step), then against the CS184 course program on CBbunny
+# (tools/peer/cs184_bench.py; CS184=0 leaves it out), with the settings docs/performance.md quotes.
+# References in OUT are reused when made at the same size, spp and seed (by this build: delete them
+# after a change to the estimator); the tables are collected in OUT/summary.md.
+#   [SCENES="lucy_env ..."] [CS184=0] tools/peer/equal_error.sh [OUT] [extra peer_bench.py arguments]
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 out=${1:-out/equal-error}
 shift || true
 mkdir -p "$out"
+scenes=${SCENES:-lucy_env glossy_env room_uplight box_bunny box_metal}
 start=$(date -u '+%Y-%m-%d %H:%M')
-for scene in lucy_env box_bunny box_metal; do
-  tools/peer_bench.py --scene "$scene" --resolution 160 120 --spp 16,32,64,128,256 --ref-spp 1024 \
-    --repeats 3 --samplers sobol --out "$out" "$@"
+load_start=$(cut -d' ' -f1-3 /proc/loadavg)
+for scene in $scenes; do
+  tools/peer_bench.py --scene "$scene" --spp 16,64,256 --ref-spp 1024 --repeats 2 --samplers sobol \
+    --out "$out" "$@"
 done
-tools/peer/cs184_bench.py --course-spp 8,32,128 --kiln-spp 2,8,32 --repeats 2 --out "$out/cs184"
+if [ "${CS184:-1}" != 0 ]; then
+  tools/peer/cs184_bench.py --course-spp 8,32,128 --kiln-spp 2,8,32 --repeats 2 --out "$out/cs184"
+fi
 {
-  echo "# Equal-error benchmark, $start to $(date -u '+%H:%M') UTC (load average at the end: $(cut -d' ' -f1-3 /proc/loadavg))"
-  for scene in lucy_env box_bunny box_metal; do
+  echo "# Equal-error benchmark, $start to $(date -u '+%H:%M') UTC (load average at the start: $load_start; at the end: $(cut -d' ' -f1-3 /proc/loadavg))"
+  for scene in $scenes; do
     echo; echo "## $scene"; echo; cat "$out/$scene.md"
   done
-  echo; echo "## CS184 program, CBbunny"; echo; cat "$out/cs184/cs184.md"
+  if [ "${CS184:-1}" != 0 ]; then
+    echo; echo "## CS184 program, CBbunny"; echo; cat "$out/cs184/cs184.md"
+  fi
 } >"$out/summary.md"
 cat "$out/summary.md"

@@ -429,8 +429,9 @@ void PathIntegrator::sampleDirectLight(const Vertex& v, const B& bsdf, const Vec
                 weight = misWeight(nLight, pl, 1, bsdf.pdf(wo, wi));
         w.shadowRays.push_back(ls.infinite ? spawnRay(v.si, ls.wi)
                                            : spawnRayTo(v.si, ls.p, ls.pError));
-        // Light from the other side came through the surface (principled transmission).
-        const bool through = bsdf.hasTransmission() && wi.z * wo.z < 0;
+        // Light from the other side came through the surface (principled transmission: f is 0
+        // there for every BSDF that does not transmit).
+        const bool through = wi.z * wo.z < 0;
         w.pending.push_back({v.path, v.bounce + 1, v.lobe(through),
                              v.st.beta * f * ls.Li * (weight / (pl * perSample))});
     }

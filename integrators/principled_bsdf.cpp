@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "integrators/fresnel.h"
+#include "integrators/ggx_albedo.h"
 
 namespace kiln {
 namespace {
@@ -67,6 +67,22 @@ PrincipledBsdf::PrincipledBsdf(const Material& m, const Color& baseColour, Metal
                                 std::clamp(f0 * m.specularColor.z, 0.0f, 1.0f));
     dielectricF0_ = maxComponent(dielectricF0Colour_);
     sheenMax_ = maxComponent(sheen_);
+    roughness_ = std::clamp(mr.roughness, 0.0f, 1.0f);
+    float kept = 1 - ggxDielectricAlbedoAverage(roughness_, dielectricF0_);
+    diffuseNorm_ = kept > 1e-4f ? 1 / kept : 0.0f;
+}
+
+// What the diffuse lobe keeps in and out: (1 - E(n.wo)) (1 - E(n.wi)) / (1 - E_avg), E the
+// specular lobe's directional albedo, so a white base reflects all the specular lobe leaves and no
+// more (Kulla and Conty's albedo scaling); at normal view 1 - E(1) ~ 1 - F0, glTF's 1 - F(wo.h)
+// there. Inside a volume (seen from below a transmissive surface), Fresnel at the normal on the
+// outside's side, which knows total internal reflection.
+float PrincipledBsdf::diffuseWeight(float cosO, float cosI, bool inside) const {
+    if (inside)
+        return (1 - dielectricFresnel(outsideCos(cosO, true))) *
+               (1 - dielectricFresnel(outsideCos(cosI, true)));
+    return (1 - ggxDielectricAlbedo(cosO, roughness_, dielectricF0_)) *
+           (1 - ggxDielectricAlbedo(cosI, roughness_, dielectricF0_)) * diffuseNorm_;
 }
 
 float PrincipledBsdf::dielectricFresnel(float cosTheta) const {
@@ -132,10 +148,9 @@ Color PrincipledBsdf::evalUpper(const Vec3& wo, const Vec3& wi, bool inside) con
     Color fd = dielectricFresnelColour(outsideCos(dot(wo, h), inside));
     Color fm = base_ + (Color(1.0f) - base_) * fh;
     float s = specularTerm(specular_, wo, wi, h);
-    // The diffuse lobe is what Fresnel lets through on the way in and out, at the normal: glTF's
-    // (1 - F(wo.h)) reflects up to 1.7x what arrives at grazing angles (white furnace).
-    float through = (1 - dielectricFresnel(outsideCos(wo.z, inside))) *
-                    (1 - dielectricFresnel(outsideCos(wi.z, inside)));
+    // glTF's diffuse weight (1 - F(wo.h)) reflects up to 1.7x what arrives at grazing angles
+    // (white furnace): the diffuse lobe keeps what the specular lobe leaves instead.
+    float through = diffuseWeight(wo.z, wi.z, inside);
     Color f = (base_ * (kInvPi * through * (1 - transmission_)) + fd * s) * (1 - metallic_) +
               fm * (s * metallic_);
     return layersAbove(f, wo, wi, h);

@@ -12,6 +12,7 @@ import json
 import os
 import re
 import subprocess
+import sys
 
 GRID = "scenes/principled_grid"
 
@@ -23,6 +24,15 @@ def box_mean(exr, cx, cy, half):
                           "--printstats"], capture_output=True, text=True, check=True).stdout
     avg = re.search(r"Stats Avg: ([-0-9.e]+) ([-0-9.e]+) ([-0-9.e]+)", out)
     return [float(v) for v in avg.groups()]
+
+
+def system_python_env():
+    """This environment without a pyenv interpreter's PATH entries and variables: Blender's embedded
+    Python finds its prefix through PATH, and under pyenv loses the system's numpy (its glTF importer
+    needs it)."""
+    env = {k: v for k, v in os.environ.items() if not k.startswith("PYENV")}
+    env["PATH"] = ":".join(p for p in env.get("PATH", "").split(":") if ".pyenv" not in p)
+    return env
 
 
 def main():
@@ -39,9 +49,12 @@ def main():
     subprocess.run([a.kiln, "render", GRID + "/grid.kiln", "-e", GRID + "/white.exr", "-r", str(w),
                     str(h), "-s", str(a.spp), "-m", str(desc["max_bounces"]), "-t", str(a.threads),
                     "-q", "-o", k_exr], check=True)
-    subprocess.run(["blender", "-b", "--factory-startup", "--python", "tools/peer/cycles_gltf.py",
-                    "--", GRID + "/grid.json", str(a.spp), str(a.threads), c_exr],
-                   check=True, capture_output=True)
+    blender = subprocess.run(["blender", "-b", "--factory-startup", "--python",
+                              "tools/peer/cycles_gltf.py", "--", GRID + "/grid.json", str(a.spp),
+                              str(a.threads), c_exr], capture_output=True, text=True,
+                             env=system_python_env())
+    if not os.path.exists(c_exr):  # Blender exits 0 when the script fails
+        sys.exit("Cycles wrote no image:\n" + blender.stdout[-3000:] + blender.stderr[-3000:])
     print("%-16s %8s %8s %7s" % ("sphere", "kiln", "cycles", "ratio"))
     for s in desc["spheres"]:
         half = 0.35 * s["radius_px"]

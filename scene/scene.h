@@ -59,8 +59,8 @@ struct Material {
     float transmission = 0.0f;
     float thickness = 0.0f;
     // KHR_materials_volume's absorption inside a transmissive volume (Beer-Lambert: attenuation
-    // colour reached after attenuation distance); stored for the media of integrators/, not
-    // applied by the surface.
+    // colour reached after attenuation distance): applied as the mesh's interior medium
+    // (scene/volume_media.h).
     Color attenuationColor{1.0f};
     float attenuationDistance = INFINITY;
     // KHR_materials_sheen (Charlie distribution): sheen is its weight (glTF: 1), sheenColor its

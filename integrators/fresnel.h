@@ -1,11 +1,18 @@
 // Fresnel reflectance: dielectric interfaces and conductors (exact, unpolarised).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "renderer/core/math.h"
 
 namespace kiln {
+
+// Schlick's Fresnel approximation is F0 + (1 - F0) w with this weight w = (1 - cos)^5.
+inline float schlickWeight(float cosTheta) {
+    float m = std::clamp(1 - cosTheta, 0.0f, 1.0f), m2 = m * m;
+    return m2 * m2 * m;
+}
 
 // Reflectance of a dielectric interface; cosThetaI > 0 means arriving from the side with index 1
 // and eta = n_t / n_i. Handles leaving (cosThetaI < 0) and total internal reflection (returns 1).

@@ -29,9 +29,20 @@ SceneMedia::SceneMedia(const Scene& scene) : scene_(scene) {
         interior_.push_back(m.interior);
         inward_.push_back(m.interior >= 0 && signedVolume6(m) < 0);
     }
-    // A refracting surface bounds its medium itself (its BSDF bends the ray); any other surface
-    // with an interior is only where the medium starts.
-    for (const Material& m : scene.materials) dielectric_.push_back(specOf(m.kind).transmission);
+    // A refracting surface bounds its medium itself (its BSDF bends the ray): a dielectric, or a
+    // principled surface transmitting through a volume (thickness > 0; a thin wall does not bend
+    // the ray). Any other surface with an interior is only where the medium starts.
+    for (const Material& m : scene.materials) {
+        const MaterialKindSpec& k = specOf(m.kind);
+        const bool volume = k.transmits && k.transmits(m) && m.thickness > 0;
+        dielectric_.push_back(k.transmission || volume);
+    }
+}
+
+int SceneMedia::across(const SurfaceInteraction& si, int medium) const {
+    Hit hit;
+    hit.shape = si.shape, hit.instance = si.instance;
+    return interiorOf(hit) >= 0 ? beyond(hit, si.frontFace) : medium;
 }
 
 Color SceneMedia::transmittance(const Accelerator& accel, const Ray& shadow, int medium,

@@ -15,6 +15,8 @@
 
 namespace kiln {
 
+struct SurfaceInteraction;
+
 class SceneMedia {
   public:
     explicit SceneMedia(const Scene& scene);
@@ -35,6 +37,9 @@ class SceneMedia {
         int inside = interiorOf(hit);
         return inside >= 0 && frontFace != bool(inward_[hit.shape]) ? inside : -1;
     }
+    // The medium on the far side of a vertex's surface from the arriving ray's, where the path is
+    // in `medium` (a surface bounding no medium, or a scattering point, leaves it unchanged).
+    int across(const SurfaceInteraction& si, int medium) const;
     // How much of the light at the shadow ray's end reaches its origin, which lies in `medium`:
     // 0 when a surface other than an index-matched boundary is in the way. rays counts the
     // segments traced.

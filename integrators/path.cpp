@@ -557,9 +557,13 @@ void PathIntegrator::queueLightSample(const Vertex& v, const B& bsdf, const Vec3
             lights_.hittable(d.light))
             weight = misWeight(nLight, pl, 1, bsdf.pdf(wo, wi));
     w.shadowRays.push_back(ls.infinite ? spawnRay(v.si, ls.wi) : spawnRayTo(v.si, ls.p, ls.pError));
-    if constexpr (F::media) w.shadowMedia.push_back(v.st.medium);
-    w.pending.push_back(
-        {v.path, v.bounce + 1, v.lobe(), v.st.beta * f * ls.Li * (weight / (pl * perSample))});
+    // Light from the other side came through the surface (principled transmission: f is 0
+    // there for every BSDF that does not transmit), its shadow ray in the medium beyond it.
+    const bool through = wi.z * wo.z < 0;
+    if constexpr (F::media)
+        w.shadowMedia.push_back(through ? media_.across(v.si, v.st.medium) : v.st.medium);
+    w.pending.push_back({v.path, v.bounce + 1, v.lobe(through),
+                         v.st.beta * f * ls.Li * (weight / (pl * perSample))});
 }
 
 // -H (CS184's estimate_direct_lighting_hemisphere): -l uniform hemisphere rays, each adding the

@@ -72,7 +72,10 @@ RenderPlan planFor(const Scene& scene, const Accelerator& accel, const AovReques
         const Material& m = scene.materials[id];
         const MaterialKindSpec& k = specOf(m.kind);
         p.deltaSpecular |= k.deltaSpecular;
-        p.transmission |= k.transmission;
+        bool roughTransmission = k.transmits && k.transmits(m);
+        p.transmission |= k.transmission || roughTransmission;
+        p.roughTransmission |= roughTransmission;
+        p.sheen |= k.hasSheen && k.hasSheen(m);
         p.roughConductor |= k.roughConductor;
         p.glossy |= k.glossy;
         anyDiffuse |= k.lambertian;
@@ -127,6 +130,13 @@ RenderPlan planFor(const Scene& scene, const Accelerator& accel, const AovReques
     else
         say("light sampling with MIS against BSDF sampling",
             "the scene has lights that rays can hit");
+    if (p.roughTransmission || p.sheen)
+        say(std::string("principled lobes: ") + (p.roughTransmission && p.sheen
+                                                     ? "transmission and sheen"
+                                                 : p.sheen ? "sheen"
+                                                           : "transmission"),
+            "materials state them; the principled BSDF evaluates each only where its weight is "
+            "above 0");
     say(p.infiniteLights || general ? "environment lookup on escape"
                                     : "no environment lookup on escape",
         p.infiniteLights ? "environment or ambient light present"
@@ -182,6 +192,8 @@ std::string RenderPlan::compact() const {
     flag(diffuseOnly, "diffuse-only");
     flag(deltaSpecular, "delta-specular");
     flag(transmission, "transmission");
+    flag(roughTransmission, "rough-transmission");
+    flag(sheen, "sheen");
     flag(roughConductor, "rough-conductor");
     flag(glossy, "glossy");
     flag(deltaLightsOnly, "delta-lights-only");

@@ -22,11 +22,13 @@ struct EnumNames<PlanMode> {
 
 struct RenderPlan {
     // What the scene holds.
-    bool diffuseOnly = false;     // every surface Lambertian (or a pure emitter)
-    bool deltaSpecular = false;   // mirror / glass / refraction
-    bool transmission = false;    // glass / refraction
-    bool roughConductor = false;  // microfacet
-    bool glossy = false;          // Phong glossy or principled (GGX) surfaces
+    bool diffuseOnly = false;        // every surface Lambertian (or a pure emitter)
+    bool deltaSpecular = false;      // mirror / glass / refraction
+    bool transmission = false;       // glass / refraction / principled transmission
+    bool roughTransmission = false;  // principled transmission (a GGX dielectric lobe)
+    bool sheen = false;              // principled sheen (Charlie lobe)
+    bool roughConductor = false;     // microfacet
+    bool glossy = false;             // Phong glossy or principled (GGX) surfaces
     bool deltaLightsOnly =
         false;                // point / spot / directional only: nothing for BSDF sampling to find
     bool areaLights = false;  // area lights and emissive meshes

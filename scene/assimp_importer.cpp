@@ -52,7 +52,7 @@ void readFileTangents(const aiMesh* am, const Mat4* xf, TriangleMesh& mesh) {
 // cglRules (COLLADA): an emissive material is a light and nothing else, as in the course. Other
 // formats add the emission to the surface, which still reflects (Lambert, or principled where the
 // file states metallic-roughness).
-Material materialFromAssimp(const aiMaterial* am, bool cglRules) {
+Material materialFromAssimp(const aiMaterial* am, bool cglRules, bool gltf) {
     Material m;  // albedo keeps the default grey unless the file states a diffuse colour
     aiString name;
     if (am->Get(AI_MATKEY_NAME, name) == AI_SUCCESS) m.name = name.C_Str();
@@ -69,8 +69,22 @@ Material materialFromAssimp(const aiMaterial* am, bool cglRules) {
     float strength = 1;  // KHR_materials_emissive_strength
     if (am->Get(AI_MATKEY_EMISSIVE_INTENSITY, strength) == AI_SUCCESS && std::isfinite(strength))
         m.emission = m.emission * std::max(0.0f, strength);
-    readPrincipled(am, m);
+    readPrincipled(am, gltf, m);
     return m;
+}
+
+// What Assimp 5.2 leaves out of a glTF material (gltf_extensions.cpp).
+void applyGltfExtras(const aiMaterial* am, const GltfMaterialExtras& x, Material& m, Scene& scene) {
+    float stated = 1;
+    if (am->Get(AI_MATKEY_EMISSIVE_INTENSITY, stated) != AI_SUCCESS)
+        m.emission = m.emission * x.emissiveStrength;
+    if (m.kind != MaterialKind::Principled) return;
+    if (x.specular) m.specular = *x.specular;
+    if (x.specularColour) m.specularColor = *x.specularColour;
+    for (const std::string& texture : x.unreadTextures)
+        scene.warnings.push_back(
+            (m.name.empty() ? "an unnamed material" : "material '" + m.name + "'") +
+            ": KHR_materials_specular " + texture + " ignored");
 }
 
 // Assimp's MDL reader gives a model without skins a zero-initialised colour, alpha 0 included
@@ -525,21 +539,20 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
     printed.addWarnings(scene);
     if (lowerExtension(path) == ".amf") warnAmfLimits(path, scene);
     as = joinVerticesUnlessColoured(importer, as);
-    std::vector<float> emissiveStrengths;
-    if (std::string ext = lowerExtension(path); ext == ".gltf" || ext == ".glb") {
+    std::vector<GltfMaterialExtras> gltfExtras;
+    const std::string ext = lowerExtension(path);
+    const bool gltf = ext == ".gltf" || ext == ".glb";
+    if (gltf) {
         warnUnreadGltfExtensions(path, scene);
-        emissiveStrengths = gltfEmissiveStrengths(path);
+        gltfExtras = gltfMaterialExtras(path);
     }
     std::vector<bool> used = usedMaterials(as);
 
     // Materials: through the CGL pass for COLLADA (matched by name or id), else Assimp's colours.
     uint32_t materialBase = uint32_t(scene.materials.size());
     for (unsigned i = 0; i < as->mNumMaterials; ++i) {
-        Material m = materialFromAssimp(as->mMaterials[i], extras != nullptr);
-        float stated = 1;
-        if (i < emissiveStrengths.size() &&
-            as->mMaterials[i]->Get(AI_MATKEY_EMISSIVE_INTENSITY, stated) != AI_SUCCESS)
-            m.emission = m.emission * emissiveStrengths[i];
+        Material m = materialFromAssimp(as->mMaterials[i], extras != nullptr, gltf);
+        if (i < gltfExtras.size()) applyGltfExtras(as->mMaterials[i], gltfExtras[i], m, scene);
         aiColor3D diffuse;
         bool statesColour = as->mMaterials[i]->Get(AI_MATKEY_COLOR_DIFFUSE, diffuse) == AI_SUCCESS;
         if (statesColour && unsetMdlColour(path, as->mMaterials[i])) {

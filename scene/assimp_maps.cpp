@@ -27,10 +27,10 @@ void warn(Scene& scene, const Material& m, const std::string& what) {
 // (and a warning) when it cannot be used.
 int mapSource(const aiScene* as, const aiMaterial* am, aiTextureType slot,
               const std::string& assetPath, TextureEncoding encoding, const char* what,
-              UvTransform& uv, Material& m, Scene& scene) {
+              UvTransform& uv, Material& m, Scene& scene, unsigned index = 0) {
     aiString ref;
     unsigned uvIndex = 0;
-    if (am->GetTexture(slot, 0, &ref, nullptr, &uvIndex) != AI_SUCCESS) return -1;
+    if (am->GetTexture(slot, index, &ref, nullptr, &uvIndex) != AI_SUCCESS) return -1;
     TextureSource source;
     source.encoding = encoding;
     std::string reason;
@@ -160,9 +160,9 @@ void readGltfAlpha(const aiMaterial* am, Material& m, Scene& scene) {
     }
 }
 
-// OBJ: d (dissolve) and map_d are coverage: the surface stops that fraction of rays.
-void readObjAlpha(const aiScene* as, const aiMaterial* am, const std::string& assetPath,
-                  Material& m, Scene& scene) {
+// OBJ d (dissolve) and map_d, FBX opacity: coverage, the surface stops that fraction of rays.
+void readOpacityAlpha(const aiScene* as, const aiMaterial* am, const std::string& assetPath,
+                      Material& m, Scene& scene) {
     MaterialMaps& maps = m.maps;
     float opacity = 1.0f;
     if (am->Get(AI_MATKEY_OPACITY, opacity) == AI_SUCCESS && std::isfinite(opacity) && opacity < 1)
@@ -174,6 +174,36 @@ void readObjAlpha(const aiScene* as, const aiMaterial* am, const std::string& as
         maps.opacityChannel = 0;
     }
     if (maps.opacity < 1 || maps.opacityTexture >= 0) maps.alphaMode = AlphaMode::Blend;
+}
+
+// glTF KHR_materials_clearcoat's textures (Assimp's CLEARCOAT slot: 0 the weight, read from R; 1
+// the roughness, from G; 2 the coat's normal map, which kiln does not read: the coat shares the
+// surface's normal). The UV transform is slot 0's for both.
+void readClearcoatMaps(const aiScene* as, const aiMaterial* am, const std::string& assetPath,
+                       Material& m, Scene& scene) {
+    if (m.kind != MaterialKind::Principled || !isGltf(assetPath)) return;
+    MaterialMaps& maps = m.maps;
+    // Assimp fills the indices below a stated one with empty names.
+    auto stated = [&](unsigned index, aiString& ref) {
+        return am->GetTexture(aiTextureType_CLEARCOAT, index, &ref) == AI_SUCCESS && ref.length > 0;
+    };
+    aiString ref;
+    if (stated(0, ref)) {
+        maps.clearcoatTexture =
+            mapSource(as, am, aiTextureType_CLEARCOAT, assetPath, TextureEncoding::Data,
+                      "clearcoat texture", maps.clearcoatUv, m, scene, 0);
+        maps.clearcoatChannel = 0;
+    }
+    if (stated(1, ref)) {
+        maps.clearcoatRoughnessTexture =
+            mapSource(as, am, aiTextureType_CLEARCOAT, assetPath, TextureEncoding::Data,
+                      "clearcoat roughness texture", maps.clearcoatRoughnessUv, m, scene, 1);
+        maps.clearcoatRoughnessChannel = 1;
+    }
+    if (stated(2, ref))
+        warn(scene, m,
+             "clearcoat normal map '" + std::string(ref.C_Str()) +
+                 "' ignored: the coat takes the surface's normal");
 }
 
 }  // namespace
@@ -231,8 +261,9 @@ void readAssimpMaps(const aiScene* as, const aiMaterial* am, const std::string& 
     warnOcclusionMap(am, assetPath, m, scene);
     if (isGltf(assetPath))
         readGltfAlpha(am, m, scene);
-    else if (lowerExtension(assetPath) == ".obj")
-        readObjAlpha(as, am, assetPath, m, scene);
+    else if (std::string ext = lowerExtension(assetPath); ext == ".obj" || ext == ".fbx")
+        readOpacityAlpha(as, am, assetPath, m, scene);
+    readClearcoatMaps(as, am, assetPath, m, scene);
 }
 
 bool readsTextureSlot(unsigned slot, const Material& m, const std::string& assetPath) {
@@ -242,6 +273,7 @@ bool readsTextureSlot(unsigned slot, const Material& m, const std::string& asset
         case aiTextureType_DIFFUSE_ROUGHNESS:
             return principled;
         case aiTextureType_UNKNOWN:
+        case aiTextureType_CLEARCOAT:
             return principled && isGltf(assetPath);
         case aiTextureType_LIGHTMAP:
             return isGltf(assetPath);  // glTF's occlusionTexture: warnOcclusionMap names it

@@ -1,8 +1,8 @@
 // What kiln takes from an Assimp material beyond its colours: the base-colour texture becomes a
 // texture source of the scene (a file relative to the asset, or an image embedded in it: glTF "*N"
 // references, data URIs, .glb buffers); every other texture slot and every shading feature kiln
-// cannot honour yet (opacity, transmission, the gloss of Phong materials, ...) is named in a
-// warning.
+// cannot honour yet (the gloss and specular colour of Phong materials, sheen and transmission
+// maps, ...) is named in a warning.
 #include <assimp/material.h>
 #include <assimp/scene.h>
 
@@ -27,7 +27,7 @@ constexpr std::pair<aiTextureType, const char*> kIgnoredSlots[] = {
     {aiTextureType_LIGHTMAP, "lightmap"},
     {aiTextureType_REFLECTION, "reflection map"},
     {aiTextureType_SHEEN, "sheen map"},
-    {aiTextureType_CLEARCOAT, "clearcoat map"},
+    {aiTextureType_CLEARCOAT, "clearcoat map"},  // glTF: read (scene/assimp_maps.cpp)
     {aiTextureType_TRANSMISSION, "transmission map"},
     {aiTextureType_UNKNOWN, "texture of unknown use (glTF metallic-roughness)"},
 };
@@ -122,14 +122,14 @@ void warnDroppedMaterialFeatures(const aiMaterial* am, const Material& m, Scene&
         scene.warnings.push_back(materialLabel(m) + ": " + what);
     };
     float roughness = 1, opacity = 1, transmission = 0, clearcoat = 0;
-    // Principled materials honour roughness, specular strength and clearcoat
+    // Principled materials honour roughness, specular strength, clearcoat and transmission
     // (scene/assimp_principled.cpp); a Phong or Lambert one renders as Lambert.
     bool principled = m.kind == MaterialKind::Principled;
     if (!principled && factor(AI_MATKEY_ROUGHNESS_FACTOR, roughness) && roughness < 1)
         warn("roughness " + number(roughness) + ": its glossy reflection is dropped");
     if (factor(AI_MATKEY_OPACITY, opacity) && opacity < 1 && !m.maps.hasAlpha())
         warn("opacity " + number(opacity) + " ignored: rendered opaque");
-    if (factor(AI_MATKEY_TRANSMISSION_FACTOR, transmission) && transmission > 0)
+    if (!principled && factor(AI_MATKEY_TRANSMISSION_FACTOR, transmission) && transmission > 0)
         warn("transmission ignored: rendered opaque");
     if (!principled && factor(AI_MATKEY_CLEARCOAT_FACTOR, clearcoat) && clearcoat > 0)
         warn("clearcoat ignored");

@@ -1,16 +1,45 @@
-// Assimp's metallic-roughness keys (glTF 2.0 and its KHR_materials_emissive_strength, _specular
-// and _clearcoat; OBJ's Pm/Pr and any format where Assimp states a metallic factor) as kiln's
-// principled material (docs/import.md lists what maps to what).
+// Assimp's metallic-roughness keys (glTF 2.0 and its KHR_materials_clearcoat, _transmission,
+// _volume, _sheen and _ior; OBJ's Pm/Pr and any format where Assimp states a metallic factor) as
+// kiln's principled material (docs/import.md lists what maps to what).
 #include <assimp/material.h>
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "scene/importers.h"
 
 namespace kiln {
 
-bool readPrincipled(const aiMaterial* am, Material& m) {
+namespace {
+
+// KHR_materials_transmission, _volume and _sheen as Assimp 5.2 hands them over.
+void readPrincipledLayers(
+    const aiMaterial* am, Material& m,
+    const std::function<bool(const char*, unsigned, unsigned, float&)>& factor) {
+    if (factor(AI_MATKEY_TRANSMISSION_FACTOR, m.transmission))
+        m.transmission = std::clamp(m.transmission, 0.0f, 1.0f);
+    if (factor(AI_MATKEY_VOLUME_THICKNESS_FACTOR, m.thickness))
+        m.thickness = std::max(0.0f, m.thickness);
+    float distance = 0;
+    if (factor(AI_MATKEY_VOLUME_ATTENUATION_DISTANCE, distance) && distance > 0)
+        m.attenuationDistance = distance;
+    aiColor3D c;
+    if (am->Get(AI_MATKEY_VOLUME_ATTENUATION_COLOR, c) == AI_SUCCESS)
+        m.attenuationColor = max(Color(c.r, c.g, c.b), Color(0.0f));
+    // glTF's sheen is on where its colour is not black (weight 1, roughness 0 by default).
+    if (am->Get(AI_MATKEY_SHEEN_COLOR_FACTOR, c) == AI_SUCCESS) {
+        m.sheenColor = max(Color(c.r, c.g, c.b), Color(0.0f));
+        m.sheen = maxComponent(m.sheenColor) > 0 ? 1.0f : 0.0f;
+        m.sheenRoughness = 0;
+        if (factor(AI_MATKEY_SHEEN_ROUGHNESS_FACTOR, m.sheenRoughness))
+            m.sheenRoughness = std::clamp(m.sheenRoughness, 0.0f, 1.0f);
+    }
+}
+
+}  // namespace
+
+bool readPrincipled(const aiMaterial* am, bool gltf, Material& m) {
     // Get() overwrites its argument even when the key is missing: only a success counts.
     auto factor = [&](const char* key, unsigned type, unsigned index, float& out) {
         float v = 0;
@@ -34,7 +63,12 @@ bool readPrincipled(const aiMaterial* am, Material& m) {
         m.clearcoat = std::clamp(m.clearcoat, 0.0f, 1.0f);
     if (factor(AI_MATKEY_CLEARCOAT_ROUGHNESS_FACTOR, m.clearcoatRoughness))
         m.clearcoatRoughness = std::clamp(m.clearcoatRoughness, 0.0f, 1.0f);
-    m.ior = 1.5f;  // glTF's dielectric: F0 0.04 (KHR_materials_ior is not read)
+    m.ior = 1.5f;  // glTF's dielectric: F0 0.04
+    // KHR_materials_ior (other formats' refraction indices, OBJ Ni above all, are often 1 or
+    // junk: a principled material from them keeps glTF's 1.5).
+    float ior = 0;
+    if (gltf && factor(AI_MATKEY_REFRACTI, ior) && ior >= 1) m.ior = ior;
+    readPrincipledLayers(am, m, factor);
     return true;
 }
 

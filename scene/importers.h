@@ -20,12 +20,20 @@ namespace kiln {
 // from the CGL pass and the course's up-axis convention replaces Assimp's.
 void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scene& scene);
 
-// A warning for each glTF extension the file uses that neither Assimp nor kiln reads.
+// One warning naming every glTF extension the file uses that neither Assimp nor kiln reads.
 void warnUnreadGltfExtensions(const std::string& path, Scene& scene);
-// Each glTF material's KHR_materials_emissive_strength (1 where it states none), in the file's
-// order, which is Assimp's (its default material comes after them); empty when unreadable.
-// Assimp 5.2 does not hand the extension over (AI_MATKEY_EMISSIVE_INTENSITY stays unset).
-std::vector<float> gltfEmissiveStrengths(const std::string& path);
+// What a glTF material states in the extensions Assimp 5.2 does not hand over:
+// KHR_materials_emissive_strength (1 where it states none; AI_MATKEY_EMISSIVE_INTENSITY stays
+// unset) and KHR_materials_specular (its factor and colour; its textures are not read).
+struct GltfMaterialExtras {
+    float emissiveStrength = 1;
+    std::optional<float> specular;
+    std::optional<Color> specularColour;
+    std::vector<std::string> unreadTextures;
+};
+// Each glTF material's, in the file's order, which is Assimp's (its default material comes after
+// them); empty when unreadable.
+std::vector<GltfMaterialExtras> gltfMaterialExtras(const std::string& path);
 
 // An Assimp material's base-colour texture as a source of the scene (Material::albedoTexture; the
 // albedo becomes 1 unless the file states a colour, which then multiplies it), and a warning for
@@ -50,9 +58,10 @@ bool assimpTextureSource(const aiScene* as, const std::string& assetPath, const 
                          TextureSource& source, std::string& reason);
 int addTextureSource(Scene& scene, TextureSource&& source);
 
-// Makes m principled (base colour, metallic, roughness, specular, clearcoat) when the Assimp
-// material states a glTF base colour or a metallic factor; false, m unchanged, otherwise.
-bool readPrincipled(const aiMaterial* am, Material& m);
+// Makes m principled (base colour, metallic, roughness, specular, clearcoat, transmission, volume,
+// sheen; glTF: the ior) when the Assimp material states a glTF base colour or a metallic factor;
+// false, m unchanged, otherwise.
+bool readPrincipled(const aiMaterial* am, bool gltf, Material& m);
 
 // A warning for each feature of an Assimp material that kiln's rendering of it drops (gloss and
 // specular colour of Phong materials, opacity, transmission, clearcoat of a non-principled one).

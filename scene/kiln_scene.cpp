@@ -251,6 +251,10 @@ void readPrincipledTextures(const std::string& file, pugi::xml_node n, Material&
     int mr = textureAttribute(file, n, "metallic-roughness-texture", TextureEncoding::Data, scene);
     m.maps.metallicTexture = m.maps.roughnessTexture = mr;
     m.maps.metallicChannel = 2, m.maps.roughnessChannel = 1;
+    // glTF's clearcoatTexture: R multiplies the clear coat's weight.
+    m.maps.clearcoatTexture =
+        textureAttribute(file, n, "clearcoat-texture", TextureEncoding::Data, scene);
+    m.maps.clearcoatChannel = 0;
 }
 
 // Every attribute must be one this kind reads (its row's parameters): a typo, or a parameter of
@@ -262,7 +266,8 @@ void checkMaterialAttributes(const std::string& file, pugi::xml_node n,
         bool known = name == "name" || name == "kind" || (name == "emission" && spec.addsEmission);
         for (const MaterialParam& p : spec.params) known |= name == p.name;
         if (spec.kind == MaterialKind::Principled)
-            known |= name == "base-color-texture" || name == "metallic-roughness-texture";
+            known |= name == "base-color-texture" || name == "metallic-roughness-texture" ||
+                     name == "clearcoat-texture";
         if (!known)
             throw SceneError(file, "<material> has unknown attribute '" + std::string(name) +
                                        "' for kind " + spec.name);

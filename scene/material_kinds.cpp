@@ -34,6 +34,14 @@ constexpr P kPrincipled[] = {
     {"ior", nullptr, &Material::ior, R::AtLeastOne},
     {"clearcoat", nullptr, &Material::clearcoat, R::Unit},
     {"clearcoat-roughness", nullptr, &Material::clearcoatRoughness, R::Unit},
+    {"specular-color", &Material::specularColor},
+    {"transmission", nullptr, &Material::transmission, R::Unit},
+    {"thickness", nullptr, &Material::thickness, R::NonNegative},
+    {"attenuation-color", &Material::attenuationColor},
+    {"attenuation-distance", nullptr, &Material::attenuationDistance, R::Positive},
+    {"sheen", nullptr, &Material::sheen, R::Unit},
+    {"sheen-color", &Material::sheenColor},
+    {"sheen-roughness", nullptr, &Material::sheenRoughness, R::Unit},
     // Subsurface scattering (the random walk: integrators/subsurface.h).
     {"subsurface", nullptr, &Material::subsurface, R::Unit},
     {"subsurface-radius", &Material::subsurfaceRadius, nullptr, R::Any},
@@ -42,6 +50,8 @@ constexpr P kPrincipled[] = {
 bool always(const Material&) { return true; }
 bool anyMetal(const Material& m) { return m.metallic > 0; }
 bool notAllMetal(const Material& m) { return m.metallic < 1; }
+bool principledTransmits(const Material& m) { return m.transmission > 0 && m.metallic < 1; }
+bool principledSheen(const Material& m) { return m.sheen > 0 && maxComponent(m.sheenColor) > 0; }
 void principledDefaults(Material& m) {
     m.albedo = Color(0.8f);
     m.roughness = 0.5f;
@@ -88,6 +98,8 @@ std::array<MaterialKindSpec, 8> makeTable() {
     principled.kilnDefaults = principledDefaults;
     principled.reflectsGlossily = anyMetal;
     principled.countsAsDiffuse = notAllMetal;
+    principled.transmits = principledTransmits;
+    principled.hasSheen = principledSheen;
 
     return {lambertian, mirror, glass, microfacet, refraction, glossy, emission, principled};
 }

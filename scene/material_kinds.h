@@ -51,6 +51,10 @@ struct MaterialKindSpec {
     // Light it reflects counts in the diffuse lobe AOVs (else the specular ones), for this
     // material.
     bool (*countsAsDiffuse)(const Material&) = nullptr;
+    // Transmits light for this material although the kind may not (principled transmission).
+    bool (*transmits)(const Material&) = nullptr;
+    // Has a sheen lobe, for this material (principled sheen).
+    bool (*hasSheen)(const Material&) = nullptr;
 };
 
 std::span<const MaterialKindSpec> materialKinds();

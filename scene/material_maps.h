@@ -61,6 +61,11 @@ struct MaterialMaps {
     int metallicTexture = -1, metallicChannel = 2;
     int roughnessTexture = -1, roughnessChannel = 1;
     UvTransform metallicUv, roughnessUv;
+    // Principled: the clear coat's weight and roughness times one channel each of these data
+    // textures (glTF clearcoatTexture R, clearcoatRoughnessTexture G; .kiln clearcoat-texture R).
+    int clearcoatTexture = -1, clearcoatChannel = 0;
+    int clearcoatRoughnessTexture = -1, clearcoatRoughnessChannel = 1;
+    UvTransform clearcoatUv, clearcoatRoughnessUv;
     // Multiplies Material::emission (glTF emissiveTexture, FBX/OBJ emissive maps): a colour map.
     int emissionTexture = -1;
     UvTransform emissionUv;

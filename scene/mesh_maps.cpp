@@ -6,8 +6,9 @@ namespace kiln {
 
 std::vector<int*> textureIds(Material& m) {
     MaterialMaps& x = m.maps;
-    return {&m.albedoTexture,   &x.normalTexture,    &x.opacityTexture,
-            &x.metallicTexture, &x.roughnessTexture, &x.emissionTexture};
+    return {
+        &m.albedoTexture,    &x.normalTexture,   &x.opacityTexture,   &x.metallicTexture,
+        &x.roughnessTexture, &x.emissionTexture, &x.clearcoatTexture, &x.clearcoatRoughnessTexture};
 }
 
 void uvAt(const TriangleMesh& mesh, uint32_t prim, float b1, float b2, float& u, float& v) {

@@ -51,6 +51,23 @@ struct Material {
     float specular = 1.0f;            // KHR_materials_specular factor: scales the dielectric F0
     float clearcoat = 0.0f;           // KHR_materials_clearcoat: weight of a GGX coat, F0 0.04
     float clearcoatRoughness = 0.0f;  // its perceptual roughness
+    Color specularColor{1.0f};        // KHR_materials_specular colour: tints the dielectric F0
+    // KHR_materials_transmission: the share of the dielectric's diffuse part that is instead a
+    // rough (GGX, same roughness) dielectric transmission tinted by the base colour, refracting
+    // through ior where thickness > 0 (a closed volume) and straight through where thickness is 0
+    // (thin-walled, as KHR_materials_volume).
+    float transmission = 0.0f;
+    float thickness = 0.0f;
+    // KHR_materials_volume's absorption inside a transmissive volume (Beer-Lambert: attenuation
+    // colour reached after attenuation distance): applied as the mesh's interior medium
+    // (scene/volume_media.h).
+    Color attenuationColor{1.0f};
+    float attenuationDistance = INFINITY;
+    // KHR_materials_sheen (Charlie distribution): sheen is its weight (glTF: 1), sheenColor its
+    // colour, sheenRoughness its perceptual roughness.
+    float sheen = 0.0f;
+    Color sheenColor{1.0f};
+    float sheenRoughness = 0.5f;
     // Subsurface scattering (a random walk inside the closed mesh, integrators/subsurface.h):
     // the weight blending the diffuse lobe into it, the mean free path per channel (scene units)
     // and a factor on it; the walk's albedo is the base colour.

@@ -91,6 +91,8 @@ std::string sceneInfoText(const Scene& scene) {
         if (m.maps.metallicTexture >= 0 || m.maps.roughnessTexture >= 0)
             os << " metallic-roughness-map";
         if (m.maps.emissionTexture >= 0) os << " emission-map";
+        if (m.maps.clearcoatTexture >= 0 || m.maps.clearcoatRoughnessTexture >= 0)
+            os << " clearcoat-map";
         if (m.maps.hasAlpha())
             os << " alpha " << toString(m.maps.alphaMode) << " opacity " << num(m.maps.opacity)
                << (m.maps.alphaMode == AlphaMode::Mask ? " cutoff " + num(m.maps.alphaCutoff) : "")

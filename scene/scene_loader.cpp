@@ -21,6 +21,7 @@
 #include "scene/importers.h"
 #include "scene/mesh_maps.h"
 #include "scene/scene_error.h"
+#include "scene/volume_media.h"
 
 namespace kiln {
 namespace {
@@ -278,6 +279,7 @@ Scene loadScene(const std::string& path, const LoadOptions& options) {
     std::string ext = lowerExtension(path);
     if (!options.materialOverride.empty()) overrideMaterials(scene, options.materialOverride);
     validateScene(scene);
+    addVolumeMedia(scene);
     addMissingTangents(scene);
     recenterScene(scene);
     warnFloatResolution(scene);

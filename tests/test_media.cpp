@@ -11,6 +11,7 @@
 #include "integrators/render_plan.h"
 #include "renderer/accel/accelerator.h"
 #include "scene/scene_loader.h"
+#include "scene/volume_media.h"
 #include "test_support.h"
 
 namespace kiln {
@@ -284,6 +285,74 @@ TEST(Media, AbsorbingSlabDimsTheEnvironmentByBeerLambert) {
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(p[k], std::exp(-s.media[0].sigmaA[k]), 2e-4f) << k;
 }
 
+// A clear principled dielectric (roughness 0, ior 1.5) with KHR_materials_volume's attenuation.
+Material absorbingGlass(const Color& attenuation, float distance) {
+    Material m{"glass"};
+    m.kind = MaterialKind::Principled;
+    m.albedo = Color(1.0f);
+    m.roughness = 0, m.ior = 1.5f, m.transmission = 1, m.thickness = 1;
+    m.attenuationColor = attenuation, m.attenuationDistance = distance;
+    return m;
+}
+
+TEST(Media, TransmissiveVolumesGetAnAbsorbingInterior) {
+    Scene s = test::sceneWith(box(Vec3(0.0f), Vec3(1.0f)));
+    const Color c(0.8f, 0.5f, 0.2f);
+    s.materials[0] = absorbingGlass(c, 2);
+    Material thin = absorbingGlass(c, 2), opaque = absorbingGlass(c, 2);
+    thin.thickness = 0, opaque.transmission = 0;
+    s.materials.push_back(thin), s.materials.push_back(opaque);
+    for (uint32_t m : {1u, 2u, 0u}) {
+        s.meshes.push_back(box(Vec3(2.0f), Vec3(3.0f)));
+        s.meshes.back().materialIds = {m};
+    }
+    s.media.push_back(Medium{"ink", Color(1.0f), Color(0.0f), 0});
+    s.meshes.back().interior = 0;  // a mesh naming its interior keeps it
+    addVolumeMedia(s);
+    ASSERT_EQ(s.media.size(), 2u);
+    EXPECT_EQ(s.meshes[0].interior, 1);
+    EXPECT_EQ(s.meshes[1].interior, -1);  // thin-walled
+    EXPECT_EQ(s.meshes[2].interior, -1);  // no transmission
+    EXPECT_EQ(s.meshes[3].interior, 0);
+    for (int k = 0; k < 3; ++k) EXPECT_FLOAT_EQ(s.media[1].sigmaA[k], -std::log(c[k]) / 2) << k;
+    EXPECT_EQ(s.media[1].sigmaS, Color(0.0f));
+}
+
+TEST(Media, PrincipledGlassSlabAbsorbsByBeerLambert) {
+    // Normal view through a slab of thickness 1 under a uniform sky: Fresnel F = F0 = 0.04 at
+    // both faces, t = attenuation colour per pass, so the pixel is what the slab reflects plus what
+    // it transmits, summed over the internal reflections: F + (1 - F)^2 (F t^2 + t) / (1 - F^2
+    // t^2).
+    TriangleMesh slab = box(Vec3(-50, -50, -0.5f), Vec3(50, 50, 0.5f));
+    Scene s = test::sceneWith(slab);
+    const Color c(0.8f, 0.5f, 0.2f);
+    s.materials[0] = absorbingGlass(c, 1);
+    addVolumeMedia(s);
+    ASSERT_EQ(s.meshes[0].interior, 0);
+    s.lights.push_back(test::uniformEnvironment());
+    s.camera.position = Vec3(0, 0, 4);
+    s.camera.hFovDeg = s.camera.vFovDeg = 1;
+    auto accel = makeEmbreeAccelerator(s);
+    RenderJobOptions o = test::jobOptions(16, 16, 64);
+    o.path.maxDepth = 100;
+    Film f = test::renderJob(s, *accel, o);
+    const double F = 0.04;
+    for (int k = 0; k < 3; ++k) {
+        // Every pixel estimates the same value: the spread of their means is the standard error.
+        double sum = 0, sum2 = 0;
+        for (int y = 0; y < 16; ++y)
+            for (int x = 0; x < 16; ++x) {
+                double p = f.pixel(x, y)[k];
+                sum += p, sum2 += p * p;
+            }
+        double mean = sum / 256, se = std::sqrt(std::max(0.0, sum2 / 256 - mean * mean) / 255);
+        double t = c[k];
+        double expect = F + (1 - F) * (1 - F) * (F * t * t + t) / (1 - F * F * t * t);
+        EXPECT_NEAR(mean, expect, 5 * se + 2e-3) << "channel " << k;
+        EXPECT_LT(mean, F + (1 - F) * (1 - F) * (F + 1) / (1 - F * F) - 0.05);  // it absorbs
+    }
+}
+
 TEST(Media, KilnFileReadsMediaAndPlanNamesThem) {
     auto dir = test::scratchDir() / "media";
     std::filesystem::create_directories(dir);
@@ -314,6 +383,24 @@ TEST(Media, KilnFileReadsMediaAndPlanNamesThem) {
     bad("<medium name=\"m\" sigma-a=\"-1 0 0\"/>", "sigma-a must be >= 0");
     bad("<medium name=\"m\" kind=\"grid\"/>", "kind 'grid'");
     bad("<medium name=\"m\" sigma=\"1 1 1\"/>", "unknown attribute 'sigma'");
+}
+
+TEST(Media, MediaAndWalkImagesDoNotDependOnThreadsOrTiles) {
+    for (const char* scene : {"scenes/coloured_glass.kiln", "scenes/lucy_subsurface.kiln"}) {
+        Scene s = loadScene(test::repo(scene));
+        auto accel = makeEmbreeAccelerator(s);
+        RenderJobOptions one = test::jobOptions(24, 24, 4), two = one;
+        one.settings.threads = 1, one.settings.tileSize = 8;
+        two.settings.threads = 2, two.settings.tileSize = 32;
+        Film a = test::renderJob(s, *accel, one), b = test::renderJob(s, *accel, two);
+        double total = 0;
+        for (int y = 0; y < 24; ++y)
+            for (int x = 0; x < 24; ++x) {
+                ASSERT_EQ(a.pixel(x, y), b.pixel(x, y)) << scene << " " << x << " " << y;
+                total += luminance(a.pixel(x, y));
+            }
+        EXPECT_GT(total, 0.0) << scene;
+    }
 }
 
 TEST(Media, ScenesWithoutMediaDoNotNameThem) {

@@ -37,6 +37,8 @@ TEST(Aovs, BeautyIsEmissionPlusDirectPlusIndirectAndTheSplitsAddUp) {
     for (const std::string& scene :
          {test::cs184("sky/CBspheres.dae"), test::cs184("sky/CBbunny_microfacet_cu.dae"),
           test::cs184("sky/bunny.dae"), test::repo("scenes/cornell.dae"),
+          test::repo("scenes/principled_lobes/glass.kiln"),
+          test::repo("scenes/principled_lobes/sheen.kiln"),
           // Media and subsurface walks (the plan's media specialisation).
           test::repo("scenes/coloured_glass.kiln"), test::repo("scenes/lucy_subsurface.kiln")}) {
         Film f = render(scene, AovRequest::parse("all", 5));
@@ -77,6 +79,18 @@ TEST(Aovs, GlassSceneHasTransmissionAndSpecularLight) {
     EXPECT_GT(trans, 0.0);  // light seen through the glass sphere: two refractions, so indirect
     EXPECT_GT(spec,
               0.0);  // the ceiling light seen in the mirror sphere: one specular bounce, direct
+}
+
+// Principled transmission: light seen through the glass bunnies and the thin pane counts as
+// transmission (it reaches the camera after a refraction: indirect).
+TEST(Aovs, PrincipledTransmissionIsTransmissionLight) {
+    Film f = render(test::repo("scenes/principled_lobes/glass.kiln"),
+                    AovRequest::parse("indirect_transmission", 5), 5, 8);
+    double indirect = 0;
+    for (int y = 0; y < f.height(); ++y)
+        for (int x = 0; x < f.width(); ++x)
+            for (int c = 0; c < 3; ++c) indirect += f.aov(x, y, c);
+    EXPECT_GT(indirect, 0.0);
 }
 
 TEST(Aovs, RequestParsing) {

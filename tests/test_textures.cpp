@@ -234,12 +234,15 @@ namespace kiln {
 namespace {
 
 // Assimp's phong_cube.fbx: an emissive, half-transparent Phong material with a specular colour;
-// kiln renders it opaque and without highlight, and says so for each. Its emission is added to
-// the diffuse surface (no warning); BoxTextured's glTF metallic-roughness is the principled
-// material (no warning either).
+// kiln renders its opacity as coverage (as OBJ's d) and drops the highlight, with a warning. Its
+// emission is added to the diffuse surface (no warning); BoxTextured's glTF metallic-roughness is
+// the principled material (no warning either).
 TEST(MaterialWarnings, FeaturesKilnDropsAreNamed) {
     Scene s = loadScene("/usr/share/assimp/models/FBX/phong_cube.fbx");
-    EXPECT_EQ(test::warningsNaming(s, "opacity 0.5 ignored"), 1);
+    EXPECT_EQ(test::warningsNaming(s, "opacity"), 0);
+    ASSERT_FALSE(s.materials.empty());
+    EXPECT_EQ(s.materials[0].maps.alphaMode, AlphaMode::Blend);
+    EXPECT_NEAR(s.materials[0].maps.opacity, 0.5f, 1e-6f);
     EXPECT_EQ(test::warningsNaming(s, "specular colour dropped"), 1);
     EXPECT_EQ(test::warningsNaming(s, "emissive"), 0);
     Scene box = loadScene("/usr/share/assimp/models/glTF2/BoxTextured-glTF-Binary/BoxTextured.glb");

@@ -30,7 +30,9 @@ def uv_sphere():
     return positions, normals, indices
 
 
-def main():
+def gltf_with_sphere(generator):
+    """A glTF document whose buffer holds the UV sphere (accessors 0 positions, 1 normals, 2 indices),
+    with no materials, meshes or nodes yet."""
     positions, normals, indices = uv_sphere()
     pos = b"".join(struct.pack("<3f", *p) for p in positions)
     nrm = b"".join(struct.pack("<3f", *n) for n in normals)
@@ -39,7 +41,7 @@ def main():
     lo = [min(p[k] for p in positions) for k in range(3)]
     hi = [max(p[k] for p in positions) for k in range(3)]
     gltf = {
-        "asset": {"version": "2.0", "generator": "kiln tools/make_metal_rough_grid.py"},
+        "asset": {"version": "2.0", "generator": generator},
         "buffers": [{"byteLength": len(data),
                      "uri": "data:application/octet-stream;base64," + base64.b64encode(data).decode()}],
         "bufferViews": [
@@ -55,6 +57,11 @@ def main():
         ],
         "materials": [], "meshes": [], "nodes": [], "scenes": [{"nodes": []}], "scene": 0,
     }
+    return gltf
+
+
+def main():
+    gltf = gltf_with_sphere("kiln tools/make_metal_rough_grid.py")
     for row, metallic, base, y in ROWS:
         for i, roughness in enumerate(ROUGHNESS):
             k = len(gltf["materials"])

@@ -223,6 +223,13 @@ void warnHemisphereBlind(const RenderJob& job, const std::string& scenePath) {
             "{}: {} sampling cannot see point, spot or directional lights, the only lights here: "
             "the image will be black but for emitters",
             scenePath, toString(o.path.sampling));
+    // -H probes are traced as closest hits, blind to media (docs/light-transport.md).
+    if (job.plan().media && o.path.sampling == DirectSampling::Hemisphere &&
+        o.integrator == IntegratorKind::Path)
+        logWarning(
+            "{}: hemisphere sampling does not see participating media: their light is "
+            "wrong (use --sampling mis)",
+            scenePath);
 }
 
 void addSceneToOutputs(RenderCommand& c, const Scene& scene, const RenderJobOptions& options) {

@@ -77,7 +77,9 @@ bool hasSurfaceColourVariation(const Scene& scene) {
     return std::any_of(scene.materials.begin(), scene.materials.end(),
                        [](const Material& m) {
                            return m.albedoTexture >= 0 || m.maps.normalTexture >= 0 ||
-                                  m.maps.metallicTexture >= 0 || m.maps.roughnessTexture >= 0;
+                                  m.maps.metallicTexture >= 0 || m.maps.roughnessTexture >= 0 ||
+                                  m.maps.clearcoatTexture >= 0 ||
+                                  m.maps.clearcoatRoughnessTexture >= 0;
                        }) ||
            std::any_of(scene.meshes.begin(), scene.meshes.end(),
                        [](const TriangleMesh& m) { return !m.colors.empty(); });
@@ -95,20 +97,46 @@ Color baseColourAt(const Scene& scene, const Material& material, const Hit& hit,
     return albedo;
 }
 
+namespace {
+
+// A factor's data texture: which channel multiplies it, read through which transform.
+struct ChannelMap {
+    int texture, channel;
+    const UvTransform& uv;
+};
+
+// Two factors, each times its map's channel at the hit where it has a map and the mesh UVs.
+void scaleByMaps(const Scene& scene, const Hit& hit, float worldWidth, float& a, ChannelMap mapA,
+                 float& b, ChannelMap mapB) {
+    if (mapA.texture < 0 && mapB.texture < 0) return;
+    if (!texturedMesh(scene, hit)) return;
+    MeshPoint at = MeshPoint::of(hit);
+    if (mapA.texture >= 0)
+        a *= mapChannel(scene, mapA.texture, mapA.channel, mapA.uv, at, worldWidth);
+    if (mapB.texture >= 0)
+        b *= mapChannel(scene, mapB.texture, mapB.channel, mapB.uv, at, worldWidth);
+}
+
+}  // namespace
+
 MetallicRoughness metallicRoughnessAt(const Scene& scene, const Material& material, const Hit& hit,
                                       float worldWidth) {
     MetallicRoughness mr = MetallicRoughness::of(material);
     const MaterialMaps& maps = material.maps;
-    if (maps.metallicTexture < 0 && maps.roughnessTexture < 0) return mr;
-    if (!texturedMesh(scene, hit)) return mr;
-    MeshPoint at = MeshPoint::of(hit);
-    if (maps.metallicTexture >= 0)
-        mr.metallic *= mapChannel(scene, maps.metallicTexture, maps.metallicChannel,
-                                  maps.metallicUv, at, worldWidth);
-    if (maps.roughnessTexture >= 0)
-        mr.roughness *= mapChannel(scene, maps.roughnessTexture, maps.roughnessChannel,
-                                   maps.roughnessUv, at, worldWidth);
+    scaleByMaps(scene, hit, worldWidth, mr.metallic,
+                {maps.metallicTexture, maps.metallicChannel, maps.metallicUv}, mr.roughness,
+                {maps.roughnessTexture, maps.roughnessChannel, maps.roughnessUv});
     return mr;
+}
+
+Coat coatAt(const Scene& scene, const Material& material, const Hit& hit, float worldWidth) {
+    Coat coat = Coat::of(material);
+    const MaterialMaps& maps = material.maps;
+    scaleByMaps(scene, hit, worldWidth, coat.weight,
+                {maps.clearcoatTexture, maps.clearcoatChannel, maps.clearcoatUv}, coat.roughness,
+                {maps.clearcoatRoughnessTexture, maps.clearcoatRoughnessChannel,
+                 maps.clearcoatRoughnessUv});
+    return coat;
 }
 
 bool normalMapAt(const Scene& scene, const Material& material, const Hit& hit, float worldWidth,

@@ -40,12 +40,22 @@ struct MetallicRoughness {
     static MetallicRoughness of(const Material& m) { return {m.metallic, m.roughness}; }
 };
 
+// The principled clear coat's weight and perceptual roughness at a point: the material's factors
+// times its clearcoat textures there (glTF clearcoatTexture R, clearcoatRoughnessTexture G).
+struct Coat {
+    float weight = 0, roughness = 0;
+    static Coat of(const Material& m) { return {m.clearcoat, m.clearcoatRoughness}; }
+};
+
 // What a BSDF reads of its material at a point: the base (diffuse) colour, times its texture and
-// the mesh's vertex colours, and the principled metallic and roughness.
+// the mesh's vertex colours, and the principled metallic, roughness and clear coat.
 struct SurfaceInputs {
     Color baseColour;
     MetallicRoughness mr;
-    static SurfaceInputs of(const Material& m) { return {m.albedo, MetallicRoughness::of(m)}; }
+    Coat coat;
+    static SurfaceInputs of(const Material& m) {
+        return {m.albedo, MetallicRoughness::of(m), Coat::of(m)};
+    }
 };
 
 // Whether any material has a texture (colour, normal or metallic-roughness map) or any mesh vertex
@@ -55,10 +65,12 @@ bool hasSurfaceColourVariation(const Scene& scene);
 Color baseColourAt(const Scene& scene, const Material& material, const Hit& hit, float worldWidth);
 MetallicRoughness metallicRoughnessAt(const Scene& scene, const Material& material, const Hit& hit,
                                       float worldWidth);
+Coat coatAt(const Scene& scene, const Material& material, const Hit& hit, float worldWidth);
 inline SurfaceInputs surfaceInputsAt(const Scene& scene, const Material& material, const Hit& hit,
                                      float worldWidth) {
     return {baseColourAt(scene, material, hit, worldWidth),
-            metallicRoughnessAt(scene, material, hit, worldWidth)};
+            metallicRoughnessAt(scene, material, hit, worldWidth),
+            coatAt(scene, material, hit, worldWidth)};
 }
 
 // The normal map's tangent-space normal at the hit ((2 texel - 1), xy scaled by normalScale);

@@ -203,4 +203,5 @@ def main():
     print("kiln-peer: render_seconds %.4f" % (time.perf_counter() - start), flush=True)
 
 
-main()
+if __name__ == "__main__":  # Blender runs a --python script as __main__
+    main()

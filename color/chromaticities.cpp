@@ -3,8 +3,6 @@
 #include <cmath>
 
 namespace kiln {
-namespace {
-
 Mat3 multiply(const Mat3& a, const Mat3& b) {
     Mat3 r{};
     for (int i = 0; i < 3; ++i)
@@ -29,6 +27,14 @@ Mat3 inverse(const Mat3& m) {
     r[2][2] = (m[0][0] * m[1][1] - m[0][1] * m[1][0]) / det;
     return r;
 }
+
+Color applyMatrix(const Mat3& m, const Color& c) {
+    return Color(float(m[0][0] * c.x + m[0][1] * c.y + m[0][2] * c.z),
+                 float(m[1][0] * c.x + m[1][1] * c.y + m[1][2] * c.z),
+                 float(m[2][0] * c.x + m[2][1] * c.y + m[2][2] * c.z));
+}
+
+namespace {
 
 std::array<double, 3> xyToXYZ(double x, double y) { return {x / y, 1.0, (1 - x - y) / y}; }
 

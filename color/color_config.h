@@ -20,13 +20,16 @@ struct ColorSetup {
     std::string configPath;
     std::string sceneLinear;    // the colour space of the scene_linear role (or the "linear" alias)
     std::string display, view;  // as asked, or the config's defaults
+    std::string look;           // as asked (empty: none)
     std::vector<std::string> warnings;
 };
 
 // Loads and validates the config, finds scene_linear, the display and view (empty: the config's
-// defaults), builds the display transform (so missing LUT files show now), and checks that
-// scene_linear is kiln's working space (linear Rec.709, D65) where an interchange role lets it
-// tell. Throws std::invalid_argument with one line naming the config and the problem.
-ColorSetup checkColorConfig(const std::string& display = "", const std::string& view = "");
+// defaults), builds the display transform (so missing LUT files show now), and warns when no
+// interchange role tells scene_linear's primaries (working_space.h). Throws std::invalid_argument
+// with one line naming the config and the problem.
+// A look (--look) must be one the config defines.
+ColorSetup checkColorConfig(const std::string& display = "", const std::string& view = "",
+                            const std::string& look = "");
 
 }  // namespace kiln

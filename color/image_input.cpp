@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "color/chromaticities.h"
+#include "color/working_space.h"
 
 namespace kiln {
 namespace {
@@ -26,12 +27,6 @@ Mat3 toWorkingMatrix(const OIIO::ImageSpec& spec) {
     Chromaticities c;
     for (int i = 0; i < 8; ++i) c[size_t(i)] = static_cast<const float*>(chroma->data())[i];
     return sameChromaticities(c, kRec709D65) ? identity : toWorkingSpace(c);
-}
-
-Color transform(const Mat3& m, const Color& c) {
-    return Color(float(m[0][0] * c.x + m[0][1] * c.y + m[0][2] * c.z),
-                 float(m[1][0] * c.x + m[1][1] * c.y + m[1][2] * c.z),
-                 float(m[2][0] * c.x + m[2][1] * c.y + m[2][2] * c.z));
 }
 
 }  // namespace
@@ -55,15 +50,19 @@ RgbImage readWorkingSpaceImage(const std::string& path) {
     std::vector<float> data(size_t(spec.width) * spec.height * spec.nchannels);
     if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, data.data()))
         throw ImageReadError(path, "cannot read image: " + in->geterror());
-    Mat3 toWorking = toWorkingMatrix(spec);
     bool srgbEncoded = isSrgbEncoded(spec);
+    // sRGB-encoded texels are decoded straight into scene_linear by OCIO; linear ones are in
+    // their stated chromaticities (else Rec.709), taken to Rec.709, then to the working space.
+    Mat3 toWorking = toWorkingMatrix(spec);
+    const WorkingSpace& space = workingSpace();
+    if (!srgbEncoded && !space.rec709) toWorking = multiply(space.fromRec709, toWorking);
     RgbImage image;
     image.width = spec.width, image.height = spec.height;
     image.pixels.resize(size_t(spec.width) * spec.height);
     if (srgbEncoded) decodeSrgbTexels(data.data(), image.pixels.size(), spec.nchannels);
     for (size_t i = 0; i < image.pixels.size(); ++i) {
         const float* p = &data[i * size_t(spec.nchannels)];
-        image.pixels[i] = transform(toWorking, Color(p[0], p[1], p[2]));
+        image.pixels[i] = applyMatrix(toWorking, Color(p[0], p[1], p[2]));
     }
     return image;
 }

@@ -18,6 +18,7 @@
 
 #include "color/atomic_file.h"
 #include "color/oiio_write.h"
+#include "color/working_space.h"
 
 namespace kiln {
 
@@ -72,11 +73,12 @@ OIIO::ColorConfig& colorConfig() {
 
 // scene_linear -> display/view of a float RGB(A) buffer.
 OIIO::ImageBuf toDisplay(const OIIO::ImageBuf& linear, const std::string& display,
-                         const std::string& view) {
-    ColorSetup setup = checkColorConfig(display, view);
+                         const std::string& view, const std::string& look = "") {
+    ColorSetup setup = checkColorConfig(display, view, look);
     OIIO::ImageBuf shown;
     if (!OIIO::ImageBufAlgo::ociodisplay(shown, linear, setup.display, setup.view,
-                                         setup.sceneLinear, "", false, "", "", &colorConfig()))
+                                         setup.sceneLinear, setup.look, false, "", "",
+                                         &colorConfig()))
         throw std::runtime_error("colour transform failed: " + shown.geterror());
     return shown;
 }
@@ -197,9 +199,10 @@ void addMetadata(OIIO::ImageSpec& spec, const Film& film, const Metadata& metada
     spec.attribute("kiln:version", KILN_VERSION);
     spec.attribute("kiln:colorspace", options.colorSpace);
     spec.attribute("oiio:ColorSpace", options.colorSpace);
-    // Rec.709 primaries and D65 white, as OpenEXR's chromaticities attribute.
-    static const float chroma[8] = {0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f};
-    spec.attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), chroma);
+    // The working space's primaries and white (Rec.709 and D65 in kiln's own config), as
+    // OpenEXR's chromaticities attribute.
+    spec.attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8),
+                   workingSpace().chromaticities.data());
     const AovRequest& request = film.layout().request();
     spec.attribute("kiln:alpha", request.transparent
                                      ? "coverage by non-emitting surfaces; background transparent"
@@ -290,12 +293,12 @@ std::map<std::string, ExrAttribute> exrHeader(const Film& film, const Metadata& 
 }
 
 void writePreview(const std::string& path, const Film& film, const std::string& display,
-                  const std::string& view, float exposureStops,
+                  const std::string& view, float exposureStops, const std::string& look,
                   const std::vector<Color>* denoised) {
     OIIO::ImageBuf linear = beautyBuffer(film, denoised);
     if (exposureStops != 0)
         OIIO::ImageBufAlgo::mul(linear, linear, std::exp2(exposureStops));  // --exposure
-    OIIO::ImageBuf shown = toDisplay(linear, display, view);
+    OIIO::ImageBuf shown = toDisplay(linear, display, view, look);
     writeAtomically(path, formatOf(path), shown.spec(), shown, "preview", OIIO::TypeDesc::UINT8);
 }
 

@@ -81,11 +81,12 @@ std::map<std::string, ExrAttribute> exrHeader(const Film& film, const Metadata& 
 void writeSampleHeatMap(const std::string& path, const Film& film);
 
 // Display-referred 8-bit preview through the OCIO display/view (empty: the config's defaults),
-// from the config's scene_linear, the scene light first scaled by 2^exposureStops.
-// denoised: shown instead of the film's beauty (ExrOptions::denoised).
+// from the config's scene_linear, the scene light first scaled by 2^exposureStops, through the
+// config's look named `look` first when given. denoised: shown instead of the film's beauty
+// (ExrOptions::denoised).
 void writePreview(const std::string& path, const Film& film, const std::string& display = "",
                   const std::string& view = "", float exposureStops = 0,
-                  const std::vector<Color>* denoised = nullptr);
+                  const std::string& look = "", const std::vector<Color>* denoised = nullptr);
 
 // The scene-linear -> display transform of one value (for tests and tools).
 float displayTransform(float linear, const std::string& display = "", const std::string& view = "");

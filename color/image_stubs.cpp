@@ -68,9 +68,9 @@ void writeSampleHeatMap(const std::string& path, const Film& film) {
     module().writeSampleHeatMap(path, film);
 }
 void writePreview(const std::string& path, const Film& film, const std::string& display,
-                  const std::string& view, float exposureStops,
+                  const std::string& view, float exposureStops, const std::string& look,
                   const std::vector<Color>* denoised) {
-    module().writePreview(path, film, display, view, exposureStops, denoised);
+    module().writePreview(path, film, display, view, exposureStops, look, denoised);
 }
 float displayTransform(float linear, const std::string& display, const std::string& view) {
     return module().displayTransform(linear, display, view);

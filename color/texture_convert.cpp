@@ -11,6 +11,7 @@
 
 #include "color/atomic_file.h"
 #include "color/image_input.h"
+#include "color/working_space.h"
 #include "renderer/core/sampler.h"
 
 namespace kiln {
@@ -38,6 +39,9 @@ std::string textureCacheDir() {
 
 std::string convertedTextureName(const std::string& identity, bool decodeSrgb) {
     uint64_t h = mix64(hashBytes(identity) ^ (decodeSrgb ? 1 : 2) ^ (kConversionVersion << 8));
+    // Decoded sRGB lands in scene_linear: another working space is another file.
+    if (const WorkingSpace& space = workingSpace(); decodeSrgb && !space.rec709)
+        h = mix64(h ^ hashBytes(space.name));
     return fmt::format("{:016x}.tx", h);
 }
 

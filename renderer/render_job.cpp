@@ -6,6 +6,7 @@
 #include <string>
 #include <utility>
 
+#include "color/working_space.h"
 #include "integrators/make_integrator.h"
 #include "integrators/path.h"
 #include "renderer/geometry/camera.h"
@@ -149,7 +150,10 @@ Metadata RenderJob::metadata(const RenderStats& stats, const Film& film) const {
                                              : "default-framing"},
         {"threads", text(s.threads > 0 ? s.threads : tbb::info::default_concurrency())},
         {"rays", text(stats.rays)},
-        {"working_space", "lin_rec709 (linear Rec.709 primaries, D65)"},
+        {"working_space",
+         workingSpace().rec709
+             ? std::string("lin_rec709 (linear Rec.709 primaries, D65)")
+             : workingSpace().name + " (scene_linear; file colours converted from linear Rec.709)"},
         {"plan", plan_.compact()},
         {"plan_decisions", plan_.text()},
         {"nonfinite_samples", text(stats.nonFiniteSamples)},

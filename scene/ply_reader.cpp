@@ -379,6 +379,7 @@ void readPly(const std::string& path, Scene& scene) {
                 }
             }
             if (colours && isDisplayCode(e.props[size_t(ir)].type)) {
+                mesh.colorsInWorkingSpace = true;
                 if (e.props[size_t(ir)].type == PlyType::UInt8) {  // exact codes: the table
                     const std::array<float, 256> table = srgb8Table();
                     for (float& c : mesh.colors) c = table[size_t(std::lround(c * 255.0f))];

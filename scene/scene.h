@@ -151,10 +151,11 @@ struct TriangleMesh {
     std::string node;
     // xyz per vertex; one extra padding float at the end because Embree reads vertices as 16 bytes.
     std::vector<float> positions;
-    std::vector<uint32_t> indices;  // 3 per triangle
-    std::vector<float> normals;     // optional, xyz per vertex
-    std::vector<float> uvs;         // optional, uv per vertex
-    std::vector<float> colors;      // optional, linear rgb per vertex: multiplies the albedo
+    std::vector<uint32_t> indices;      // 3 per triangle
+    std::vector<float> normals;         // optional, xyz per vertex
+    std::vector<float> uvs;             // optional, uv per vertex
+    std::vector<float> colors;          // optional, linear rgb per vertex: multiplies the albedo
+    bool colorsInWorkingSpace = false;  // decoded from sRGB codes (else linear Rec.709 as read)
     // Optional, xyz + handedness sign per vertex (4 floats): the direction of increasing u, and
     // whether the bitangent (increasing v) is +cross(n, t) or -cross(n, t). Normal maps only.
     std::vector<float> tangents;

@@ -22,6 +22,7 @@
 #include "scene/mesh_maps.h"
 #include "scene/scene_error.h"
 #include "scene/volume_media.h"
+#include "scene/working_colours.h"
 
 namespace kiln {
 namespace {
@@ -320,6 +321,7 @@ Scene loadScene(const std::string& path, const LoadOptions& options) {
             scene.warnings.push_back("scene has no lights; using the default light rig");
         addDefaultLightRig(scene);
     }
+    convertColoursToWorkingSpace(scene);
     warnDarkLights(scene);
     warnBlackImage(scene);
 

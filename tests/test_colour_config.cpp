@@ -100,9 +100,7 @@ TEST(ColourConfig, ConfigsLackingWhatKilnNeedsAreRefusedBeforeAnyWork) {
     };
     const Case cases[] = {
         {"no-scene-linear", config("  default: display_srgb\n"), "scene_linear"},
-        {"acescg-working-space",
-         config("  scene_linear: acescg\n  aces_interchange: aces\n  default: acescg\n"),
-         "not linear Rec.709"},
+        {"unknown-look", config(kGoodRoles), "unknown look 'Nope'"},
         {"missing-lut",
          config(kGoodRoles, "\n    - !<View> {name: Film, colorspace: film_lut}") +
              "  - !<ColorSpace>\n    name: film_lut\n    from_reference: !<FileTransform> "
@@ -113,7 +111,9 @@ TEST(ColourConfig, ConfigsLackingWhatKilnNeedsAreRefusedBeforeAnyWork) {
     for (const Case& c : cases) {
         std::string path = test::writeFile(dir / (std::string(c.name) + ".ocio"), c.text);
         test::ScopedEnv ocio("OCIO", path);
-        std::string extra = std::string(c.name) == "missing-lut" ? "--view Film" : "";
+        std::string extra = std::string(c.name) == "missing-lut"    ? "--view Film"
+                            : std::string(c.name) == "unknown-look" ? "--look Nope"
+                                                                    : "";
         test::CliRun r = test::runKiln(render("/nonexistent/scene.dae", dir / c.name, extra));
         EXPECT_EQ(r.code, 2) << c.name << ": " << r.err;
         EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << c.name << ": " << r.err;

@@ -80,7 +80,7 @@ int runMerge(const std::vector<std::string>& args) {
     if (merged.film.hasHalves()) denoiseForOutputs(merged.film, 0, exr, meta);
     writeExr(base + ".exr", merged.film, meta, exr);
     writePreview(base + ".png", merged.film, metaOr(meta, "display", "sRGB"),
-                 metaOr(meta, "view", "Standard"), 0, exr.denoised.get());
+                 metaOr(meta, "view", "Standard"), 0, metaOr(meta, "look", ""), exr.denoised.get());
     logInfo(
         "merged {} shards ({} samples, {:.1f} MiB) -> {}.exr, {}.png; read and combine {:.3f}s "
         "({:.0f} MiB/s), write {:.3f}s",

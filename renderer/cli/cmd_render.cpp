@@ -110,6 +110,7 @@ Json renderResult(const RenderCommand& c, const Scene& scene,
         {"ocio_config", c.colourConfig},
         {"display", c.display},
         {"view", c.view},
+        {"look", c.look},
         {"warnings", warnings}});
     return result;
 }
@@ -455,7 +456,7 @@ void checkRenderArguments(const std::vector<std::string>& args) {
     checkOneScene(pos);
     checkedJobOptions(c);
     try {
-        checkColorConfig(c.display, c.view);
+        checkColorConfig(c.display, c.view, c.look);
     } catch (const std::invalid_argument& e) {
         throw UsageError(e.what());
     }

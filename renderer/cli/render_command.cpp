@@ -42,6 +42,8 @@ void addOutputOptions(ArgParser& parser, RenderCommand& c) {
                   "OCIO view for the preview (default: the display's default view; CS184: the "
                   "course's display)",
                   [&c](const std::vector<std::string>& v) { c.view = v[0]; });
+    parser.option("look", "", 1, "NAME", "OCIO look applied to the preview before the view",
+                  [&c](const std::vector<std::string>& v) { c.look = v[0]; });
     addExposureOption(parser, c.exposure);
     parser.flag("half", "", "write colour layers as half floats (data layers stay float)",
                 c.exr.half);
@@ -200,7 +202,7 @@ RenderJobOptions renderJobOptions(const RenderCommand& c) {
 // The OCIO config, display and view checked before any work; the defaults filled in.
 void checkColour(RenderCommand& c) {
     try {
-        ColorSetup setup = checkColorConfig(c.display, c.view);
+        ColorSetup setup = checkColorConfig(c.display, c.view, c.look);
         c.display = setup.display, c.view = setup.view, c.colourConfig = setup.configPath;
         c.exr.colorSpace = setup.sceneLinear;
         for (const std::string& w : setup.warnings) logWarning("{}", w);
@@ -299,7 +301,7 @@ int writeOutputs(const RenderCommand& c, const OutputPaths& out, const Film& fil
     }
     attempt("exr", out.exr, [&] { writeExr(out.exr, film, denoisedMeta, exr); });
     attempt("preview", out.preview, [&] {
-        writePreview(out.preview, film, c.display, c.view, c.exposure, exr.denoised.get());
+        writePreview(out.preview, film, c.display, c.view, c.exposure, c.look, exr.denoised.get());
     });
     if (c.heatMap || c.job.job.settings.adaptiveStep() > 0) {
         heatPath = fs::path(out.exr).replace_extension(".samples.png").string();

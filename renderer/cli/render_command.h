@@ -38,6 +38,7 @@ struct RenderCommand {
     CameraOptions camera;
     std::string output;         // base path, or the -f file
     std::string display, view;  // empty: the OCIO config's defaults
+    std::string look;           // --look: an OCIO look applied before the view (empty: none)
     float exposure = 0;         // stops
     ExrOptions exr;
     bool transparent = false, json = false;

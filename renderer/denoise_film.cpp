@@ -80,7 +80,7 @@ std::vector<int> halfChannelsIn(const ExrImage& exr, int h, const std::string& p
 denoise::Halves halvesOf(const ExrImage& exr, const std::string& path) {
     const int w = exr.width(), h = exr.height();
     std::vector<int> channels[2] = {halfChannelsIn(exr, 0, path), halfChannelsIn(exr, 1, path)};
-    const int count = exr.channel("samples.count");
+    const int count = exr.channel("samples.X");
     denoise::Halves halves;
     for (int k = 0; k < 2; ++k) halves.half[k] = denoise::Image(w, h, kHalfChannels);
     for (int y = 0; y < h; ++y)
@@ -101,7 +101,7 @@ denoise::Halves halvesOf(const ExrImage& exr, const std::string& path) {
             if (count >= 0 && samples[0] + samples[1] != exr.value(x, y, count))
                 throw DenoiseInputError(path +
                                         ": the half-buffers' sample counts do not add up "
-                                        "to samples.count at pixel (" +
+                                        "to samples.X at pixel (" +
                                         std::to_string(x) + ", " + std::to_string(y) + ")");
         }
     return halves;

@@ -265,7 +265,8 @@ TEST(Batch, FramesOfOneSceneLoadItOnceAndEqualSingleRenders) {
       "cameras": [{"name": "orbit", "turntable": 4},
                   {"name": "fly", "path": [{"position": [0, 1, 4]}, {"position": [1, 1, 4], "fov": 50}]}]
     })");
-    farm::CommandResult r = test::kiln({"batch", job, "-q"});
+    // At debug the batch lets its renders' info lines through: their load counters.
+    farm::CommandResult r = test::kiln({"batch", job, "-q", "--log-level", "debug"});
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("6 renders from one scene load"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("this process: 6 renders, 1 scene loads, 1 accelerator builds"),

@@ -236,7 +236,7 @@ TEST(DenoiseCommand, ExrsWithoutUsableHalfBuffersAreRefused) {
         return path;
     };
     refused(edited("nan.exr", "halfA.G", std::nanf("")), "non-finite value in halfA.G");
-    refused(edited("count.exr", "halfB.n", 99.0f), "do not add up to samples.count");
+    refused(edited("count.exr", "halfB.n", 99.0f), "do not add up to samples.X");
     // A file with half A only.
     OIIO::ImageSpec spec(4, 4, 0, OIIO::TypeDesc::FLOAT);
     spec.channelnames = {"R", "G", "B"};

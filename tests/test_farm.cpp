@@ -246,6 +246,34 @@ TEST_F(FarmCluster, FourShardsBySamplesAndByRegionEqualTheOneProcessRender) {
     }
 }
 
+// --sbatch-arg reaches Slurm itself (the job's comment as slurmctld holds it), and a submit that
+// Slurm refuses (no such partition) exits 1 and leaves neither the job folder nor the output
+// folders behind.
+TEST_F(FarmCluster, SbatchArgsReachSlurmAndARefusedSubmitLeavesNothing) {
+    fs::path dir = test::scratchDir();
+    const std::vector<std::string> render{scene(), "-r",       "16", "12",   "-s",
+                                          "4",     "--shards", "2",  "--by", "samples"};
+    std::vector<std::string> args = render;
+    args.insert(args.end(), {"-d", (dir / "ok").string(), "-o", (dir / "ok/image").string(),
+                             "--sbatch-arg=--comment=kiln-wrangler-test"});
+    farm::CommandResult r = submit(args);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    farm::FarmStatus s = waitFor((dir / "ok").string(), finished);
+    EXPECT_TRUE(s.merged);
+    farm::CommandResult shown = farm::runCapturing("scontrol", {"show", "job"});
+    EXPECT_NE(shown.output.find("Comment=kiln-wrangler-test"), std::string::npos) << shown.output;
+
+    args = render;
+    args.insert(args.end(),
+                {"-d", (dir / "no/job").string(), "-o", (dir / "no/out/deep/image").string(),
+                 "--sbatch-arg=--partition=no-such-partition"});
+    r = submit(args);
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("artition"), std::string::npos) << r.output;  // Slurm's reason
+    EXPECT_FALSE(fs::exists(dir / "no/job")) << "a half-made job directory";
+    EXPECT_FALSE(fs::exists(dir / "no/out")) << "the output folders submit made";
+}
+
 // Waits on #16. A shard killed and requeued by Slurm while it renders comes back, resumes from
 // its checkpoint, and the merged image is still the one-process render bit for bit.
 TEST_F(FarmCluster, RequeuedShardResumesFromItsCheckpoint) {

@@ -95,6 +95,9 @@ TEST(Help, AMovedBinarySaysWhereItLookedForItsConfig) {
     auto dir = test::scratchDir();
     fs::create_directories(dir / "bin");
     fs::copy_file(KILN_BINARY, dir / "bin/kiln", fs::copy_options::overwrite_existing);
+    // Its image module goes with it (a moved binary needs it beside it, image_module.h).
+    fs::copy_file(fs::path(KILN_BINARY).parent_path() / "kiln_image.so", dir / "bin/kiln_image.so",
+                  fs::copy_options::overwrite_existing);
     test::ScopedEnv noOcio("OCIO", nullptr);
     std::string render = (dir / "bin/kiln").string() + " render " +
                          test::repo("scenes/cornell.dae") + " -r 8 6 -s 1 -q -o " +

@@ -54,7 +54,7 @@ TEST(JsonSchema, EveryDocumentAndEventOfARenderFitsTheDocumentedSchema) {
     // A guided render (the Cornell box's plan guides it) of a few seconds: every stage, progress
     // lines (one a second) and messages.
     test::CliRun done =
-        test::runKiln("render " + scene + " -r 64 48 -s 256 --json --progress json -o " +
+        test::runKiln("render " + scene + " -r 96 72 -s 1024 --json --progress json -o " +
                       (dir / "done").string());
     ASSERT_EQ(done.code, 0) << done.err;
     json result = json::parse(done.out);

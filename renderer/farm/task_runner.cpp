@@ -163,6 +163,9 @@ std::vector<std::string> framesCommand(const std::vector<TaskResult>& results,
 std::vector<size_t> runFrames(std::vector<TaskResult>& results, const std::vector<size_t>& group,
                               const RunOptions& options, BatchClock& clock) {
     const size_t n = results.size();
+    if (options.report && !options.jsonEvents)
+        logInfo("[{}/{}] {}: {} renders from one scene load", group[0] + 1, n,
+                results[group[0]].task.scene, group.size());
     std::vector<bool> resuming;
     for (size_t k : group) {
         const std::string& output = results[k].task.output;

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 
+#include "aces_config.h"
 #include "kiln_run.h"
 #include "test_support.h"
 
@@ -14,38 +15,6 @@ namespace kiln {
 namespace {
 
 namespace OCIO = OCIO_NAMESPACE;
-
-const char* kAcesConfig = R"(ocio_profile_version: 2
-roles:
-  default: acescg
-  scene_linear: acescg
-  aces_interchange: aces
-  texture_paint: srgb_texture
-displays:
-  sRGB:
-    - !<View> {name: Standard, colorspace: srgb_display}
-active_displays: []
-active_views: []
-looks:
-  - !<Look> {name: Brighter, process_space: acescg, transform: !<ExponentTransform> {value: [0.8, 0.8, 0.8, 1]}}
-colorspaces:
-  - !<ColorSpace> {name: lin_rec709, isdata: false}
-  - !<ColorSpace>
-    name: acescg
-    from_reference: !<BuiltinTransform> {style: "UTILITY - ACES-AP1_to_LINEAR-REC709_BFD", direction: inverse}
-  - !<ColorSpace>
-    name: aces
-    from_reference: !<GroupTransform>
-      children:
-        - !<BuiltinTransform> {style: "UTILITY - ACES-AP1_to_LINEAR-REC709_BFD", direction: inverse}
-        - !<BuiltinTransform> {style: ACEScg_to_ACES2065-1}
-  - !<ColorSpace>
-    name: srgb_texture
-    from_reference: !<ExponentWithLinearTransform> {gamma: 2.4, offset: 0.055, direction: inverse}
-  - !<ColorSpace>
-    name: srgb_display
-    from_reference: !<ExponentWithLinearTransform> {gamma: 2.4, offset: 0.055, direction: inverse}
-)";
 
 struct Rgb {
     int width = 0, height = 0;
@@ -121,7 +90,7 @@ TEST(AcesConfig, RenderEqualsTheDefaultRenderConvertedToAcescg) {
     std::string sky = writeSky(dir / "sky.exr");
     test::CliRun base = test::runKiln(renderArgs(sky, dir / "rec709", 1));
     ASSERT_EQ(base.code, 0) << base.err;
-    std::string configPath = test::writeFile(dir / "aces.ocio", kAcesConfig);
+    std::string configPath = test::writeFile(dir / "aces.ocio", test::kAcesConfig);
     test::ScopedEnv ocio("OCIO", configPath);
     test::CliRun aces = test::runKiln(renderArgs(sky, dir / "acescg", 2) + " --look Brighter");
     ASSERT_EQ(aces.code, 0) << aces.err;
@@ -148,7 +117,7 @@ TEST(AcesConfig, RenderEqualsTheDefaultRenderConvertedToAcescg) {
 // (OIIO 2.4's EXR reader reports oiio:ColorSpace "Linear" whatever the file holds.)
 TEST(AcesConfig, ExrStatesAcescgChromaticitiesAndName) {
     auto dir = test::scratchDir();
-    test::ScopedEnv ocio("OCIO", test::writeFile(dir / "aces.ocio", kAcesConfig));
+    test::ScopedEnv ocio("OCIO", test::writeFile(dir / "aces.ocio", test::kAcesConfig));
     test::CliRun r = test::runKiln("render " + test::repo("scenes/cornell.dae") +
                                    " -r 16 12 -s 1 -q -o " + (dir / "out").string());
     ASSERT_EQ(r.code, 0) << r.err;

@@ -35,7 +35,10 @@ class AtomicFile {
   private:
     std::string path_, temp_;
     FILE* file_ = nullptr;
-    std::unique_ptr<OIIO::Filesystem::IOProxy> proxy_;
+    // Deleted through a function set where the proxy is made (the image module): this side then
+    // needs none of OpenImageIO's symbols, its type information included (UBSan's vptr checks).
+    using ProxyDeleter = void (*)(OIIO::Filesystem::IOProxy*);
+    std::unique_ptr<OIIO::Filesystem::IOProxy, ProxyDeleter> proxy_{nullptr, nullptr};
     bool failed_ = false;  // a write came up short
     bool committed_ = false;
 };

@@ -28,7 +28,8 @@ class CheckedProxy final : public OIIO::Filesystem::IOFile {
 }  // namespace
 
 OIIO::Filesystem::IOProxy* AtomicFile::proxy() {
-    if (!proxy_) proxy_ = std::make_unique<CheckedProxy>(file_, failed_);
+    if (!proxy_)
+        proxy_ = {new CheckedProxy(file_, failed_), [](OIIO::Filesystem::IOProxy* p) { delete p; }};
     return proxy_.get();
 }
 

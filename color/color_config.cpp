@@ -3,6 +3,7 @@
 #include <OpenColorIO/OpenColorIO.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -150,6 +151,28 @@ ColorSetup checkColorConfig(const std::string& display, const std::string& view,
         throw std::invalid_argument(setup.configPath + ": OCIO config unusable: " + what);
     }
     return setup;
+}
+
+ColorConfigNames listColorConfig() {
+    ColorConfigNames names{colorConfigPath(), "", {}, {}};
+    try {
+        OCIO::ConstConfigRcPtr config = OCIO::Config::CreateFromFile(names.configPath.c_str());
+        names.sceneLinear = resolveSceneLinear(config);
+        for (int d = 0; d < config->getNumDisplays(); ++d) {
+            const char* display = config->getDisplay(d);
+            std::vector<std::string> views;
+            for (int v = 0; v < config->getNumViews(display); ++v)
+                views.emplace_back(config->getView(display, v));
+            names.displays.emplace_back(display, std::move(views));
+        }
+        for (int i = 0; i < config->getNumLooks(); ++i)
+            names.looks.emplace_back(config->getLookNameByIndex(i));
+    } catch (const OCIO::Exception& e) {
+        std::string what = e.what();
+        std::replace(what.begin(), what.end(), '\n', ' ');
+        throw std::invalid_argument(names.configPath + ": OCIO config unusable: " + what);
+    }
+    return names;
 }
 
 }  // namespace kiln

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace kiln {
@@ -31,5 +32,14 @@ struct ColorSetup {
 // A look (--look) must be one the config defines.
 ColorSetup checkColorConfig(const std::string& display = "", const std::string& view = "",
                             const std::string& look = "");
+
+// The names a user may pass as --display, --view and --look, from the config kiln follows (for
+// 'kiln info --ocio' and the shell completion). Throws std::invalid_argument as above.
+struct ColorConfigNames {
+    std::string configPath, sceneLinear;
+    std::vector<std::pair<std::string, std::vector<std::string>>> displays;  // with their views
+    std::vector<std::string> looks;
+};
+ColorConfigNames listColorConfig();
 
 }  // namespace kiln

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "color/srgb_decode.h"
+#include "color/texel_conversion.h"
 #include "renderer/core/math.h"
 
 OIIO_NAMESPACE_BEGIN
@@ -36,6 +37,10 @@ struct ImageReadError : std::runtime_error {
 
 // Whether an image's texels are sRGB-encoded: 8-bit, or stated sRGB (PNG, JPEG); else linear.
 bool isSrgbEncoded(const OIIO::ImageSpec& spec);
+
+// How a colour image with this header reaches the working space: decoded when sRGB-encoded, else
+// from its EXR chromaticities (or linear Rec.709 when it states none) by a matrix.
+TexelConversion colourConversion(const OIIO::ImageSpec& spec);
 
 // Throws ImageReadError when the file cannot be opened.
 ImageHeader readImageHeader(const std::string& path);

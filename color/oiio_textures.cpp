@@ -36,6 +36,11 @@ std::unique_ptr<OIIO::ImageInput> openTextureSource(
     return OIIO::ImageInput::open("embedded." + source.formatHint, &config, io);
 }
 
+// What a texture's texels need to reach the working space: nothing for data (normals, roughness).
+TexelConversion conversionOf(const TextureSource& source, const OIIO::ImageSpec& spec) {
+    return source.encoding == TextureEncoding::Color ? colourConversion(spec) : TexelConversion{};
+}
+
 // Presents an image (a file or bytes in memory) to the ImageCache as float scanlines in the
 // working space, so automip filters linear values: filtering sRGB-encoded texels and decoding
 // afterwards would darken every minified texture (a black/white checker's mean is 0.5, not 0.21).
@@ -52,7 +57,7 @@ class WorkingSpaceInput final : public OIIO::ImageInput {
         inner_ = openTextureSource(*source_, proxy_);
         if (!inner_) return false;
         m_spec = inner_->spec();
-        decode_ = source_->encoding == TextureEncoding::Color && isSrgbEncoded(m_spec);
+        conversion_ = conversionOf(*source_, m_spec);
         m_spec.set_format(OIIO::TypeDesc::FLOAT);
         m_spec.tile_width = m_spec.tile_height = m_spec.tile_depth = 0;
         spec = m_spec;
@@ -72,7 +77,7 @@ class WorkingSpaceInput final : public OIIO::ImageInput {
         nextRow_ = y + 1;
         int nch = m_spec.nchannels;
         auto* out = static_cast<float*>(data);
-        if (decode_ && inner_->spec().format == OIIO::TypeDesc::UINT8) {
+        if (conversion_.decodeSrgb && inner_->spec().format == OIIO::TypeDesc::UINT8) {
             codes_.resize(size_t(m_spec.width) * size_t(nch));
             if (!inner_->read_scanlines(0, 0, y, y + 1, z, 0, nch, OIIO::TypeDesc::UINT8,
                                         codes_.data()))
@@ -82,7 +87,7 @@ class WorkingSpaceInput final : public OIIO::ImageInput {
         }
         if (!inner_->read_scanlines(0, 0, y, y + 1, z, 0, nch, OIIO::TypeDesc::FLOAT, data))
             return false;
-        if (decode_) decodeSrgbTexels(out, size_t(m_spec.width), nch);
+        conversion_.apply(out, size_t(m_spec.width), nch);
         return true;
     }
 
@@ -92,7 +97,7 @@ class WorkingSpaceInput final : public OIIO::ImageInput {
     const TextureSource* source_ = nullptr;
     std::vector<uint8_t> codes_;  // an 8-bit scanline
     int nextRow_ = 0;
-    bool decode_ = false;
+    TexelConversion conversion_;
 };
 
 OIIO::ImageInput* createWorkingSpaceInput() { return new WorkingSpaceInput; }
@@ -108,7 +113,7 @@ bool isMipMapped(OIIO::ImageInput& in) {
 // (the image is then read whole through automip).
 std::string tiledMipFile(const TextureSource& source, OIIO::ImageInput& in, std::string* note) {
     namespace fs = std::filesystem;
-    bool decode = source.encoding == TextureEncoding::Color && isSrgbEncoded(in.spec());
+    TexelConversion conversion = conversionOf(source, in.spec());
     std::string dir = textureCacheDir();
     try {
         std::string identity;
@@ -119,19 +124,20 @@ std::string tiledMipFile(const TextureSource& source, OIIO::ImageInput& in, std:
             identity = path.string() + "\n" + std::to_string(fs::file_size(path)) + "\n" +
                        std::to_string(fs::last_write_time(path).time_since_epoch().count());
         }
-        if (decode) {  // decoded through the OCIO config: another config converts again
+        if (conversion
+                .decodeSrgb) {  // decoded through the OCIO config: another config converts again
             std::string config = colorConfigPath();
             identity += "\n" + config + "\n" +
                         std::to_string(fs::last_write_time(config).time_since_epoch().count());
         }
-        std::string target = (fs::path(dir) / convertedTextureName(identity, decode)).string();
+        std::string target = (fs::path(dir) / convertedTextureName(identity, conversion)).string();
         if (fs::exists(target)) {
             logDebug("texture {}: reusing {}", source.name, target);
             return target;
         }
         fs::create_directories(dir);
         auto start = std::chrono::steady_clock::now();
-        convertToTiledMip(in, decode, target);
+        convertToTiledMip(in, conversion, target);
         logInfo("texture {}: converted to the tiled MIP-mapped {} ({:.2f} s)", source.name, target,
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
         return target;
@@ -181,7 +187,9 @@ int addTexture(OiioTextures& textures, const TextureSource& stored, size_t numbe
     auto in = openTextureSource(stored, proxy);
     if (!in) throw ImageReadError(stored.name, "cannot read texture: " + OIIO::geterror());
     std::string file;  // what the cache reads; empty: the source through automip
-    if (!stored.bytes && isMipMapped(*in)) {
+    // A MIP-mapped file is read as stored unless its linear colour needs a matrix (another
+    // working space or stated chromaticities): a converted copy then holds the working space's.
+    if (!stored.bytes && isMipMapped(*in) && !conversionOf(stored, in->spec()).matrix) {
         file = stored.name;
         if (note && stored.encoding == TextureEncoding::Color && isSrgbEncoded(in->spec()))
             *note =

@@ -3,6 +3,7 @@
 #include <OpenColorIO/OpenColorIO.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <mutex>
 #include <string>
@@ -21,6 +22,32 @@ namespace OCIO = OCIO_NAMESPACE;
 constexpr const char* kSrgbNames[] = {"sRGB", "sRGB - Texture", "Utility - sRGB - Texture",
                                       "srgb_tx", "srgb_texture"};
 
+// The roles a config may point at its texture encoding, consulted in this order. Only a space
+// that is sRGB-encoded is taken: ACES 1.x configs point texture_paint at ACEScc, Blender's at
+// linear, and decoding 8-bit colour through those would be wrong.
+const char* const kTextureRoles[] = {OCIO::ROLE_TEXTURE_PAINT, OCIO::ROLE_MATTE_PAINT,
+                                     OCIO::ROLE_COLOR_PICKING};
+
+bool looksSrgbEncoded(const OCIO::ConstColorSpaceRcPtr& space) {
+    std::string name = space->getName(), encoding = space->getEncoding();
+    std::transform(name.begin(), name.end(), name.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    return !space->isData() && (encoding == "sdr-video" || name.find("srgb") != std::string::npos);
+}
+
+// The config's sRGB texture space: a known name, else a texture role naming an sRGB-encoded
+// space; empty when it has neither.
+std::string srgbTextureSpace(const OCIO::ConstConfigRcPtr& config) {
+    for (const char* name : kSrgbNames)
+        if (config->getColorSpace(name)) return name;
+    for (const char* role : kTextureRoles)
+        if (config->hasRole(role))
+            if (OCIO::ConstColorSpaceRcPtr space = config->getColorSpace(role);
+                space && looksSrgbEncoded(space))
+                return space->getName();
+    return "";
+}
+
 // The IEC 61966-2-1 curve: the fallback when the config has no sRGB texture space.
 float srgbCurve(float v) {
     return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
@@ -30,11 +57,10 @@ float srgbCurve(float v) {
 OCIO::ConstCPUProcessorRcPtr makeDecoder(const std::string& path) {
     try {
         OCIO::ConstConfigRcPtr config = OCIO::Config::CreateFromFile(path.c_str());
-        for (const char* name : kSrgbNames)
-            if (config->getColorSpace(name))
-                return config->getProcessor(name, OCIO::ROLE_SCENE_LINEAR)
-                    ->getOptimizedCPUProcessor(OCIO::BIT_DEPTH_F32, OCIO::BIT_DEPTH_F32,
-                                               OCIO::OPTIMIZATION_LOSSLESS);
+        if (std::string name = srgbTextureSpace(config); !name.empty())
+            return config->getProcessor(name.c_str(), OCIO::ROLE_SCENE_LINEAR)
+                ->getOptimizedCPUProcessor(OCIO::BIT_DEPTH_F32, OCIO::BIT_DEPTH_F32,
+                                           OCIO::OPTIMIZATION_LOSSLESS);
         logWarning(
             "{}: no sRGB texture colour space; sRGB-encoded colour decoded with the sRGB curve",
             path);

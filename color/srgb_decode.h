@@ -1,7 +1,8 @@
 // sRGB-encoded colour (8-bit images, PNG/JPEG, files tagged sRGB, integer vertex colours) to kiln's
 // working space through OpenColorIO: the config kiln follows (color_config.h) converts from its
-// sRGB texture colour space to scene_linear, without approximations. A config that has no such
-// space, or cannot be loaded, falls back to the standard sRGB curve (a warning, once).
+// sRGB texture colour space (a known name, else the space its texture_paint, matte_paint or
+// color_picking role names when that space is sRGB-encoded) to scene_linear, exactly. A config that
+// has no such space, or cannot be loaded, falls back to the standard sRGB curve (a warning, once).
 #pragma once
 
 #include <array>

@@ -37,20 +37,24 @@ std::string textureCacheDir() {
         .string();
 }
 
-std::string convertedTextureName(const std::string& identity, bool decodeSrgb) {
+std::string convertedTextureName(const std::string& identity, const TexelConversion& conversion) {
+    const bool decodeSrgb = conversion.decodeSrgb;
     uint64_t h = mix64(hashBytes(identity) ^ (decodeSrgb ? 1 : 2) ^ (kConversionVersion << 8));
     // Decoded sRGB lands in scene_linear: another working space is another file.
     if (const WorkingSpace& space = workingSpace(); decodeSrgb && !space.rec709)
         h = mix64(h ^ hashBytes(space.name));
+    if (conversion.matrix) h = mix64(h ^ conversion.hash());
     return fmt::format("{:016x}.tx", h);
 }
 
-void convertToTiledMip(OIIO::ImageInput& in, bool decodeSrgb, const std::string& target) {
+void convertToTiledMip(OIIO::ImageInput& in, const TexelConversion& conversion,
+                       const std::string& target) {
     OIIO::ImageSpec spec = in.spec();
     const int nch = spec.nchannels;
     const size_t texels = size_t(spec.width) * size_t(spec.height);
     std::vector<float> pixels(texels * size_t(nch));
-    if (decodeSrgb && spec.format == OIIO::TypeDesc::UINT8) {  // 8-bit: through the code table
+    if (conversion.decodeSrgb &&
+        spec.format == OIIO::TypeDesc::UINT8) {  // 8-bit: through the code table
         std::vector<uint8_t> codes(pixels.size());
         if (!in.read_image(0, 0, 0, nch, OIIO::TypeDesc::UINT8, codes.data()))
             throw std::runtime_error(target + ": cannot read the source image: " + in.geterror());
@@ -58,7 +62,7 @@ void convertToTiledMip(OIIO::ImageInput& in, bool decodeSrgb, const std::string&
     } else {
         if (!in.read_image(0, 0, 0, nch, OIIO::TypeDesc::FLOAT, pixels.data()))
             throw std::runtime_error(target + ": cannot read the source image: " + in.geterror());
-        if (decodeSrgb) decodeSrgbTexels(pixels.data(), texels, nch);
+        conversion.apply(pixels.data(), texels, nch);
     }
     spec.set_format(OIIO::TypeDesc::FLOAT);
     spec.tile_width = spec.tile_height = spec.tile_depth = 0;

@@ -8,6 +8,8 @@
 
 #include <string>
 
+#include "color/texel_conversion.h"
+
 namespace kiln {
 
 // $KILN_TEXTURE_CACHE, else $XDG_CACHE_HOME/kiln/textures, else $HOME/.cache/kiln/textures.
@@ -16,12 +18,13 @@ std::string textureCacheDir();
 // The cached file's name for an image: a hash of what identifies its content (a file's absolute
 // path, size and modification time, or embedded bytes themselves), how it is decoded and the
 // conversion's version, so an edited source or a new kiln converts again.
-std::string convertedTextureName(const std::string& identity, bool decodeSrgb);
+std::string convertedTextureName(const std::string& identity, const TexelConversion& conversion);
 
-// Reads the image from `in` as float, decodes sRGB colour channels to linear when decodeSrgb (alpha
-// stays straight), and writes it as a tiled MIP-mapped float TIFF at `target` through a unique
-// temporary name and a rename, so concurrent renders and a kill never leave a partial file. Throws
-// std::runtime_error naming target and the reason.
-void convertToTiledMip(OIIO::ImageInput& in, bool decodeSrgb, const std::string& target);
+// Reads the image from `in` as float, takes its colour channels to the working space by
+// `conversion` (alpha stays straight), and writes it as a tiled MIP-mapped float TIFF at `target`
+// through a unique temporary name and a rename, so concurrent renders and a kill never leave a
+// partial file. Throws std::runtime_error naming target and the reason.
+void convertToTiledMip(OIIO::ImageInput& in, const TexelConversion& conversion,
+                       const std::string& target);
 
 }  // namespace kiln

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "aces_config.h"
+#include "color/texture.h"
 #include "kiln_run.h"
 #include "test_support.h"
 
@@ -111,6 +112,58 @@ TEST(AcesConfig, RenderEqualsTheDefaultRenderConvertedToAcescg) {
         std::max({std::abs(unconverted[0]), std::abs(unconverted[1]), std::abs(unconverted[2])}),
         8.0);
     EXPECT_TRUE(std::filesystem::exists(dir / "acescg.png"));
+}
+
+// A constant w x h linear float EXR, with chromaticities when `stated` is given.
+std::string writeLinearExr(const std::filesystem::path& path, std::array<float, 3> rgb,
+                           const float* stated = nullptr) {
+    const int w = 8, h = 8;
+    std::vector<float> px;
+    for (int i = 0; i < w * h; ++i) px.insert(px.end(), rgb.begin(), rgb.end());
+    OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::FLOAT);
+    if (stated) spec.attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), stated);
+    auto out = OIIO::ImageOutput::create(path.string());
+    EXPECT_TRUE(out && out->open(path.string(), spec) &&
+                out->write_image(OIIO::TypeDesc::FLOAT, px.data()) && out->close());
+    return path.string();
+}
+
+// Linear colour textures reach the working space as environment maps do: a float EXR that states
+// nothing is linear Rec.709 and is converted to ACEScg; one that states ACEScg's chromaticities is
+// already there; a data map (normals, roughness) is never touched. Both texture paths: the
+// converted tiled file in the cache and the image read whole (an unusable cache directory).
+TEST(AcesConfig, LinearTexturesAreConvertedFromTheirStatedSpace) {
+    auto dir = test::scratchDir();
+    const float ap1D60[8] = {0.713f, 0.293f, 0.165f, 0.830f, 0.128f, 0.044f, 0.32168f, 0.33767f};
+    std::string rec709 = writeLinearExr(dir / "rec709.exr", {0.8f, 0.2f, 0.1f});
+    std::string acescg = writeLinearExr(dir / "acescg.exr", {0.3f, 0.5f, 0.2f}, ap1D60);
+    std::string configPath = test::writeFile(dir / "aces.ocio", test::kAcesConfig);
+    std::array<float, 9> m = rec709ToAcescg(configPath);
+    const std::string blocked = test::writeFile(dir / "a-file", "") + "/cache";
+    for (std::string cache : {(dir / "cache").string(), blocked}) {
+        test::ScopedEnv tx("KILN_TEXTURE_CACHE", cache);
+        {
+            TextureSet plain(16.0f);  // kiln's own config: nothing converted
+            Color c = plain.lookup(plain.add({rec709, nullptr, "", TextureEncoding::Color}), 0.5f,
+                                   0.5f, 0.0f);
+            EXPECT_EQ(c, Color(0.8f, 0.2f, 0.1f)) << cache;
+        }
+        test::ScopedEnv ocio("OCIO", configPath);
+        TextureSet set(16.0f);
+        Color a = set.lookup(set.add({rec709, nullptr, "", TextureEncoding::Color}), 0.5f, 0.5f, 0);
+        for (int r = 0; r < 3; ++r)
+            EXPECT_NEAR(
+                a[r],
+                m[size_t(3 * r)] * 0.8f + m[size_t(3 * r + 1)] * 0.2f + m[size_t(3 * r + 2)] * 0.1f,
+                1e-4f)
+                << cache << " channel " << r;
+        Color b = set.lookup(set.add({acescg, nullptr, "", TextureEncoding::Color}), 0.5f, 0.5f, 0);
+        EXPECT_NEAR(b.x, 0.3f, 2e-3f) << cache;  // the stated AP1 to 3 decimals, as in files
+        EXPECT_NEAR(b.y, 0.5f, 2e-3f) << cache;
+        EXPECT_NEAR(b.z, 0.2f, 2e-3f) << cache;
+        Color d = set.lookup(set.add({rec709, nullptr, "", TextureEncoding::Data}), 0.5f, 0.5f, 0);
+        EXPECT_EQ(d, Color(0.8f, 0.2f, 0.1f)) << cache;
+    }
 }
 
 // The EXR names the working space: kiln:colorspace and ACEScg's chromaticities (AP1, D60 white).

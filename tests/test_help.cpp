@@ -5,6 +5,7 @@
 
 #include <fstream>
 
+#include "aces_config.h"
 #include "kiln_run.h"
 #include "renderer/cli/did_you_mean.h"
 #include "test_support.h"
@@ -55,7 +56,7 @@ TEST(Help, CompletionKnowsEveryCommandSubcommandAndValue) {
     const std::string kiln = KILN_BINARY;
     std::string commands = complete(kiln + " ''");
     for (const char* c : {"render", "merge", "info", "crosscheck", "bench", "batch", "farm",
-                          "tools", "report", "help"})
+                          "tools", "report", "denoise", "help"})
         EXPECT_NE(commands.find(std::string(" ") + c + " "), std::string::npos) << c << commands;
     EXPECT_EQ(complete(kiln + " farm ''"), " submit status merge resubmit ");
     EXPECT_EQ(complete(kiln + " bench ''"), " accel plan accuracy ");
@@ -68,6 +69,29 @@ TEST(Help, CompletionKnowsEveryCommandSubcommandAndValue) {
     EXPECT_NE(complete(kiln + " farm submit s.dae --").find(" --sbatch-arg "), std::string::npos);
     EXPECT_NE(complete(kiln + " farm submit s.dae --").find(" --spp "), std::string::npos);
     EXPECT_EQ(complete(kiln + " farm submit s.dae --by ''"), " samples region frames ");
+}
+
+// --display, --view and --look complete to the names of the config kiln follows ($OCIO here),
+// each name one word even when it holds spaces; a view of the --display given earlier.
+TEST(Help, CompletionOffersTheConfigsDisplaysViewsAndLooks) {
+    const std::string kiln = KILN_BINARY;
+    std::string config = test::kAcesConfig;
+    config.replace(config.find("Standard"), 8, "ACES 1.0 - SDR Video");
+    auto dir = test::scratchDir();
+    test::ScopedEnv ocio("OCIO", test::writeFile(dir / "aces.ocio", config));
+    test::CliRun listed = test::runKiln("info --ocio");
+    ASSERT_EQ(listed.code, 0) << listed.err;
+    EXPECT_NE(listed.out.find("view\tsRGB\tACES 1.0 - SDR Video\n"), std::string::npos)
+        << listed.out;
+    EXPECT_NE(listed.out.find("scene_linear\tacescg\n"), std::string::npos) << listed.out;
+    EXPECT_EQ(complete(kiln + " render s.dae --display ''"), " sRGB ");
+    EXPECT_EQ(complete(kiln + " render s.dae --look B"), " Brighter ");
+    std::string script = "source " + test::repo("tools/kiln-completion.bash") + "; COMP_WORDS=(" +
+                         kiln + " render s.dae --display sRGB --view ''); COMP_CWORD=6; _kiln; " +
+                         "printf '%s|' \"${COMPREPLY[@]}\"";
+    test::CliRun r = test::runProgram("bash", "-c " + test::shellQuoted(script));
+    EXPECT_EQ(r.out, "ACES 1.0 - SDR Video|");
+    EXPECT_EQ(test::runKiln("info --ocio s.dae").code, 2);
 }
 
 TEST(Help, ManPageHasEveryCommandsOptionsExitStatusEnvironmentAndFiles) {

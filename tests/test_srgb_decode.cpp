@@ -12,11 +12,12 @@ namespace {
 
 double iecCurve(double v) { return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4); }
 
-std::string writeConfig(const std::string& srgbSpace) {
+std::string writeConfig(const std::string& srgbSpace, const std::string& roles = "") {
     return test::writeFile(test::scratchDir() / "config.ocio", R"(ocio_profile_version: 2
 roles:
   default: lin
   scene_linear: lin
+)" + roles + R"(
 file_rules:
   - !<Rule> {name: Default, colorspace: default}
 displays:
@@ -66,6 +67,29 @@ TEST(SrgbDecode, FollowsTheConfigsSrgbSpace) {
     EXPECT_NEAR(srgbToLinear(0.5f), iecCurve(0.5), 1e-6) << "back to kiln's config";
     test::ScopedEnv none("OCIO", writeConfig(""));
     EXPECT_NEAR(srgbToLinear(0.5f), iecCurve(0.5), 1e-6) << "no sRGB space: the curve";
+}
+
+// A config whose sRGB texture space has a name kiln does not know is found through its
+// texture_paint role, but only when that space is sRGB-encoded: ACES 1.x configs point the role at
+// ACEScc and Blender's at a linear space, which must not decode 8-bit colour.
+TEST(SrgbDecode, FollowsTheTexturePaintRoleToAnSrgbEncodedSpace) {
+    const std::string paintSpace = R"(  - !<ColorSpace>
+    name: studio_paint
+    encoding: sdr-video
+    to_reference: !<ExponentTransform> {value: [2.2, 2.2, 2.2, 1]}
+)";
+    {
+        test::ScopedEnv ocio("OCIO", writeConfig(paintSpace, "  texture_paint: studio_paint"));
+        EXPECT_NEAR(srgbToLinear(0.5f), std::pow(0.5, 2.2), 1e-6);
+    }
+    EXPECT_NEAR(srgbToLinear(0.5f), iecCurve(0.5), 1e-6) << "back to kiln's config";
+    const std::string logSpace = R"(  - !<ColorSpace>
+    name: paint_log
+    encoding: log
+    to_reference: !<ExponentTransform> {value: [2.2, 2.2, 2.2, 1]}
+)";
+    test::ScopedEnv ocio("OCIO", writeConfig(logSpace, "  texture_paint: paint_log"));
+    EXPECT_NEAR(srgbToLinear(0.5f), iecCurve(0.5), 1e-6) << "a log texture_paint is not sRGB";
 }
 
 }  // namespace

@@ -1,20 +1,34 @@
 # bash completion for kiln (installed as share/bash-completion/completions/kiln).
 # Commands, subcommands, options and enumerated values come from 'kiln [COMMAND [SUB]] --help'
 # itself, so the completion never falls behind the binary: options are the --names of the help,
-# the values of an option are its "a|b|c" in the help (--aov's from its list of layers).
+# the values of an option are its "a|b|c" in the help (--aov's from its list of layers); the names
+# --display, --view and --look take come from the OCIO config, as 'kiln info --ocio' lists them
+# (one per line, tab-separated: names may hold spaces).
 _kiln_subcommands() {
     case $1 in
         bench) echo "accel plan accuracy" ;;
         farm) echo "submit status merge resubmit" ;;
         tools) echo "subdivide" ;;
         report) echo "cs184" ;;
-        help) echo "render merge info crosscheck bench batch farm tools report" ;;
+        help) echo "render merge info crosscheck bench batch farm tools report denoise" ;;
     esac
+}
+
+# The config's names for --display, --view (of the --display given earlier on the line, else of
+# every display) and --look, one per line.
+_kiln_ocio_names() {
+    local kind=$1 display= i
+    for ((i = 1; i < COMP_CWORD - 1; ++i)); do
+        [[ ${COMP_WORDS[i]} == --display ]] && display=${COMP_WORDS[i + 1]}
+    done
+    "${COMP_WORDS[0]}" info --ocio 2>/dev/null | awk -F'\t' -v kind="$kind" -v display="$display" '
+        $1 == kind && kind != "view" { print $2 }
+        $1 == "view" && kind == "view" && (display == "" || $2 == display) { print $3 }' | sort -u
 }
 
 _kiln() {
     local cur=${COMP_WORDS[COMP_CWORD]} prev=${COMP_WORDS[COMP_CWORD - 1]}
-    local commands="render merge info crosscheck bench batch farm tools report help --help --version"
+    local commands="render merge info crosscheck bench batch farm tools report denoise help --help --version"
     if ((COMP_CWORD == 1)); then
         mapfile -t COMPREPLY < <(compgen -W "$commands" -- "$cur")
         return
@@ -33,6 +47,13 @@ _kiln() {
     help=$("${COMP_WORDS[0]}" "${asked[@]}" --help 2>/dev/null)
     [[ $command == farm && ${COMP_WORDS[2]} == submit ]] &&
         help+=$'\n'$("${COMP_WORDS[0]}" farm submit --help 2>/dev/null)
+    if [[ $prev == --display || $prev == --view || $prev == --look ]]; then
+        local names
+        names=$(_kiln_ocio_names "${prev#--}")
+        local IFS=$'\n'
+        mapfile -t COMPREPLY < <(compgen -W "$names" -- "$cur")
+        return
+    fi
     if [[ $prev == --* ]]; then
         local values
         if [[ $prev == --aov ]]; then

@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "color/color_config.h"
 #include "integrators/render_plan.h"
 #include "renderer/cli/cli_args.h"
 #include "renderer/cli/commands.h"
@@ -10,15 +11,40 @@
 
 namespace kiln {
 
+namespace {
+
+// One tab-separated line per name (names may hold spaces: "ACES 1.0 - SDR Video"), for scripts
+// and the shell completion: config, scene_linear, display, view (its display first), look.
+void printColorConfigNames() {
+    ColorConfigNames names = listColorConfig();
+    std::printf("config\t%s\nscene_linear\t%s\n", names.configPath.c_str(),
+                names.sceneLinear.c_str());
+    for (const auto& [display, views] : names.displays) {
+        std::printf("display\t%s\n", display.c_str());
+        for (const std::string& view : views)
+            std::printf("view\t%s\t%s\n", display.c_str(), view.c_str());
+    }
+    for (const std::string& look : names.looks) std::printf("look\t%s\n", look.c_str());
+}
+
+}  // namespace
+
 int runInfo(const std::vector<std::string>& args) {
-    ArgParser parser("info", "SCENE [--json]");
-    bool json = false;
+    ArgParser parser("info", "SCENE [--json] | --ocio");
+    bool json = false, ocio = false;
     LoadOptions load;
     parser.flag("json", "", "print the stable JSON form (keys in docs/info-json.md)", json);
+    parser.flag("ocio", "",
+                "list the OCIO config's displays, views and looks (tab-separated; no scene)", ocio);
     addLoadOptions(parser, load);
     std::vector<std::string> pos = parser.parse(args);
     if (parser.helpRequested()) {
         std::fputs(parser.helpText().c_str(), stdout);
+        return 0;
+    }
+    if (ocio) {
+        if (!pos.empty()) throw UsageError("--ocio takes no scene (see 'kiln info --help')");
+        printColorConfigNames();
         return 0;
     }
     if (pos.size() != 1) throw UsageError("needs exactly one scene file (see 'kiln info --help')");

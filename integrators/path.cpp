@@ -1,6 +1,7 @@
 #include "integrators/path.h"
 
 #include <array>
+#include <optional>
 #include <type_traits>
 #include <utility>
 
@@ -232,9 +233,13 @@ struct PathIntegrator::Vertex {
     const Material& mat;
     Vec3 woWorld;
     Frame frame;
+    // Set where the vertex is not the material's surface: a subsurface walk's exit, a scattering
+    // point in a medium (their light goes to the subsurface and volume AOVs).
+    std::optional<Lobe> kind = std::nullopt;
     // The lobe the light gathered here is recorded under.
     Lobe lobe(bool transmission = false) const {
-        return bounce == 0 ? lobeOf(mat, transmission) : st.firstLobe;
+        if (bounce != 0) return st.firstLobe;
+        return kind ? *kind : lobeOf(mat, transmission);
     }
 };
 
@@ -368,9 +373,10 @@ bool PathIntegrator::crossMedium(std::span<CameraSample> batch, Scratch& w, size
             const Vec3 woWorld = -(ray.dir / len);
             const SurfaceInteraction si =
                 surfacePoint(ray.origin + ray.dir * (flight.t / len), Vec3(0.0f), woWorld);
-            static const Material kScatterer{};  // the lobe AOVs count medium light as diffuse
+            static const Material kScatterer{};
             // The phase function takes the BSDF's place in the vertex's stages.
-            shadeVertex<F>(Vertex{pi, bounce, st, sampler, si, kScatterer, woWorld, Frame(woWorld)},
+            shadeVertex<F>(Vertex{pi, bounce, st, sampler, si, kScatterer, woWorld, Frame(woWorld),
+                                  Lobe::Volume},
                            PhaseAsBsdf(m.g()), w);
             return true;
         }
@@ -415,8 +421,9 @@ void PathIntegrator::shadeSubsurface(const Vertex& v, const SurfaceInputs& in, S
     v.st.beta *= exit.weight;
     if (!isFinite(v.st.beta) || maxComponent(v.st.beta) <= 0) return;
     // The exit point is a white Lambertian surface facing out, at the same depth as the entry.
-    const Vertex out{v.path,  v.bounce, v.st,       v.sampler,
-                     exit.si, v.mat,    exit.si.ng, Frame(exit.si.ng)};
+    const Vertex out{v.path,     v.bounce,          v.st,
+                     v.sampler,  exit.si,           v.mat,
+                     exit.si.ng, Frame(exit.si.ng), Lobe::Subsurface};
     shadeVertex<F>(out, LambertBsdf(Color(1.0f), false), w);
 }
 
@@ -606,7 +613,7 @@ void PathIntegrator::continuePath(const Vertex& v, const B& bsdf, const Vec3& wo
     Vec3 wiWorld = v.frame.toWorld(bs.wi);
     if ((dot(wiWorld, v.si.ng) > 0) == bs.transmission) return;
     PathState& st = v.st;
-    if (v.bounce == 0) st.firstLobe = lobeOf(v.mat, bs.transmission);
+    if (v.bounce == 0) st.firstLobe = v.lobe(bs.transmission);
     st.beta *= bs.f * (std::abs(bs.wi.z) / bs.pdf);
     st.specular = bs.delta;
     st.prevPdf = bs.misPdf > 0 ? bs.misPdf : bs.pdf;

@@ -318,7 +318,7 @@ TEST(PathRender, ABatchTracesEachSampleAsItWouldAlone) {
         ASSERT_EQ(a.indirect, b.indirect) << i;
         for (int k = 0; k < 4; ++k) ASSERT_EQ(a.bounces[k], b.bounces[k]) << i;
         for (int d = 0; d < 2; ++d)
-            for (int l = 0; l < 3; ++l) ASSERT_EQ(a.lobes[d][l], b.lobes[d][l]) << i;
+            for (size_t l = 0; l < kLobeCount; ++l) ASSERT_EQ(a.lobes[d][l], b.lobes[d][l]) << i;
         ASSERT_EQ(a.depth, b.depth) << i;
         lit += maxComponent(a.L) > 0;
     }

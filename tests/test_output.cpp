@@ -33,6 +33,25 @@ void expectClose(const Color& a, const Color& b, const std::string& what) {
                                              << " vs " << b.x << " " << b.y << " " << b.z;
 }
 
+// Every lobe layer of one kind of light (direct_ or indirect_).
+Color lobeSum(const Film& f, int x, int y, const std::string& prefix) {
+    Color sum(0.0f);
+    for (const char* lobe : {"diffuse", "specular", "transmission", "subsurface", "volume"})
+        sum += layer(f, x, y, prefix + lobe);
+    return sum;
+}
+
+// The sum of a layer's channels over the image.
+double layerTotal(const Film& f, const std::string& name) {
+    double total = 0;
+    for (int y = 0; y < f.height(); ++y)
+        for (int x = 0; x < f.width(); ++x) {
+            Color c = layer(f, x, y, name);
+            total += double(c.x) + c.y + c.z;
+        }
+    return total;
+}
+
 TEST(Aovs, BeautyIsEmissionPlusDirectPlusIndirectAndTheSplitsAddUp) {
     for (const std::string& scene :
          {test::cs184("sky/CBspheres.dae"), test::cs184("sky/CBbunny_microfacet_cu.dae"),
@@ -48,15 +67,8 @@ TEST(Aovs, BeautyIsEmissionPlusDirectPlusIndirectAndTheSplitsAddUp) {
                 Color e = layer(f, x, y, "emission"), d = layer(f, x, y, "direct"),
                       i = layer(f, x, y, "indirect");
                 expectClose(f.pixel(x, y), e + d + i, scene + " beauty");
-                expectClose(d,
-                            layer(f, x, y, "direct_diffuse") + layer(f, x, y, "direct_specular") +
-                                layer(f, x, y, "direct_transmission"),
-                            scene + " direct lobes");
-                expectClose(i,
-                            layer(f, x, y, "indirect_diffuse") +
-                                layer(f, x, y, "indirect_specular") +
-                                layer(f, x, y, "indirect_transmission"),
-                            scene + " indirect lobes");
+                expectClose(d, lobeSum(f, x, y, "direct_"), scene + " direct lobes");
+                expectClose(i, lobeSum(f, x, y, "indirect_"), scene + " indirect lobes");
                 Color bounces(0.0f);
                 for (int b = 1; b <= 5; ++b)
                     bounces += layer(f, x, y, "bounce" + std::to_string(b));
@@ -91,6 +103,38 @@ TEST(Aovs, PrincipledTransmissionIsTransmissionLight) {
         for (int x = 0; x < f.width(); ++x)
             for (int c = 0; c < 3; ++c) indirect += f.aov(x, y, c);
     EXPECT_GT(indirect, 0.0);
+}
+
+// Light that left the first surface through a random walk is subsurface light (Cycles'
+// Subsurface passes), light scattered first in a medium is volume light (its Volume passes); a
+// scene without either has none.
+TEST(Aovs, SubsurfaceAndVolumeLightHaveLayersOfTheirOwn) {
+    const AovRequest request = AovRequest::parse("all", 5);
+    Film sss = render(test::repo("scenes/lucy_subsurface.kiln"), request, 5, 8);
+    EXPECT_GT(layerTotal(sss, "direct_subsurface"), 0.0);
+    EXPECT_GT(layerTotal(sss, "indirect_subsurface"), 0.0);
+    EXPECT_EQ(layerTotal(sss, "direct_volume"), 0.0);
+    // Fog behind an index-matched boundary: camera rays scatter first in the medium.
+    auto dir = test::scratchDir();
+    test::writeTetrahedronObj(dir / "box.obj");
+    Film fog = render(test::writeFile(dir / "fog.kiln",
+                                      "<kiln-scene><medium name=\"fog\" kind=\"homogeneous\" "
+                                      "sigma-a=\"0.1 0.2 0.3\" sigma-s=\"2 2 2\"/>"
+                                      "<mesh file=\"box.obj\" interior=\"fog\"/>"
+                                      "<light kind=\"ambient\" radiance=\"1 1 1\"/></kiln-scene>"),
+                      request, 5, 8);
+    EXPECT_GT(layerTotal(fog, "direct_volume"), 0.0);
+    EXPECT_GT(layerTotal(fog, "indirect_volume"), 0.0);
+    EXPECT_EQ(layerTotal(fog, "direct_subsurface"), 0.0);
+    for (int y = 0; y < fog.height(); ++y)  // still a complete split
+        for (int x = 0; x < fog.width(); ++x) {
+            expectClose(layer(fog, x, y, "direct"), lobeSum(fog, x, y, "direct_"), "fog direct");
+            expectClose(layer(fog, x, y, "indirect"), lobeSum(fog, x, y, "indirect_"), "fog");
+        }
+    Film glass = render(test::cs184("sky/CBspheres.dae"), request, 5, 8);
+    for (const char* name :
+         {"direct_subsurface", "indirect_subsurface", "direct_volume", "indirect_volume"})
+        EXPECT_EQ(layerTotal(glass, name), 0.0) << name;
 }
 
 TEST(Aovs, RequestParsing) {

@@ -20,6 +20,10 @@ constexpr NamedAov kNames[] = {
     {"indirect_diffuse", AovKind::IndirectDiffuse},
     {"indirect_specular", AovKind::IndirectSpecular},
     {"indirect_transmission", AovKind::IndirectTransmission},
+    {"direct_subsurface", AovKind::DirectSubsurface},
+    {"indirect_subsurface", AovKind::IndirectSubsurface},
+    {"direct_volume", AovKind::DirectVolume},
+    {"indirect_volume", AovKind::IndirectVolume},
     {"bounces", AovKind::Bounces},
     {"albedo", AovKind::Albedo},
     {"N", AovKind::Normal},
@@ -38,8 +42,8 @@ enum Field {
     kEmission = 0,
     kDirect = 3,
     kIndirect = 6,
-    kLobes = 9,     // 2 x 3 lobes x 3 = 18 fields
-    kBounces = 27,  // kMaxBounceLayers x 3
+    kLobes = 9,                                   // 2 x kLobeCount lobes x 3 = 30 fields
+    kBounces = kLobes + 2 * int(kLobeCount) * 3,  // kMaxBounceLayers x 3
     kAlbedo = kBounces + 3 * kMaxBounceLayers,
     kNormal = kAlbedo + 3,
     kPosition = kNormal + 3,
@@ -47,14 +51,25 @@ enum Field {
     kObjectId = kPrimId + 1
 };
 
+// The per-lobe layers: [0 direct / 1 indirect][Lobe], with their names' lobe part.
+constexpr AovKind kLobeKinds[2][kLobeCount] = {
+    {AovKind::DirectDiffuse, AovKind::DirectSpecular, AovKind::DirectTransmission,
+     AovKind::DirectSubsurface, AovKind::DirectVolume},
+    {AovKind::IndirectDiffuse, AovKind::IndirectSpecular, AovKind::IndirectTransmission,
+     AovKind::IndirectSubsurface, AovKind::IndirectVolume}};
+constexpr const char* kLobeNames[kLobeCount] = {"diffuse", "specular", "transmission", "subsurface",
+                                                "volume"};
+
+int lobeField(size_t d, size_t l) { return kLobes + 3 * int(kLobeCount * d + l); }
+
 }  // namespace
 
 bool AovRequest::splitsLight() const {
-    for (AovKind k :
-         {AovKind::Emission, AovKind::Direct, AovKind::Indirect, AovKind::DirectDiffuse,
-          AovKind::DirectSpecular, AovKind::DirectTransmission, AovKind::IndirectDiffuse,
-          AovKind::IndirectSpecular, AovKind::IndirectTransmission, AovKind::Bounces})
+    for (AovKind k : {AovKind::Emission, AovKind::Direct, AovKind::Indirect, AovKind::Bounces})
         if (has(k)) return true;
+    for (const auto& kinds : kLobeKinds)
+        for (AovKind k : kinds)
+            if (has(k)) return true;
     return false;
 }
 
@@ -68,9 +83,10 @@ AovRequest AovRequest::defaults() {
 
 const char* AovRequest::names() {
     return "emission, direct, indirect, direct_diffuse, direct_specular, direct_transmission, "
-           "indirect_diffuse, "
-           "indirect_specular, indirect_transmission, bounces, albedo, N, P, Z, samples, variance, "
-           "primid, objectid, crypto_object, crypto_material; or all, none, default";
+           "direct_subsurface, direct_volume, indirect_diffuse, indirect_specular, "
+           "indirect_transmission, indirect_subsurface, indirect_volume, bounces, albedo, N, P, Z, "
+           "samples, variance, primid, objectid, crypto_object, crypto_material; or all, none, "
+           "default";
 }
 
 AovRequest AovRequest::parse(const std::string& list, int maxDepth) {
@@ -109,14 +125,11 @@ AovLayout::AovLayout(const AovRequest& request) : request_(request) {
     if (request.has(AovKind::Emission)) light("emission", kEmission);
     if (request.has(AovKind::Direct)) light("direct", kDirect);
     if (request.has(AovKind::Indirect)) light("indirect", kIndirect);
-    const char* lobeNames[3] = {"diffuse", "specular", "transmission"};
-    for (int d = 0; d < 2; ++d)
-        for (int l = 0; l < 3; ++l) {
-            AovKind k = AovKind(uint32_t(AovKind::DirectDiffuse) + uint32_t(3 * d + l));
-            if (request.has(k))
-                light(std::string(d == 0 ? "direct_" : "indirect_") + lobeNames[l],
-                      kLobes + 3 * (3 * d + l));
-        }
+    for (size_t d = 0; d < 2; ++d)
+        for (size_t l = 0; l < kLobeCount; ++l)
+            if (request.has(kLobeKinds[d][l]))
+                light(std::string(d == 0 ? "direct_" : "indirect_") + kLobeNames[l],
+                      lobeField(d, l));
     for (int b = 0; b < request.bounceLayers; ++b)
         light("bounce" + std::to_string(b + 1), kBounces + 3 * b);
     if (request.has(AovKind::Albedo)) colour("albedo", kAlbedo);
@@ -124,8 +137,7 @@ AovLayout::AovLayout(const AovRequest& request) : request_(request) {
     if (request.has(AovKind::Position)) colour("P", kPosition, "XYZ");
     // Z, samples, variance and Cryptomatte have accumulators of their own in the film.
     if (request.has(AovKind::PrimId)) channels_.push_back({"primid.X", false, true, kPrimId});
-    if (request.has(AovKind::ObjectId))
-        channels_.push_back({"objectid.X", false, true, kObjectId});
+    if (request.has(AovKind::ObjectId)) channels_.push_back({"objectid.X", false, true, kObjectId});
 }
 
 void AovLayout::gather(const SampleRecord& r, double* out) const {
@@ -135,8 +147,8 @@ void AovLayout::gather(const SampleRecord& r, double* out) const {
     put(kEmission, r.emission);
     put(kDirect, r.direct);
     put(kIndirect, r.indirect);
-    for (int d = 0; d < 2; ++d)
-        for (int l = 0; l < 3; ++l) put(kLobes + 3 * (3 * d + l), r.lobes[d][l]);
+    for (size_t d = 0; d < 2; ++d)
+        for (size_t l = 0; l < kLobeCount; ++l) put(lobeField(d, l), r.lobes[d][l]);
     for (int b = 0; b < request_.bounceLayers; ++b) put(kBounces + 3 * b, r.bounces[b]);
     put(kAlbedo, r.albedo);
     put(kNormal, r.normal);

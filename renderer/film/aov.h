@@ -32,6 +32,12 @@ enum class AovKind : uint32_t {
     ObjectId,
     CryptoObject,
     CryptoMaterial,  // Cryptomatte layers (ranked id/coverage pairs), see film/cryptomatte.h
+    // The lobe split, continued (after the others so that checkpoints' masks keep their bits):
+    // light that left its first vertex through a subsurface walk, or scattered first in a medium.
+    DirectSubsurface,
+    DirectVolume,
+    IndirectSubsurface,
+    IndirectVolume,
     Count,
     // Not a layer users list (--aov, "all"): the film's even/odd half-buffers of colour and
     // features for the denoiser (half_buffers.h), set by --denoise. A mask bit, so checkpoints,
@@ -70,7 +76,10 @@ struct AovRequest {
     static const char* names();    // for --help
 };
 
-enum class Lobe { Diffuse = 0, Specular = 1, Transmission = 2 };
+// How light left the path's first vertex, as Cycles' Diffuse, Glossy, Transmission, Subsurface
+// and Volume passes split it.
+enum class Lobe { Diffuse = 0, Specular = 1, Transmission = 2, Subsurface = 3, Volume = 4 };
+constexpr size_t kLobeCount = 5;
 
 // N colours that construction leaves unset (a Color zeroes itself): SampleRecord's per-lobe and
 // per-bounce sums, which reset() zeroes only when a render asks for them.
@@ -90,12 +99,12 @@ struct UnsetColours {
 struct SampleRecord {
     Color L{0.0f};
     Color emission{0.0f}, direct{0.0f}, indirect{0.0f};
-    UnsetColours<3> lobes[2];  // [0 direct / 1 indirect][Lobe]
+    UnsetColours<kLobeCount> lobes[2];  // [0 direct / 1 indirect][Lobe]
     UnsetColours<kMaxBounceLayers> bounces;
     void reset(const AovRequest& aovs) {
         if (!aovs.splitsLight()) return;
         for (auto& d : lobes)
-            for (size_t l = 0; l < 3; ++l) d[l] = Color(0.0f);
+            for (size_t l = 0; l < kLobeCount; ++l) d[l] = Color(0.0f);
         for (int b = 0; b < aovs.bounceLayers; ++b) bounces[size_t(b)] = Color(0.0f);
     }
     Color albedo{0.0f};

@@ -52,7 +52,7 @@ void readFileTangents(const aiMesh* am, const Mat4* xf, TriangleMesh& mesh) {
 // cglRules (COLLADA): an emissive material is a light and nothing else, as in the course. Other
 // formats add the emission to the surface, which still reflects (Lambert, or principled where the
 // file states metallic-roughness).
-Material materialFromAssimp(const aiMaterial* am, bool cglRules, bool gltf) {
+Material materialFromAssimp(const aiMaterial* am, bool cglRules, bool gltf, PhongDialect phong) {
     Material m;  // albedo keeps the default grey unless the file states a diffuse colour
     aiString name;
     if (am->Get(AI_MATKEY_NAME, name) == AI_SUCCESS) m.name = name.C_Str();
@@ -69,7 +69,7 @@ Material materialFromAssimp(const aiMaterial* am, bool cglRules, bool gltf) {
     float strength = 1;  // KHR_materials_emissive_strength
     if (am->Get(AI_MATKEY_EMISSIVE_INTENSITY, strength) == AI_SUCCESS && std::isfinite(strength))
         m.emission = m.emission * std::max(0.0f, strength);
-    readPrincipled(am, gltf, m);
+    if (!readPrincipled(am, gltf, m)) readPhongSpecular(am, phong, m);
     return m;
 }
 
@@ -542,6 +542,9 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
     std::vector<GltfMaterialExtras> gltfExtras;
     const std::string ext = lowerExtension(path);
     const bool gltf = ext == ".gltf" || ext == ".glb";
+    const PhongDialect phong = ext == ".obj"   ? PhongDialect::Obj
+                               : ext == ".fbx" ? PhongDialect::Fbx
+                                               : PhongDialect::None;
     if (gltf) {
         warnUnreadGltfExtensions(path, scene);
         gltfExtras = gltfMaterialExtras(path);
@@ -551,7 +554,7 @@ void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scen
     // Materials: through the CGL pass for COLLADA (matched by name or id), else Assimp's colours.
     uint32_t materialBase = uint32_t(scene.materials.size());
     for (unsigned i = 0; i < as->mNumMaterials; ++i) {
-        Material m = materialFromAssimp(as->mMaterials[i], extras != nullptr, gltf);
+        Material m = materialFromAssimp(as->mMaterials[i], extras != nullptr, gltf, phong);
         if (i < gltfExtras.size()) applyGltfExtras(as->mMaterials[i], gltfExtras[i], m, scene);
         aiColor3D diffuse;
         bool statesColour = as->mMaterials[i]->Get(AI_MATKEY_COLOR_DIFFUSE, diffuse) == AI_SUCCESS;

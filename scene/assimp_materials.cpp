@@ -137,7 +137,9 @@ void warnDroppedMaterialFeatures(const aiMaterial* am, const Material& m, Scene&
     bool statesSpecular = am->Get(AI_MATKEY_COLOR_SPECULAR, specular) == AI_SUCCESS;
     if (!principled && statesSpecular && (specular.r > 0 || specular.g > 0 || specular.b > 0))
         warn("specular colour dropped (Lambert)");
-    if (principled && statesSpecular &&
+    // A principled material from a Phong one (readPhongSpecular) took the tint; one from
+    // metallic-roughness keys (OBJ Pm/Pr with Ks) did not.
+    if (principled && statesSpecular && m.specularColor == Color(1.0f) &&
         (specular.r != specular.g || specular.g != specular.b || specular.r != 1))
         warn("specular colour tint dropped (KHR_materials_specular colour; its factor is kept)");
 }

@@ -72,4 +72,34 @@ bool readPrincipled(const aiMaterial* am, bool gltf, Material& m) {
     return true;
 }
 
+bool readPhongSpecular(const aiMaterial* am, PhongDialect dialect, Material& m) {
+    aiColor3D ks;
+    if (dialect == PhongDialect::None || am->Get(AI_MATKEY_COLOR_SPECULAR, ks) != AI_SUCCESS)
+        return false;
+    const Color tint = max(Color(ks.r, ks.g, ks.b), Color(0.0f));
+    const float mean = (tint.x + tint.y + tint.z) / 3;
+    if (!std::isfinite(mean) || mean <= 0) return false;
+    float blenderSpecular = mean, shininess = 0, specularFactor = 0.25f;  // FBX's default
+    const bool statesShininess = am->Get(AI_MATKEY_SHININESS, shininess) == AI_SUCCESS &&
+                                 std::isfinite(shininess) && shininess >= 0;
+    float roughness = 0.5f;  // Blender's default where the file states none
+    if (dialect == PhongDialect::Obj) {
+        if (statesShininess) roughness = 1 - std::sqrt(std::min(shininess, 1000.0f) / 1000);
+    } else {
+        if (am->Get(AI_MATKEY_SHININESS_STRENGTH, specularFactor) != AI_SUCCESS ||
+            !std::isfinite(specularFactor))
+            specularFactor = 0.25f;
+        blenderSpecular = 2 * std::max(0.0f, specularFactor);
+        if (!statesShininess) shininess = 20;  // FBX's default
+        roughness = 1 - std::sqrt(std::min(shininess, 100.0f) / 100);
+    }
+    m.kind = MaterialKind::Principled;  // base colour: the diffuse colour already read
+    m.metallic = 0;
+    m.roughness = std::clamp(roughness, 0.0f, 1.0f);
+    m.ior = 1.5f;
+    m.specular = 2 * blenderSpecular;  // F0 = 0.04 specular colour specular = 0.08 Blender's input
+    m.specularColor = tint / mean;
+    return true;
+}
+
 }  // namespace kiln

@@ -63,6 +63,16 @@ int addTextureSource(Scene& scene, TextureSource&& source);
 // false, m unchanged, otherwise.
 bool readPrincipled(const aiMaterial* am, bool gltf, Material& m);
 
+// A Phong material with a specular colour as Blender's importers make it, so that it shows the
+// highlight Cycles shows: a principled dielectric (base colour: the diffuse colour) whose specular
+// layer reflects F0 = 0.08 Ks per channel. Blender's Specular input s (OBJ: the mean of Ks; FBX:
+// 2 SpecularFactor) is F0 0.08 s, so kiln's glTF-style specular factor is 2 s and Ks / mean(Ks)
+// its KHR_materials_specular tint; roughness is 1 - sqrt(Ns / 1000) (OBJ) or
+// 1 - sqrt(Shininess / 100) (FBX), Blender's conversions. False, m unchanged, without a specular
+// colour (or a black one) or for other formats (their Phong rules differ: a warning names it).
+enum class PhongDialect { None, Obj, Fbx };
+bool readPhongSpecular(const aiMaterial* am, PhongDialect dialect, Material& m);
+
 // A warning for each feature of an Assimp material that kiln's rendering of it drops (gloss and
 // specular colour of Phong materials, opacity, transmission, clearcoat of a non-principled one).
 void warnDroppedMaterialFeatures(const aiMaterial* am, const Material& m, Scene& scene);

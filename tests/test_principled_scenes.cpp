@@ -304,7 +304,7 @@ TEST(PrincipledImport, GltfMetallicRoughnessAndFbxEmission) {
     EXPECT_GE(textured->albedoTexture, 0);
 
     Scene cube = loadScene("/usr/share/assimp/models/FBX/phong_cube.fbx");
-    const Material* phong = test::findMaterial(cube, MaterialKind::Lambertian);
+    const Material* phong = test::findMaterial(cube, MaterialKind::Principled);  // its specular
     ASSERT_TRUE(phong);
     EXPECT_EQ(test::countKind(cube, MaterialKind::Emission), 0);
     EXPECT_EQ(phong->albedo, Color(0.5f, 0.25f, 0.25f));
@@ -313,6 +313,42 @@ TEST(PrincipledImport, GltfMetallicRoughnessAndFbxEmission) {
 
     Scene pbr = loadScene("/usr/share/assimp/models/FBX/maxPbrMaterial_metalRough.fbx");
     EXPECT_EQ(test::countKind(pbr, MaterialKind::Emission), 0);
+}
+
+// OBJ and FBX Phong materials keep their highlight as Blender's importers make it (Cycles shows
+// it): a principled dielectric whose F0 is 0.08 Ks per channel, with Blender's roughness from the
+// shininess. Without a specular colour the material stays Lambert.
+TEST(PrincipledImport, ObjAndFbxSpecularColourAsBlenderImportsIt) {
+    auto dir = test::scratchDir();
+    test::writeFile(dir / "m.mtl",
+                    "newmtl shiny\nKd 0.2 0.4 0.6\nKs 0.5 0.4 0.3\nNs 250\n"
+                    "newmtl matte\nKd 0.7 0.7 0.7\nKs 0 0 0\nNs 10\n");
+    test::writeFile(dir / "m.obj",
+                    "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n"
+                    "usemtl shiny\nf 1 2 3\nusemtl matte\nf 2 4 3\n");
+    Scene s = loadScene((dir / "m.obj").string());
+    const Material* shiny = test::findMaterial(s, MaterialKind::Principled);
+    ASSERT_TRUE(shiny);
+    EXPECT_EQ(shiny->albedo, Color(0.2f, 0.4f, 0.6f));
+    EXPECT_FLOAT_EQ(shiny->metallic, 0.0f);
+    EXPECT_NEAR(shiny->roughness, 0.5f, 1e-6f);  // 1 - sqrt(250 / 1000)
+    // F0 per channel = 0.04 specular specularColor = 0.08 Ks.
+    const Color f0 = shiny->specularColor * (0.04f * shiny->specular);
+    EXPECT_NEAR(f0.x, 0.08f * 0.5f, 1e-6f);
+    EXPECT_NEAR(f0.y, 0.08f * 0.4f, 1e-6f);
+    EXPECT_NEAR(f0.z, 0.08f * 0.3f, 1e-6f);
+    bool matteIsLambert = false;  // Ks 0
+    for (const Material& m : s.materials)
+        matteIsLambert |= m.name == "matte" && m.kind == MaterialKind::Lambertian;
+    EXPECT_TRUE(matteIsLambert);
+    EXPECT_EQ(test::warningsNaming(s, "specular"), 0);
+
+    // FBX: Blender's Specular is 2 SpecularFactor, roughness 1 - sqrt(Shininess) / 10.
+    Scene cube = loadScene("/usr/share/assimp/models/FBX/phong_cube.fbx");
+    const Material* phong = test::findMaterial(cube, MaterialKind::Principled);
+    ASSERT_TRUE(phong);
+    EXPECT_GT(phong->specular, 0.0f);
+    EXPECT_EQ(test::warningsNaming(cube, "specular"), 0);
 }
 
 // COLLADA keeps the course's rules: an emissive material is a light and nothing else.

@@ -398,7 +398,7 @@ bool PathIntegrator::crossMedium(std::span<CameraSample> batch, Scratch& w, size
 // passes the specular layer, at most kMaxEntryChoice), else the principled surface as it is.
 template <class F>
 void PathIntegrator::shadeSubsurface(const Vertex& v, const SurfaceInputs& in, Scratch& w) const {
-    PrincipledBsdf surface(v.mat, in.baseColour, in.mr);
+    PrincipledBsdf surface(v.mat, in);
     if (v.sampler.next1D() >= v.mat.subsurface) {
         shadeVertex<F>(v, surface, w);
         return;

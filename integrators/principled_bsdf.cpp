@@ -48,18 +48,18 @@ bool refractionHalfVector(const Vec3& wo, const Vec3& wi, float etap, Vec3& h) {
 
 }  // namespace
 
-PrincipledBsdf::PrincipledBsdf(const Material& m, const Color& baseColour, MetallicRoughness mr,
-                               Coat coat)
-    : base_(max(baseColour, Color(0.0f))),
-      metallic_(std::clamp(mr.metallic, 0.0f, 1.0f)),
-      coat_(std::clamp(coat.weight, 0.0f, 1.0f)),
-      transmission_(std::clamp(m.transmission, 0.0f, 1.0f)),
+PrincipledBsdf::PrincipledBsdf(const Material& m, const SurfaceInputs& in)
+    : base_(max(in.baseColour, Color(0.0f))),
+      metallic_(std::clamp(in.mr.metallic, 0.0f, 1.0f)),
+      coat_(std::clamp(in.coat.weight, 0.0f, 1.0f)),
+      transmission_(std::clamp(in.layers.transmission, 0.0f, 1.0f)),
       ior_(m.ior),
       thin_(!(m.thickness > 0)),
-      sheen_(max(m.sheenColor, Color(0.0f)) * std::clamp(m.sheen, 0.0f, 1.0f)),
-      specular_(ggx(mr.roughness)),
-      coatLobe_(ggx(coat.roughness)),
-      sheenLobe_(m.sheenRoughness) {
+      sheen_(max(in.layers.sheenColour, Color(0.0f)) * std::clamp(m.sheen, 0.0f, 1.0f)),
+      specular_(ggx(in.mr.roughness)),
+      coatLobe_(ggx(in.coat.roughness)),
+      sheenLobe_(in.layers.sheenRoughness) {
+    const MetallicRoughness& mr = in.mr;
     float r = (m.ior - 1) / (m.ior + 1);
     float f0 = m.specular * r * r;
     dielectricF0Colour_ = Color(std::clamp(f0 * m.specularColor.x, 0.0f, 1.0f),

@@ -38,16 +38,15 @@ class PrincipledBsdf {
   public:
     static bool handles(MaterialKind k) { return k == MaterialKind::Principled; }
     static Color aovAlbedo(const Material&, const Color& baseColour) { return baseColour; }
-    // in: the material's base colour, metallic, roughness and coat at this point (textures,
-    // vertex colours: material_lookup.h), else its factors.
+    // in: the material's base colour, metallic, roughness, coat, transmission and sheen at this
+    // point (textures, vertex colours: material_lookup.h), else its factors.
     PrincipledBsdf(const Material& material, MicrofacetModel, const SurfaceInputs& in)
-        : PrincipledBsdf(material, in.baseColour, in.mr, in.coat) {}
+        : PrincipledBsdf(material, in) {}
     PrincipledBsdf(const Material& material, const Color& baseColour)
         : PrincipledBsdf(material, baseColour, MetallicRoughness::of(material)) {}
     PrincipledBsdf(const Material& material, const Color& baseColour, MetallicRoughness mr)
-        : PrincipledBsdf(material, baseColour, mr, Coat::of(material)) {}
-    PrincipledBsdf(const Material& material, const Color& baseColour, MetallicRoughness mr,
-                   Coat coat);
+        : PrincipledBsdf(material, {baseColour, mr, Coat::of(material), Layers::of(material)}) {}
+    PrincipledBsdf(const Material& material, const SurfaceInputs& in);
 
     bool isDelta() const { return false; }
     bool isBlack() const { return false; }

@@ -179,13 +179,18 @@ void readOpacityAlpha(const aiScene* as, const aiMaterial* am, const std::string
 // glTF KHR_materials_clearcoat's textures (Assimp's CLEARCOAT slot: 0 the weight, read from R; 1
 // the roughness, from G; 2 the coat's normal map, which kiln does not read: the coat shares the
 // surface's normal). The UV transform is slot 0's for both.
+// Whether the material states a texture at this index of the slot (Assimp fills the indices below a
+// stated one with empty names).
+bool statesTexture(const aiMaterial* am, aiTextureType slot, unsigned index, aiString& ref) {
+    return am->GetTexture(slot, index, &ref) == AI_SUCCESS && ref.length > 0;
+}
+
 void readClearcoatMaps(const aiScene* as, const aiMaterial* am, const std::string& assetPath,
                        Material& m, Scene& scene) {
     if (m.kind != MaterialKind::Principled || !isGltf(assetPath)) return;
     MaterialMaps& maps = m.maps;
-    // Assimp fills the indices below a stated one with empty names.
     auto stated = [&](unsigned index, aiString& ref) {
-        return am->GetTexture(aiTextureType_CLEARCOAT, index, &ref) == AI_SUCCESS && ref.length > 0;
+        return statesTexture(am, aiTextureType_CLEARCOAT, index, ref);
     };
     aiString ref;
     if (stated(0, ref)) {
@@ -204,6 +209,37 @@ void readClearcoatMaps(const aiScene* as, const aiMaterial* am, const std::strin
         warn(scene, m,
              "clearcoat normal map '" + std::string(ref.C_Str()) +
                  "' ignored: the coat takes the surface's normal");
+}
+
+// glTF KHR_materials_transmission's and _sheen's textures as Assimp 5.2 hands them over: the
+// TRANSMISSION slot's 0 (transmissionTexture, R) and 1 (KHR_materials_volume thicknessTexture,
+// G: kiln reads thickness only as thin or not, so it is named and ignored); the SHEEN slot's 0
+// (sheenColorTexture, an sRGB colour map) and 1 (sheenRoughnessTexture, A).
+void readLayerMaps(const aiScene* as, const aiMaterial* am, const std::string& assetPath,
+                   Material& m, Scene& scene) {
+    if (m.kind != MaterialKind::Principled || !isGltf(assetPath)) return;
+    MaterialMaps& maps = m.maps;
+    aiString ref;
+    if (statesTexture(am, aiTextureType_TRANSMISSION, 0, ref)) {
+        maps.transmissionTexture =
+            mapSource(as, am, aiTextureType_TRANSMISSION, assetPath, TextureEncoding::Data,
+                      "transmission texture", maps.transmissionUv, m, scene, 0);
+        maps.transmissionChannel = 0;
+    }
+    if (statesTexture(am, aiTextureType_TRANSMISSION, 1, ref))
+        warn(scene, m,
+             "KHR_materials_volume thicknessTexture '" + std::string(ref.C_Str()) +
+                 "' ignored: kiln reads the thickness factor only (thin or not)");
+    if (statesTexture(am, aiTextureType_SHEEN, 0, ref))
+        maps.sheenColorTexture =
+            mapSource(as, am, aiTextureType_SHEEN, assetPath, TextureEncoding::Color,
+                      "sheen colour texture", maps.sheenColorUv, m, scene, 0);
+    if (statesTexture(am, aiTextureType_SHEEN, 1, ref)) {
+        maps.sheenRoughnessTexture =
+            mapSource(as, am, aiTextureType_SHEEN, assetPath, TextureEncoding::Data,
+                      "sheen roughness texture", maps.sheenRoughnessUv, m, scene, 1);
+        maps.sheenRoughnessChannel = 3;
+    }
 }
 
 }  // namespace
@@ -264,6 +300,7 @@ void readAssimpMaps(const aiScene* as, const aiMaterial* am, const std::string& 
     else if (std::string ext = lowerExtension(assetPath); ext == ".obj" || ext == ".fbx")
         readOpacityAlpha(as, am, assetPath, m, scene);
     readClearcoatMaps(as, am, assetPath, m, scene);
+    readLayerMaps(as, am, assetPath, m, scene);
 }
 
 bool readsTextureSlot(unsigned slot, const Material& m, const std::string& assetPath) {
@@ -274,6 +311,8 @@ bool readsTextureSlot(unsigned slot, const Material& m, const std::string& asset
             return principled;
         case aiTextureType_UNKNOWN:
         case aiTextureType_CLEARCOAT:
+        case aiTextureType_TRANSMISSION:
+        case aiTextureType_SHEEN:
             return principled && isGltf(assetPath);
         case aiTextureType_LIGHTMAP:
             return isGltf(assetPath);  // glTF's occlusionTexture: warnOcclusionMap names it

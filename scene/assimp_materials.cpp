@@ -1,8 +1,8 @@
 // What kiln takes from an Assimp material beyond its colours: the base-colour texture becomes a
 // texture source of the scene (a file relative to the asset, or an image embedded in it: glTF "*N"
 // references, data URIs, .glb buffers); every other texture slot and every shading feature kiln
-// cannot honour yet (the gloss and specular colour of Phong materials, sheen and transmission
-// maps, ...) is named in a warning.
+// cannot honour yet (the gloss and specular colour of Phong materials in formats other than OBJ
+// and FBX, ...) is named in a warning.
 #include <assimp/material.h>
 #include <assimp/scene.h>
 
@@ -26,9 +26,9 @@ constexpr std::pair<aiTextureType, const char*> kIgnoredSlots[] = {
     {aiTextureType_AMBIENT, "ambient map"},
     {aiTextureType_LIGHTMAP, "lightmap"},
     {aiTextureType_REFLECTION, "reflection map"},
-    {aiTextureType_SHEEN, "sheen map"},
-    {aiTextureType_CLEARCOAT, "clearcoat map"},  // glTF: read (scene/assimp_maps.cpp)
-    {aiTextureType_TRANSMISSION, "transmission map"},
+    {aiTextureType_SHEEN, "sheen map"},                // glTF: read (scene/assimp_maps.cpp)
+    {aiTextureType_CLEARCOAT, "clearcoat map"},        // glTF: read
+    {aiTextureType_TRANSMISSION, "transmission map"},  // glTF: read
     {aiTextureType_UNKNOWN, "texture of unknown use (glTF metallic-roughness)"},
 };
 

@@ -255,6 +255,15 @@ void readPrincipledTextures(const std::string& file, pugi::xml_node n, Material&
     m.maps.clearcoatTexture =
         textureAttribute(file, n, "clearcoat-texture", TextureEncoding::Data, scene);
     m.maps.clearcoatChannel = 0;
+    // glTF's transmissionTexture R, sheenColorTexture RGB (colour), sheenRoughnessTexture A.
+    m.maps.transmissionTexture =
+        textureAttribute(file, n, "transmission-texture", TextureEncoding::Data, scene);
+    m.maps.transmissionChannel = 0;
+    m.maps.sheenColorTexture =
+        textureAttribute(file, n, "sheen-color-texture", TextureEncoding::Color, scene);
+    m.maps.sheenRoughnessTexture =
+        textureAttribute(file, n, "sheen-roughness-texture", TextureEncoding::Data, scene);
+    m.maps.sheenRoughnessChannel = 3;
 }
 
 // Every attribute must be one this kind reads (its row's parameters): a typo, or a parameter of
@@ -267,7 +276,8 @@ void checkMaterialAttributes(const std::string& file, pugi::xml_node n,
         for (const MaterialParam& p : spec.params) known |= name == p.name;
         if (spec.kind == MaterialKind::Principled)
             known |= name == "base-color-texture" || name == "metallic-roughness-texture" ||
-                     name == "clearcoat-texture";
+                     name == "clearcoat-texture" || name == "transmission-texture" ||
+                     name == "sheen-color-texture" || name == "sheen-roughness-texture";
         if (!known)
             throw SceneError(file, "<material> has unknown attribute '" + std::string(name) +
                                        "' for kind " + spec.name);

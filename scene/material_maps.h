@@ -66,6 +66,12 @@ struct MaterialMaps {
     int clearcoatTexture = -1, clearcoatChannel = 0;
     int clearcoatRoughnessTexture = -1, clearcoatRoughnessChannel = 1;
     UvTransform clearcoatUv, clearcoatRoughnessUv;
+    // Principled layers times their textures (glTF KHR_materials_transmission transmissionTexture
+    // R; KHR_materials_sheen sheenColorTexture RGB, a colour map, and sheenRoughnessTexture A).
+    int transmissionTexture = -1, transmissionChannel = 0;
+    int sheenColorTexture = -1;
+    int sheenRoughnessTexture = -1, sheenRoughnessChannel = 3;
+    UvTransform transmissionUv, sheenColorUv, sheenRoughnessUv;
     // Multiplies Material::emission (glTF emissiveTexture, FBX/OBJ emissive maps): a colour map.
     int emissionTexture = -1;
     UvTransform emissionUv;

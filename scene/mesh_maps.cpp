@@ -6,9 +6,12 @@ namespace kiln {
 
 std::vector<int*> textureIds(Material& m) {
     MaterialMaps& x = m.maps;
-    return {
-        &m.albedoTexture,    &x.normalTexture,   &x.opacityTexture,   &x.metallicTexture,
-        &x.roughnessTexture, &x.emissionTexture, &x.clearcoatTexture, &x.clearcoatRoughnessTexture};
+    return {&m.albedoTexture,        &x.normalTexture,
+            &x.opacityTexture,       &x.metallicTexture,
+            &x.roughnessTexture,     &x.emissionTexture,
+            &x.clearcoatTexture,     &x.clearcoatRoughnessTexture,
+            &x.transmissionTexture,  &x.sheenColorTexture,
+            &x.sheenRoughnessTexture};
 }
 
 void uvAt(const TriangleMesh& mesh, uint32_t prim, float b1, float b2, float& u, float& v) {

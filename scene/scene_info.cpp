@@ -93,6 +93,8 @@ std::string sceneInfoText(const Scene& scene) {
         if (m.maps.emissionTexture >= 0) os << " emission-map";
         if (m.maps.clearcoatTexture >= 0 || m.maps.clearcoatRoughnessTexture >= 0)
             os << " clearcoat-map";
+        if (m.maps.transmissionTexture >= 0) os << " transmission-map";
+        if (m.maps.sheenColorTexture >= 0 || m.maps.sheenRoughnessTexture >= 0) os << " sheen-map";
         if (m.maps.hasAlpha())
             os << " alpha " << toString(m.maps.alphaMode) << " opacity " << num(m.maps.opacity)
                << (m.maps.alphaMode == AlphaMode::Mask ? " cutoff " + num(m.maps.alphaCutoff) : "")

@@ -2,11 +2,15 @@
 // roughness sweep's highlights dim monotonically with roughness), emission added to a surface that
 // still reflects, such an emitter found by light sampling and by BSDF-sampled rays alike, and the
 // .kiln principled material with a base-colour texture.
+#include <OpenImageIO/imageio.h>
+
+#include "color/srgb_decode.h"
 #include "integrators/bsdf.h"
 #include "integrators/lights.h"
 #include "integrators/path.h"
 #include "integrators/render_plan.h"
 #include "renderer/accel/accelerator.h"
+#include "renderer/geometry/material_lookup.h"
 #include "scene/scene_loader.h"
 #include "test_support.h"
 
@@ -237,6 +241,44 @@ TEST(PrincipledScenes, KilnTransmissionSheenAndPlan) {
     EXPECT_EQ(plainPlan.find("sheen"), std::string::npos) << plainPlan;
 }
 
+// The transmission weight and sheen read their textures where the mesh has UVs: transmission times
+// R, sheen colour times the (sRGB-decoded) colour, sheen roughness times A. One texel, so that the
+// texture system's filter returns it wherever it looks.
+TEST(PrincipledScenes, TransmissionAndSheenTexturesScaleTheirFactors) {
+    auto dir = test::scratchDir();
+    texturedQuad(dir, "unused.png");
+    const uint8_t texel[4] = {102, 64, 128, 51};
+    auto out = OIIO::ImageOutput::create((dir / "layers.png").string());
+    OIIO::ImageSpec spec(1, 1, 4, OIIO::TypeDesc::UINT8);
+    spec.attribute("oiio:UnassociatedAlpha", 1);  // as given: straight, as glTF's PNGs are
+    ASSERT_TRUE(out && out->open((dir / "layers.png").string(), spec));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, texel) && out->close());
+    test::writeFile(dir / "t.kiln",
+                    "<kiln-scene>\n"
+                    "  <material name=\"p\" kind=\"principled\" transmission=\"0.8\" sheen=\"1\" "
+                    "sheen-color=\"1 0.5 0.25\" sheen-roughness=\"0.5\" "
+                    "transmission-texture=\"layers.png\" sheen-color-texture=\"layers.png\" "
+                    "sheen-roughness-texture=\"layers.png\"/>\n"
+                    "  <mesh file=\"quad.obj\" material=\"p\"/>\n"
+                    "</kiln-scene>\n");
+    Scene s = loadScene((dir / "t.kiln").string());
+    ASSERT_TRUE(hasSurfaceColourVariation(s));
+    const Material* m = test::findMaterial(s, MaterialKind::Principled);
+    ASSERT_TRUE(m);
+    Hit hit;
+    hit.shape = 0, hit.prim = 0, hit.u = 0.3f, hit.v = 0.2f;
+    const Layers layers = layersAt(s, *m, hit, 0.0f);
+    EXPECT_NEAR(layers.transmission, 0.8f * 102 / 255, 1e-5f);
+    EXPECT_NEAR(layers.sheenRoughness, 0.5f * 51 / 255, 1e-5f);
+    EXPECT_NEAR(layers.sheenColour.x, 1.0f * srgbToLinear(102 / 255.0f), 1e-5f);
+    EXPECT_NEAR(layers.sheenColour.y, 0.5f * srgbToLinear(64 / 255.0f), 1e-5f);
+    EXPECT_NEAR(layers.sheenColour.z, 0.25f * srgbToLinear(128 / 255.0f), 1e-5f);
+    // Without the textures: the factors.
+    const Layers plain = Layers::of(*m);
+    EXPECT_FLOAT_EQ(plain.transmission, 0.8f);
+    EXPECT_EQ(plain.sheenColour, Color(1.0f, 0.5f, 0.25f));
+}
+
 // glTF's material extensions as Assimp 5.2 hands them over (transmission, volume, sheen, ior,
 // clearcoat with its textures) and as kiln reads them from the JSON (KHR_materials_specular);
 // the extensions neither reads are named in one warning, and the maps kiln does not apply each in
@@ -255,8 +297,10 @@ TEST(PrincipledImport, GltfMaterialExtensions) {
 "images":[{"uri":"t.png"}],"textures":[{"source":0}],
 "materials":[{"name":"m","pbrMetallicRoughness":{"baseColorFactor":[0.5,0.6,0.7,1],"metallicFactor":0.1,"roughnessFactor":0.3},
 "extensions":{"KHR_materials_transmission":{"transmissionFactor":0.9,"transmissionTexture":{"index":0}},
-"KHR_materials_volume":{"thicknessFactor":0.5,"attenuationDistance":2.0,"attenuationColor":[0.9,0.5,0.3]},
-"KHR_materials_sheen":{"sheenColorFactor":[0.2,0.3,0.4],"sheenRoughnessFactor":0.7},
+"KHR_materials_volume":{"thicknessFactor":0.5,"attenuationDistance":2.0,"attenuationColor":[0.9,0.5,0.3],
+  "thicknessTexture":{"index":0}},
+"KHR_materials_sheen":{"sheenColorFactor":[0.2,0.3,0.4],"sheenRoughnessFactor":0.7,
+  "sheenColorTexture":{"index":0},"sheenRoughnessTexture":{"index":0}},
 "KHR_materials_specular":{"specularFactor":0.8,"specularColorFactor":[1,0.5,0.25]},
 "KHR_materials_ior":{"ior":1.33},
 "KHR_materials_clearcoat":{"clearcoatFactor":0.6,"clearcoatRoughnessFactor":0.2,
@@ -282,7 +326,12 @@ TEST(PrincipledImport, GltfMaterialExtensions) {
     EXPECT_GE(m->maps.clearcoatRoughnessTexture, 0);
     EXPECT_EQ(test::warningsNaming(s, "glTF extensions not read"), 1);
     EXPECT_TRUE(test::hasWarning(s, "KHR_materials_iridescence, KHR_materials_anisotropy"));
-    EXPECT_EQ(test::warningsNaming(s, "transmission map"), 1);
+    EXPECT_GE(m->maps.transmissionTexture, 0);
+    EXPECT_GE(m->maps.sheenColorTexture, 0);
+    EXPECT_GE(m->maps.sheenRoughnessTexture, 0);
+    EXPECT_EQ(test::warningsNaming(s, "transmission map"), 0);
+    EXPECT_EQ(test::warningsNaming(s, "sheen map"), 0);
+    EXPECT_EQ(test::warningsNaming(s, "thicknessTexture"), 1);  // thin or not: the factor alone
     EXPECT_EQ(test::warningsNaming(s, "clearcoat"), 0);
     EXPECT_EQ(test::warningsNaming(s, "KHR_materials_sheen"), 0);
 }

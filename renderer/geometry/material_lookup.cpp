@@ -79,7 +79,10 @@ bool hasSurfaceColourVariation(const Scene& scene) {
                            return m.albedoTexture >= 0 || m.maps.normalTexture >= 0 ||
                                   m.maps.metallicTexture >= 0 || m.maps.roughnessTexture >= 0 ||
                                   m.maps.clearcoatTexture >= 0 ||
-                                  m.maps.clearcoatRoughnessTexture >= 0;
+                                  m.maps.clearcoatRoughnessTexture >= 0 ||
+                                  m.maps.transmissionTexture >= 0 ||
+                                  m.maps.sheenColorTexture >= 0 ||
+                                  m.maps.sheenRoughnessTexture >= 0;
                        }) ||
            std::any_of(scene.meshes.begin(), scene.meshes.end(),
                        [](const TriangleMesh& m) { return !m.colors.empty(); });
@@ -137,6 +140,20 @@ Coat coatAt(const Scene& scene, const Material& material, const Hit& hit, float 
                 {maps.clearcoatRoughnessTexture, maps.clearcoatRoughnessChannel,
                  maps.clearcoatRoughnessUv});
     return coat;
+}
+
+Layers layersAt(const Scene& scene, const Material& material, const Hit& hit, float worldWidth) {
+    Layers layers = Layers::of(material);
+    const MaterialMaps& maps = material.maps;
+    scaleByMaps(scene, hit, worldWidth, layers.transmission,
+                {maps.transmissionTexture, maps.transmissionChannel, maps.transmissionUv},
+                layers.sheenRoughness,
+                {maps.sheenRoughnessTexture, maps.sheenRoughnessChannel, maps.sheenRoughnessUv});
+    if (maps.sheenColorTexture >= 0 && texturedMesh(scene, hit))
+        layers.sheenColour =
+            layers.sheenColour * mapColour(scene, maps.sheenColorTexture, maps.sheenColorUv,
+                                           MeshPoint::of(hit), worldWidth);
+    return layers;
 }
 
 bool normalMapAt(const Scene& scene, const Material& material, const Hit& hit, float worldWidth,

@@ -47,14 +47,24 @@ struct Coat {
     static Coat of(const Material& m) { return {m.clearcoat, m.clearcoatRoughness}; }
 };
 
+// The principled transmission weight and sheen at a point: the material's factors times their
+// textures there (glTF transmissionTexture R, sheenColorTexture RGB, sheenRoughnessTexture A).
+struct Layers {
+    float transmission = 0;
+    Color sheenColour{0.0f};
+    float sheenRoughness = 0.5f;
+    static Layers of(const Material& m) { return {m.transmission, m.sheenColor, m.sheenRoughness}; }
+};
+
 // What a BSDF reads of its material at a point: the base (diffuse) colour, times its texture and
-// the mesh's vertex colours, and the principled metallic, roughness and clear coat.
+// the mesh's vertex colours, and the principled metallic, roughness, clear coat and layers.
 struct SurfaceInputs {
     Color baseColour;
     MetallicRoughness mr;
     Coat coat;
+    Layers layers;
     static SurfaceInputs of(const Material& m) {
-        return {m.albedo, MetallicRoughness::of(m), Coat::of(m)};
+        return {m.albedo, MetallicRoughness::of(m), Coat::of(m), Layers::of(m)};
     }
 };
 
@@ -66,11 +76,12 @@ Color baseColourAt(const Scene& scene, const Material& material, const Hit& hit,
 MetallicRoughness metallicRoughnessAt(const Scene& scene, const Material& material, const Hit& hit,
                                       float worldWidth);
 Coat coatAt(const Scene& scene, const Material& material, const Hit& hit, float worldWidth);
+Layers layersAt(const Scene& scene, const Material& material, const Hit& hit, float worldWidth);
 inline SurfaceInputs surfaceInputsAt(const Scene& scene, const Material& material, const Hit& hit,
                                      float worldWidth) {
     return {baseColourAt(scene, material, hit, worldWidth),
             metallicRoughnessAt(scene, material, hit, worldWidth),
-            coatAt(scene, material, hit, worldWidth)};
+            coatAt(scene, material, hit, worldWidth), layersAt(scene, material, hit, worldWidth)};
 }
 
 // The normal map's tangent-space normal at the hit ((2 texel - 1), xy scaled by normalScale);

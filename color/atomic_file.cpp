@@ -71,6 +71,10 @@ void AtomicFile::write(const void* data, size_t bytes) {
     if (bytes && std::fwrite(data, 1, bytes, file_) != bytes) failed_ = true;
 }
 
+void AtomicFile::flush() {
+    if (std::fflush(file_) != 0) failed_ = true;
+}
+
 void AtomicFile::commit() {
     proxy_.reset();
     int err = 0;

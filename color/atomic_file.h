@@ -26,6 +26,8 @@ class AtomicFile {
     const std::string& tempPath() const { return temp_; }
     // Raw writes; errors are sticky and reported by commit().
     void write(const void* data, size_t bytes);
+    // The buffered bytes handed to the temporary file, for a reader that opens it by name.
+    void flush();
     // For OpenImageIO writers (ImageOutput::set_ioproxy): the same stream, same error checks.
     OIIO::Filesystem::IOProxy* proxy();
     // Flushes, checks every write, fsyncs, renames over path and fsyncs the directory. Throws

@@ -17,6 +17,7 @@
 #include <stdexcept>
 
 #include "color/atomic_file.h"
+#include "color/exr_colour_space.h"
 #include "color/oiio_write.h"
 #include "color/working_space.h"
 
@@ -38,7 +39,16 @@ void writeAtomically(const std::string& path, const std::string& format, OIIO::I
         throw std::runtime_error(path + ": cannot write " + what + ": " + out->geterror() +
                                  buf.geterror());
     out.reset();
-    file.commit();
+    const std::string colourSpace = spec.get_string_attribute("oiio:ColorSpace");
+    if (format != "openexr" || colourSpace.empty()) {
+        file.commit();
+        return;
+    }
+    // The colour space into the header (exr_colour_space.h), through a second temporary.
+    file.flush();
+    AtomicFile stamped(path);
+    stampExrColourSpace(file.tempPath(), stamped.tempPath(), colourSpace);
+    stamped.commit();
 }
 
 namespace {

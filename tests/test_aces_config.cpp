@@ -166,8 +166,9 @@ TEST(AcesConfig, LinearTexturesAreConvertedFromTheirStatedSpace) {
     }
 }
 
-// The EXR names the working space: kiln:colorspace and ACEScg's chromaticities (AP1, D60 white).
-// (OIIO 2.4's EXR reader reports oiio:ColorSpace "Linear" whatever the file holds.)
+// The EXR names the working space: oiio:ColorSpace (which OIIO 2.4's writer drops: kiln adds it,
+// exr_colour_space.h), kiln:colorspace and ACEScg's chromaticities (AP1, D60 white). So oiiotool
+// --ociodisplay takes the file from acescg without being told.
 TEST(AcesConfig, ExrStatesAcescgChromaticitiesAndName) {
     auto dir = test::scratchDir();
     test::ScopedEnv ocio("OCIO", test::writeFile(dir / "aces.ocio", test::kAcesConfig));
@@ -177,6 +178,7 @@ TEST(AcesConfig, ExrStatesAcescgChromaticitiesAndName) {
     auto in = OIIO::ImageInput::open((dir / "out.exr").string());
     ASSERT_TRUE(in);
     EXPECT_EQ(in->spec().get_string_attribute("kiln:colorspace"), "acescg");
+    EXPECT_EQ(in->spec().get_string_attribute("oiio:ColorSpace"), "acescg");
     const OIIO::ParamValue* chroma =
         in->spec().find_attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8));
     ASSERT_TRUE(chroma);

@@ -92,6 +92,10 @@ TEST(Help, CompletionOffersTheConfigsDisplaysViewsAndLooks) {
     test::CliRun r = test::runProgram("bash", "-c " + test::shellQuoted(script));
     EXPECT_EQ(r.out, "ACES 1.0 - SDR Video|");
     EXPECT_EQ(test::runKiln("info --ocio s.dae").code, 2);
+    test::ScopedEnv bad("OCIO", test::writeFile(dir / "bad.ocio", "garbage: ["));
+    test::CliRun refused = test::runKiln("info --ocio");
+    EXPECT_EQ(refused.code, 2);
+    EXPECT_NE(refused.err.find("bad.ocio"), std::string::npos) << refused.err;
 }
 
 TEST(Help, ManPageHasEveryCommandsOptionsExitStatusEnvironmentAndFiles) {

@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cstdio>
+#include <stdexcept>
 
 #include "color/color_config.h"
 #include "integrators/render_plan.h"
@@ -16,7 +17,12 @@ namespace {
 // One tab-separated line per name (names may hold spaces: "ACES 1.0 - SDR Video"), for scripts
 // and the shell completion: config, scene_linear, display, view (its display first), look.
 void printColorConfigNames() {
-    ColorConfigNames names = listColorConfig();
+    ColorConfigNames names;
+    try {
+        names = listColorConfig();
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());  // a bad config is bad input: exit 2
+    }
     std::printf("config\t%s\nscene_linear\t%s\n", names.configPath.c_str(),
                 names.sceneLinear.c_str());
     for (const auto& [display, views] : names.displays) {

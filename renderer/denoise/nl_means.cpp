@@ -35,6 +35,30 @@ void clampedIndices(int from, int n, int size, std::vector<int>& out) {
 
 }  // namespace
 
+// The (2F+1)^2 box sums of distance_ (pw x ph) for the tile's tw x th pixels, into patch_: running
+// sums along rows, then along columns (double: adding and dropping leaves no drift worth a bit).
+void TileWeights::patchSums(int tw, int th, int pw, int ph, int F) {
+    const int n = 2 * F + 1;
+    for (int y = 0; y < ph; ++y) {
+        const float* d = &distance_[size_t(y) * size_t(pw)];
+        float* row = &rows_[size_t(y) * size_t(tw)];
+        double sum = 0;
+        for (int x = 0; x < n; ++x) sum += d[x];
+        row[0] = float(sum);
+        for (int x = 1; x < tw; ++x) row[x] = float(sum += double(d[x + n - 1]) - d[x - 1]);
+    }
+    patch_.resize(size_t(tw) * size_t(th));
+    for (int x = 0; x < tw; ++x) {
+        double sum = 0;
+        for (int y = 0; y < n; ++y) sum += rows_[size_t(y) * size_t(tw) + size_t(x)];
+        patch_[size_t(x)] = float(sum);
+        for (int y = 1; y < th; ++y)
+            patch_[size_t(y) * size_t(tw) + size_t(x)] =
+                float(sum += double(rows_[size_t(y + n - 1) * size_t(tw) + size_t(x)]) -
+                             rows_[size_t(y - 1) * size_t(tw) + size_t(x)]);
+    }
+}
+
 void TileWeights::compute(const Image& guide, const Image& variance, const Rect& tile,
                           const NlMeansParams& params) {
     const int R = params.windowRadius, F = params.patchRadius;
@@ -53,30 +77,36 @@ void TileWeights::compute(const Image& guide, const Image& variance, const Rect&
         for (int dx = -R; dx <= R; ++dx, ++o) {
             clampedIndices(tile.x0 - F + dx, pw, guide.width, xq);
             clampedIndices(tile.y0 - F + dy, ph, guide.height, yq);
+            // Away from the image's left and right edges both runs of pixels are contiguous.
+            const bool contiguous =
+                xp.front() + pw - 1 == xp.back() && xq.front() + pw - 1 == xq.back();
             for (int y = 0; y < ph; ++y) {
                 const size_t rowP = size_t(yp[size_t(y)]) * size_t(guide.width);
                 const size_t rowQ = size_t(yq[size_t(y)]) * size_t(guide.width);
+                float* d = &distance_[size_t(y) * pw];
+                if (contiguous) {
+                    const size_t p0 = (rowP + size_t(xp.front())) * size_t(nc);
+                    const size_t q0 = (rowQ + size_t(xq.front())) * size_t(nc);
+                    const float *gp = &guide.values[p0], *gq = &guide.values[q0];
+                    const float *vp = &variance.values[p0], *vq = &variance.values[q0];
+                    for (int x = 0; x < pw; ++x, gp += nc, gq += nc, vp += nc, vq += nc)
+                        d[x] = pixelDistance(gp, gq, vp, vq, nc, k2, params.varianceScale);
+                    continue;
+                }
                 for (int x = 0; x < pw; ++x) {
                     size_t p = (rowP + size_t(xp[size_t(x)])) * size_t(nc);
                     size_t q = (rowQ + size_t(xq[size_t(x)])) * size_t(nc);
-                    distance_[size_t(y) * pw + x] =
-                        pixelDistance(&guide.values[p], &guide.values[q], &variance.values[p],
-                                      &variance.values[q], nc, k2, params.varianceScale);
+                    d[x] = pixelDistance(&guide.values[p], &guide.values[q], &variance.values[p],
+                                         &variance.values[q], nc, k2, params.varianceScale);
                 }
             }
-            for (int y = 0; y < ph; ++y)
-                for (int x = 0; x < tw; ++x) {
-                    float sum = 0;
-                    for (int d = 0; d <= 2 * F; ++d) sum += distance_[size_t(y) * pw + x + d];
-                    rows_[size_t(y) * tw + x] = sum;
-                }
+            patchSums(tw, th, pw, ph, F);
             float* out = &weights_[size_t(o) * pixels_];
             for (int y = 0; y < th; ++y)
                 for (int x = 0; x < tw; ++x) {
                     int qx = tile.x0 + x + dx, qy = tile.y0 + y + dy;
                     if (qx < 0 || qy < 0 || qx >= guide.width || qy >= guide.height) continue;
-                    float sum = 0;
-                    for (int d = 0; d <= 2 * F; ++d) sum += rows_[size_t(y + d) * tw + x];
+                    float sum = patch_[size_t(y) * tw + x];
                     out[size_t(y) * tw + x] = std::exp(-std::max(sum * norm, 0.0f));
                 }
         }

@@ -29,9 +29,10 @@ class TileWeights {
     const float* offset(int o) const { return &weights_[size_t(o) * pixels_]; }
 
   private:
+    void patchSums(int tw, int th, int pw, int ph, int F);
     int radius_ = 0;
     size_t pixels_ = 0;
-    std::vector<float> weights_, distance_, rows_;
+    std::vector<float> weights_, distance_, rows_, patch_;
 };
 
 // The NL-means filter of image (any channels) with weights from guide and variance; one weight

@@ -31,7 +31,7 @@ for ((k = 0; k < FRAMES; k++)); do
           --checkpoint-every 60 -q)
 done
 one=("$K" render "$MESH" "${OPTS[@]}" --turntable "$FRAMES" --frame 1 -q -o "$WORK/one")
-batch=("$K" batch "$WORK/job.json" -q)
+batch=("$K" batch "$WORK/job.json" --log-level warning)
 alone=("$K" render-frames "${child[@]}")
 # Appends "WALL CPU" of one run of the command to the file $1 (outputs removed first).
 timed() {
@@ -47,7 +47,8 @@ timed "$WORK/warm" "${one[@]}"  # the mesh in the page cache
 for ((i = 1; i <= RUNS; i++)); do
   timed "$WORK/t_one" "${one[@]}"
   timed "$WORK/t_batch" "${batch[@]}"
-  grep -o "this process: [0-9]* renders, [0-9]* scene loads, [0-9]* accelerator builds" "$WORK/log" | tail -n1
+  # (-q keeps the child's own count quiet; the batch's plan line says how many loads it makes.)
+  grep -o "[0-9]* renders from one scene load" "$WORK/log" | tail -n1 || true
   timed "$WORK/t_alone" "${alone[@]}"
   echo "run $i (wall, CPU s): one frame $(tail -n1 "$WORK/t_one"); batch $(tail -n1 "$WORK/t_batch"); child alone $(tail -n1 "$WORK/t_alone")"
 done

@@ -15,22 +15,15 @@ constexpr float kEpsilon = 1e-10f;
 constexpr float kDistanceClamp = 10000.0f;
 constexpr int kTile = 32;
 
-// The per-pixel distance between guide values p and q (their channels averaged), with their
-// variances vp and vq.
-inline float pixelDistance(const float* gp, const float* gq, const float* vp, const float* vq,
-                           int channels, float k2, float scale) {
-    float sum = 0;
-    for (int c = 0; c < channels; ++c) {
-        float a = vp[c] * scale, b = vq[c] * scale, d = gp[c] - gq[c];
-        sum += (d * d - (a + std::min(a, b))) / (k2 * (a + b) + kEpsilon);
+// Adds channel c's term of the per-pixel distance between the guide values gp and gq (their
+// variances vp and vq, already scaled) to d, for n pixels in a row: planar rows, so the loop is
+// one stream the compiler vectorises.
+inline void addChannelDistance(const float* gp, const float* gq, const float* vp, const float* vq,
+                               int n, float k2, float* d) {
+    for (int x = 0; x < n; ++x) {
+        const float a = vp[x], b = vq[x], diff = gp[x] - gq[x];
+        d[x] += (diff * diff - (a + std::min(a, b))) / (k2 * (a + b) + kEpsilon);
     }
-    return std::min(sum / float(channels), kDistanceClamp);
-}
-
-// Pixel indices of the coordinates [from, from + n), clamped to [0, size).
-void clampedIndices(int from, int n, int size, std::vector<int>& out) {
-    out.resize(size_t(n));
-    for (int i = 0; i < n; ++i) out[size_t(i)] = std::clamp(from + i, 0, size - 1);
 }
 
 }  // namespace
@@ -59,6 +52,30 @@ void TileWeights::patchSums(int tw, int th, int pw, int ph, int F) {
     }
 }
 
+// The guide and its scaled variance around the tile (F + R beyond it on each side), planar per
+// channel, coordinates clamped to the image as the patches read them.
+void TileWeights::copyRegion(const Image& guide, const Image& variance, const Rect& tile,
+                             int margin, float varianceScale) {
+    const int nc = guide.channels;
+    regionWidth_ = tile.width() + 2 * margin;
+    const int rh = tile.height() + 2 * margin;
+    const size_t plane = size_t(regionWidth_) * size_t(rh);
+    region_.resize(2 * size_t(nc) * plane);
+    for (int y = 0; y < rh; ++y) {
+        const int gy = std::clamp(tile.y0 - margin + y, 0, guide.height - 1);
+        for (int x = 0; x < regionWidth_; ++x) {
+            const int gx = std::clamp(tile.x0 - margin + x, 0, guide.width - 1);
+            const size_t at = (size_t(gy) * size_t(guide.width) + size_t(gx)) * size_t(nc);
+            const size_t local = size_t(y) * size_t(regionWidth_) + size_t(x);
+            for (int c = 0; c < nc; ++c) {
+                region_[size_t(c) * plane + local] = guide.values[at + size_t(c)];
+                region_[size_t(nc + c) * plane + local] =
+                    variance.values[at + size_t(c)] * varianceScale;
+            }
+        }
+    }
+}
+
 void TileWeights::compute(const Image& guide, const Image& variance, const Rect& tile,
                           const NlMeansParams& params) {
     const int R = params.windowRadius, F = params.patchRadius;
@@ -69,36 +86,22 @@ void TileWeights::compute(const Image& guide, const Image& variance, const Rect&
     rows_.resize(size_t(tw) * size_t(ph));
     const float k2 = params.k * params.k, norm = 1.0f / float((2 * F + 1) * (2 * F + 1));
     const int nc = guide.channels;
-    std::vector<int> xp, yp, xq, yq;
-    clampedIndices(tile.x0 - F, pw, guide.width, xp);
-    clampedIndices(tile.y0 - F, ph, guide.height, yp);
+    copyRegion(guide, variance, tile, F + R, params.varianceScale);
+    const size_t rw = size_t(regionWidth_), plane = rw * size_t(th + 2 * (F + R));
     int o = 0;
     for (int dy = -R; dy <= R; ++dy)
         for (int dx = -R; dx <= R; ++dx, ++o) {
-            clampedIndices(tile.x0 - F + dx, pw, guide.width, xq);
-            clampedIndices(tile.y0 - F + dy, ph, guide.height, yq);
-            // Away from the image's left and right edges both runs of pixels are contiguous.
-            const bool contiguous =
-                xp.front() + pw - 1 == xp.back() && xq.front() + pw - 1 == xq.back();
             for (int y = 0; y < ph; ++y) {
-                const size_t rowP = size_t(yp[size_t(y)]) * size_t(guide.width);
-                const size_t rowQ = size_t(yq[size_t(y)]) * size_t(guide.width);
                 float* d = &distance_[size_t(y) * pw];
-                if (contiguous) {
-                    const size_t p0 = (rowP + size_t(xp.front())) * size_t(nc);
-                    const size_t q0 = (rowQ + size_t(xq.front())) * size_t(nc);
-                    const float *gp = &guide.values[p0], *gq = &guide.values[q0];
-                    const float *vp = &variance.values[p0], *vq = &variance.values[q0];
-                    for (int x = 0; x < pw; ++x, gp += nc, gq += nc, vp += nc, vq += nc)
-                        d[x] = pixelDistance(gp, gq, vp, vq, nc, k2, params.varianceScale);
-                    continue;
+                std::fill(d, d + pw, 0.0f);
+                const size_t p = size_t(y + R) * rw + size_t(R);  // the patch pixel, and q
+                const size_t q = size_t(y + R + dy) * rw + size_t(R + dx);
+                for (int c = 0; c < nc; ++c) {
+                    const float* g = &region_[size_t(c) * plane];
+                    const float* v = &region_[size_t(nc + c) * plane];
+                    addChannelDistance(g + p, g + q, v + p, v + q, pw, k2, d);
                 }
-                for (int x = 0; x < pw; ++x) {
-                    size_t p = (rowP + size_t(xp[size_t(x)])) * size_t(nc);
-                    size_t q = (rowQ + size_t(xq[size_t(x)])) * size_t(nc);
-                    d[x] = pixelDistance(&guide.values[p], &guide.values[q], &variance.values[p],
-                                         &variance.values[q], nc, k2, params.varianceScale);
-                }
+                for (int x = 0; x < pw; ++x) d[x] = std::min(d[x] / float(nc), kDistanceClamp);
             }
             patchSums(tw, th, pw, ph, F);
             float* out = &weights_[size_t(o) * pixels_];

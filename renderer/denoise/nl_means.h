@@ -29,10 +29,13 @@ class TileWeights {
     const float* offset(int o) const { return &weights_[size_t(o) * pixels_]; }
 
   private:
+    void copyRegion(const Image& guide, const Image& variance, const Rect& tile, int margin,
+                    float varianceScale);
     void patchSums(int tw, int th, int pw, int ph, int F);
-    int radius_ = 0;
+    int radius_ = 0, regionWidth_ = 0;
     size_t pixels_ = 0;
     std::vector<float> weights_, distance_, rows_, patch_;
+    std::vector<float> region_;  // copyRegion: guide planes, then variance planes
 };
 
 // The NL-means filter of image (any channels) with weights from guide and variance; one weight

@@ -255,6 +255,10 @@ void readPrincipledTextures(const std::string& file, pugi::xml_node n, Material&
     m.maps.clearcoatTexture =
         textureAttribute(file, n, "clearcoat-texture", TextureEncoding::Data, scene);
     m.maps.clearcoatChannel = 0;
+    // glTF's clearcoatRoughnessTexture: G multiplies the coat's roughness.
+    m.maps.clearcoatRoughnessTexture =
+        textureAttribute(file, n, "clearcoat-roughness-texture", TextureEncoding::Data, scene);
+    m.maps.clearcoatRoughnessChannel = 1;
     // glTF's transmissionTexture R, sheenColorTexture RGB (colour), sheenRoughnessTexture A.
     m.maps.transmissionTexture =
         textureAttribute(file, n, "transmission-texture", TextureEncoding::Data, scene);
@@ -276,8 +280,9 @@ void checkMaterialAttributes(const std::string& file, pugi::xml_node n,
         for (const MaterialParam& p : spec.params) known |= name == p.name;
         if (spec.kind == MaterialKind::Principled)
             known |= name == "base-color-texture" || name == "metallic-roughness-texture" ||
-                     name == "clearcoat-texture" || name == "transmission-texture" ||
-                     name == "sheen-color-texture" || name == "sheen-roughness-texture";
+                     name == "clearcoat-texture" || name == "clearcoat-roughness-texture" ||
+                     name == "transmission-texture" || name == "sheen-color-texture" ||
+                     name == "sheen-roughness-texture";
         if (!known)
             throw SceneError(file, "<material> has unknown attribute '" + std::string(name) +
                                        "' for kind " + spec.name);

@@ -258,7 +258,8 @@ TEST(PrincipledScenes, TransmissionAndSheenTexturesScaleTheirFactors) {
                     "  <material name=\"p\" kind=\"principled\" transmission=\"0.8\" sheen=\"1\" "
                     "sheen-color=\"1 0.5 0.25\" sheen-roughness=\"0.5\" "
                     "transmission-texture=\"layers.png\" sheen-color-texture=\"layers.png\" "
-                    "sheen-roughness-texture=\"layers.png\"/>\n"
+                    "sheen-roughness-texture=\"layers.png\" clearcoat=\"1\" "
+                    "clearcoat-roughness=\"0.5\" clearcoat-roughness-texture=\"layers.png\"/>\n"
                     "  <mesh file=\"quad.obj\" material=\"p\"/>\n"
                     "</kiln-scene>\n");
     Scene s = loadScene((dir / "t.kiln").string());
@@ -273,6 +274,7 @@ TEST(PrincipledScenes, TransmissionAndSheenTexturesScaleTheirFactors) {
     EXPECT_NEAR(layers.sheenColour.x, 1.0f * srgbToLinear(102 / 255.0f), 1e-5f);
     EXPECT_NEAR(layers.sheenColour.y, 0.5f * srgbToLinear(64 / 255.0f), 1e-5f);
     EXPECT_NEAR(layers.sheenColour.z, 0.25f * srgbToLinear(128 / 255.0f), 1e-5f);
+    EXPECT_NEAR(coatAt(s, *m, hit, 0.0f).roughness, 0.5f * 64 / 255, 1e-5f);  // G
     // Without the textures: the factors.
     const Layers plain = Layers::of(*m);
     EXPECT_FLOAT_EQ(plain.transmission, 0.8f);

@@ -43,7 +43,16 @@ def lucy(material, **view):
     return dict(LUCY_VIEW, meshes=[mesh], **view)
 
 
-SPHERE = {"mesh": "sphere.obj", "fit": ([0, -0.5, 0], 1.0)}  # written into OUT by sphere_obj()
+SPHERE = "sphere.obj"  # written into OUT by sphere_obj()
+
+
+def sphere(environment):
+    """The marble on a sphere of radius 0.5 filling most of a 120 x 120 image."""
+    mesh = {"mesh": SPHERE, "fit": ([0, -0.5, 0], 1.0), "material": {"principled": MARBLE}}
+    return {"meshes": [mesh], "environment": environment, "resolution": [120, 120], "max_depth": 16,
+            "camera": {"position": [0, 0, 3.0], "look_at": [0, 0, 0], "up": [0, 1, 0], "fov": 22.0}}
+
+
 SCENES = {
     # The subsurface Lucy: kiln's principled marble and Cycles' Principled BSDF with the same walk medium.
     "lucy_sss": lucy(MARBLE),
@@ -55,11 +64,9 @@ SCENES = {
     "lucy_surface_direct": lucy(dict(MARBLE, **{"base-color": [0.0, 0.0, 0.0]}), max_depth=1),
     # The marble on a sphere of radius 0.5 under a uniform white environment of radiance 1 (a white
     # furnace): what the material returns of what arrives, averaged over the view angles.
-    "sphere_furnace": {"meshes": [dict(SPHERE, material={"principled": MARBLE})],
-                       "camera": {"position": [0, 0, 3.0], "look_at": [0, 0, 0], "up": [0, 1, 0],
-                                  "fov": 22.0},
-                       "environment": os.path.join(ROOT, "scenes/principled_grid/white.exr"),
-                       "resolution": [120, 120], "max_depth": 16},
+    "sphere_furnace": sphere(os.path.join(ROOT, "scenes/principled_grid/white.exr")),
+    # The same sphere under the courtyard: a convex object, no light from it falls on itself.
+    "sphere_courtyard": sphere(COURTYARD),
     # Glass with absorption: Nefertiti (stood up) in clear principled glass (ior 1.5) whose inside absorbs,
     # the colour left after 0.5 m being 0.3 0.8 0.5 (KHR_materials_volume).
     "glass_absorb": {
@@ -184,10 +191,10 @@ def main():
     loads = ["%s at the start" % load_average()]
     table = ["| scene | region | channel | kiln | Cycles | kiln / Cycles | noise of the ratio |",
              "|---|---|---|---:|---:|---:|---:|"]
-    sphere = sphere_obj(a.out)
+    sphere_path = sphere_obj(a.out)
     for s in SCENES.values():
         for m in s["meshes"]:
-            m["mesh"] = sphere if m["mesh"] == SPHERE["mesh"] else m["mesh"]
+            m["mesh"] = sphere_path if m["mesh"] == SPHERE else m["mesh"]
     results = {}
     for name in a.scenes.split(","):
         results[name] = render_pair(a, name)

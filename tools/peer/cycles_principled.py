@@ -12,6 +12,8 @@
 #   subsurface-scale and Chiang et al.'s s(A) = 1.9 - A + 3.5 (A - 0.8)^2 (integrators/subsurface.cpp), so
 #   the radius given to Cycles is 4 pi d s(A): both walk media then have the same extinction. The single-
 #   scattering albedo each derives from A is each renderer's own fit (Cycles 3.4: Wrenninge et al.'s).
+# A material with "cycles_shader": "subsurface_node" is the walk alone in Cycles: a Subsurface Scattering
+# node (no specular layer, no retro-reflection lobe, a plain Lambertian exit), the same walk medium.
 import math
 
 import bpy
@@ -43,6 +45,15 @@ def add_absorption(nodes, links, sigma_a, output):
     links.new(node.outputs["Volume"], output.inputs["Volume"])
 
 
+def subsurface_node(nodes, p):
+    node = nodes.new("ShaderNodeSubsurfaceScattering")
+    node.falloff = "RANDOM_WALK_FIXED_RADIUS"
+    node.inputs["Color"].default_value = (*p["base-color"], 1.0)
+    node.inputs["Scale"].default_value = 1.0
+    node.inputs["Radius"].default_value = walk_radius(p)
+    return node.outputs["BSSRDF"]
+
+
 def principled_node(nodes, p):
     node = nodes["Principled BSDF"]
     node.distribution = "GGX"
@@ -69,7 +80,8 @@ def principled_material(name, m):
     mat.cycles.homogeneous_volume = True
     nodes, links = mat.node_tree.nodes, mat.node_tree.links
     output = nodes["Material Output"]
-    links.new(principled_node(nodes, p), output.inputs["Surface"])
+    shader = subsurface_node if m.get("cycles_shader") == "subsurface_node" else principled_node
+    links.new(shader(nodes, p), output.inputs["Surface"])
     sigma_a = absorption(p)
     if sigma_a:
         add_absorption(nodes, links, sigma_a, output)

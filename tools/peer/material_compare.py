@@ -37,9 +37,10 @@ LUCY_VIEW = {"camera": {"position": [0.0, 0.68, 2.35], "look_at": [0.0, 0.62, 0.
              "environment": COURTYARD, "resolution": [150, 200], "max_depth": 16}
 
 
-def lucy(material, **view):
+def lucy(material, cycles_shader=None, **view):
     """Lucy (1.25 high) in `material` (kiln attributes) under the courtyard."""
-    mesh = {"mesh": "meshes/lucy.obj", "fit": ([0, 0, 0], 1.25), "material": {"principled": material}}
+    mesh = {"mesh": "meshes/lucy.obj", "fit": ([0, 0, 0], 1.25),
+            "material": {"principled": material, "cycles_shader": cycles_shader}}
     return dict(LUCY_VIEW, meshes=[mesh], **view)
 
 
@@ -62,6 +63,9 @@ SCENES = {
     # sees, no light from Lucy onto Lucy).
     "lucy_sss_direct": lucy(MARBLE, max_depth=1),
     "lucy_surface_direct": lucy(dict(MARBLE, **{"base-color": [0.0, 0.0, 0.0]}), max_depth=1),
+    # kiln's marble against Cycles' walk alone (its Subsurface Scattering node), direct light only: with
+    # lucy_sss_direct and lucy_surface_direct, Cycles' retro-reflection and exit factor in one number.
+    "lucy_node_direct": lucy(MARBLE, cycles_shader="subsurface_node", max_depth=1),
     # The marble on a sphere of radius 0.5 under a uniform white environment of radiance 1 (a white
     # furnace): what the material returns of what arrives, averaged over the view angles.
     "sphere_furnace": sphere(os.path.join(ROOT, "scenes/principled_grid/white.exr")),

@@ -38,10 +38,21 @@ def render(kiln, path, out, width, height, spp):
                 "-o", out])
 
 
+def last_error(stderr):
+    """kiln's last error line as its plain stderr says it ("kiln: error: ..."); with --json kiln writes
+    it as a JSON log event."""
+    line = stderr.strip().splitlines()[-1] if stderr.strip() else ""
+    try:
+        event = json.loads(line)
+        return "kiln: %s: %s" % (event["level"], event["message"])
+    except (ValueError, KeyError, TypeError):
+        return line
+
+
 def classify(kiln, path, work):
     info = run([kiln, "info", "--json", path])
     if info.returncode != 0:
-        return "refused", info.stderr.strip().splitlines()[-1] if info.stderr.strip() else "", []
+        return "refused", last_error(info.stderr), []
     doc = json.loads(info.stdout)
     out = os.path.join(work, "model.exr")
     r = render(kiln, path, out, 64, 48, 4)

@@ -60,18 +60,24 @@ def obj_bounds(path):
     return lo, hi
 
 
-def fit_matrix(path, center, size):
-    """kiln's <fit>: uniform scale so the largest side is `size`, bottom centre (min Y) at `center`."""
+def fit_matrix(path, center, size, z_up=False):
+    """kiln's <fit>: uniform scale so the largest side is `size`, bottom centre (min Y) at `center`;
+    z_up: a Z-up mesh stood up first ((x, y, z) -> (x, z, -y))."""
     lo, hi = obj_bounds(path)
+    if z_up:
+        lo, hi = [lo[0], lo[2], -hi[1]], [hi[0], hi[2], -lo[1]]
     s = size / max(h - l for l, h in zip(lo, hi))
     bottom = [(lo[0] + hi[0]) / 2, lo[1], (lo[2] + hi[2]) / 2]
     t = [c - s * b for c, b in zip(center, bottom)]
+    if z_up:
+        return [s, 0, 0, t[0], 0, 0, s, t[1], 0, -s, 0, t[2], 0, 0, 0, 1]
     return [s, 0, 0, t[0], 0, s, 0, t[1], 0, 0, s, t[2], 0, 0, 0, 1]
 
 
 # A mesh's material: {"albedo": rgb} (Lambert) or {"alpha": a, "eta": rgb, "k": rgb} (kiln's Beckmann
 # conductor; Cycles: Glossy BSDF, Beckmann, roughness sqrt(alpha), colour 1, which equals kiln's only when
-# its Fresnel is 1 at every angle: eta 0 makes it exactly 1 for any k).
+# its Fresnel is 1 at every angle: eta 0 makes it exactly 1 for any k), or {"principled": {kiln attribute:
+# value}} (tools/peer/cycles_principled.py builds its Cycles counterpart).
 CHROME = {"alpha": 0.15, "eta": [0.0, 0.0, 0.0], "k": [1.0, 1.0, 1.0]}
 GLOSSY = {"alpha": 0.1, "eta": [0.0, 0.0, 0.0], "k": [1.0, 1.0, 1.0]}  # with "microfacet": "ggx"
 
@@ -142,17 +148,25 @@ def kiln_options(s):
     return env + (["--microfacet", s["microfacet"]] if s.get("microfacet") else [])
 
 
+def kiln_attribute(value):
+    return " ".join("%g" % v for v in value) if isinstance(value, list) else "%g" % value
+
+
 def kiln_material(name, m):
+    if "principled" in m:  # kiln's attribute names (docs/kiln-scene.md); Cycles maps them itself
+        return '<material name="%s" kind="principled" %s/>' % (name, " ".join(
+            '%s="%s"' % (k, kiln_attribute(v)) for k, v in m["principled"].items()))
     if "albedo" in m:
         return '<material name="%s" albedo="%s"/>' % (name, " ".join(map(str, m["albedo"])))
     return '<material name="%s" kind="microfacet" alpha="%g" eta="%s" k="%s"/>' % (
         name, m["alpha"], " ".join(map(str, m["eta"])), " ".join(map(str, m["k"])))
 
 
-def describe(name, out, resolution=None):
+def describe(name, out, resolution=None, scenes=None):
     """The scene as kiln reads it (.kiln [+ quads .dae] + kiln_options) and as the Cycles script reads
-    it (JSON). The .kiln names its files relative to its own folder."""
-    s = dict(SCENES[name])
+    it (JSON), from SCENES or from `scenes` (tools/peer/material_compare.py's). The .kiln names its
+    files relative to its own folder."""
+    s = dict((scenes or SCENES)[name])
     if resolution:
         s["resolution"] = resolution
     cam = s["camera"]
@@ -170,7 +184,7 @@ def describe(name, out, resolution=None):
         desc["quads"] = [{"name": n, "material": m, "corners": c} for n, m, c in quads]
     for i, m in enumerate(s["meshes"]):
         mesh = os.path.join(SHARED, m["mesh"])
-        matrix = fit_matrix(mesh, *m["fit"])
+        matrix = fit_matrix(mesh, *m["fit"], z_up=m.get("z_up", False))
         lines.append("  " + kiln_material("m%d" % i, m["material"]))
         lines.append('  <mesh file="%s" material="m%d"><matrix values="%s"/></mesh>'
                      % (os.path.relpath(mesh, out), i, " ".join("%.9g" % v for v in matrix)))

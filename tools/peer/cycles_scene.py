@@ -7,10 +7,14 @@
 # run with --debug-cycles, Cycles itself prints "Rendered N samples in S seconds" (the sampling).
 import json
 import math
+import os
 import sys
 import time
 
 import bpy
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from cycles_principled import principled_material  # noqa: E402
 
 
 def args():
@@ -27,7 +31,10 @@ def make_material(name, m, distribution="BECKMANN"):
     """kiln's material in Cycles: Lambert as a Diffuse BSDF (roughness 0), kiln's microfacet conductor as
     a Glossy BSDF with the same distribution (Cycles squares its roughness: alpha = r^2) and colour 1
     (Cycles' Glossy BSDF has no Fresnel; the scenes use eta 0, where kiln's conductor Fresnel is 1),
-    emission as an Emission shader of strength 1 (its colour is the radiance, kiln's units)."""
+    emission as an Emission shader of strength 1 (its colour is the radiance, kiln's units); a principled
+    material as cycles_principled.py maps it."""
+    if "principled" in m:
+        return principled_material(name, m)
     mat = bpy.data.materials.new(name)
     mat.use_nodes = True
     nodes, links = mat.node_tree.nodes, mat.node_tree.links

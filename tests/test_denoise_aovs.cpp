@@ -140,6 +140,23 @@ TEST(DenoiseAovsCommand, RenderAndDenoiseWriteEachLayerBesideItsNoisyOne) {
         EXPECT_TRUE(sameBits(plane(redone, name), plane(with, name))) << name;
 }
 
+// kiln merge of --sample-range shards (the second starting at an odd sample) denoises the layers
+// of the merged film: the same pixels as the render done in one go.
+TEST(DenoiseAovsCommand, MergedShardsGiveTheSingleRendersLayers) {
+    fs::path dir = test::scratchDir();
+    const std::string options = "--denoise --denoise-aovs direct,indirect";
+    test::ExrPixels one = test::readExrPixels(render((dir / "one").string(), options));
+    render((dir / "a").string(), options + " --sample-range 0 3");
+    render((dir / "b").string(), options + " --sample-range 3 8");
+    test::CliRun m = test::runKiln("merge " + (dir / "a.ckpt").string() + " " +
+                                   (dir / "b.ckpt").string() + " -o " + (dir / "m").string());
+    ASSERT_EQ(m.code, 0) << m.err;
+    test::ExrPixels merged = test::readExrPixels((dir / "m.exr").string());
+    EXPECT_EQ(merged.channels, one.channels);
+    for (const char* c : {"R", "direct.R", "indirect.B", "noisy.direct.G", "halfB.indirect.var_R"})
+        EXPECT_TRUE(sameBits(plane(merged, c), plane(one, c))) << c;
+}
+
 // A one-line message holding why, exit 2, and no output written.
 void expectRefused(const test::CliRun& r, const std::string& why, const fs::path& dir) {
     EXPECT_EQ(r.code, 2) << r.err;

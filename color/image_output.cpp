@@ -121,6 +121,10 @@ void addChannels(OIIO::ImageSpec& spec, const Film& film, const ExrOptions& opti
     spec.alpha_channel = 3;
     if (options.denoised)
         for (const char* c : {"noisy.R", "noisy.G", "noisy.B"}) add(c, colourType);
+    for (const DenoisedLayer& layer : film.layout().denoisedLayers())
+        if (options.denoisedLayers.count(layer.name))
+            for (size_t k = 0; k < 3; ++k)
+                add("noisy." + film.layout().channels()[layer.channel + k].name, colourType);
     for (const AovChannel& c : film.layout().channels())
         add(c.name, c.colour || c.name.rfind("N.", 0) == 0 ? colourType : OIIO::TypeDesc::FLOAT);
     if (request.has(AovKind::Depth))
@@ -135,24 +139,57 @@ void addChannels(OIIO::ImageSpec& spec, const Film& film, const ExrOptions& opti
                         OIIO::TypeDesc::FLOAT);
     // Exact to float: kiln denoise reads them back.
     if (film.hasHalves())
-        for (int h = 0; h < 2; ++h)
+        for (int h = 0; h < 2; ++h) {
             for (const std::string& name : halfBufferChannels(h)) add(name, OIIO::TypeDesc::FLOAT);
+            for (const DenoisedLayer& layer : film.layout().denoisedLayers())
+                for (const std::string& name : layerHalfChannels(h, layer.name))
+                    add(name, OIIO::TypeDesc::FLOAT);
+        }
     spec.nchannels = int(spec.channelnames.size());
 }
 
+// Per layout channel, the denoised layer image that holds its value in the EXR (nullptr, or no
+// entries at all: the film's own value) and which of its components.
+struct DenoisedChannels {
+    std::vector<const std::vector<Color>*> image;
+    std::vector<int> component;
+    std::vector<size_t> noisy;  // the channels written again as noisy.*, in order
+};
+
+DenoisedChannels denoisedChannels(const Film& film, const ExrOptions& options) {
+    DenoisedChannels d;
+    d.image.assign(film.layout().channels().size(), nullptr);
+    d.component.assign(d.image.size(), 0);
+    for (const DenoisedLayer& layer : film.layout().denoisedLayers()) {
+        auto it = options.denoisedLayers.find(layer.name);
+        if (it == options.denoisedLayers.end()) continue;
+        for (size_t k = 0; k < 3; ++k) {
+            d.image[layer.channel + k] = it->second.get();
+            d.component[layer.channel + k] = int(k);
+            d.noisy.push_back(layer.channel + k);
+        }
+    }
+    return d;
+}
+
 // One pixel's values in addChannels' order.
-void gatherPixel(const Film& film, int x, int y, std::vector<float>& px,
-                 const ExrOptions& options) {
+void gatherPixel(const Film& film, int x, int y, std::vector<float>& px, const ExrOptions& options,
+                 const DenoisedChannels& layers) {
     const AovRequest& request = film.layout().request();
+    const size_t at = size_t(y) * size_t(film.width()) + size_t(x);
     px.clear();
     Color c = film.pixel(x, y);
     if (options.denoised) {
-        Color d = (*options.denoised)[size_t(y) * size_t(film.width()) + size_t(x)];
+        Color d = (*options.denoised)[at];
         px.insert(px.end(), {d.x, d.y, d.z, film.alpha(x, y), c.x, c.y, c.z});
     } else {
         px.insert(px.end(), {c.x, c.y, c.z, film.alpha(x, y)});
     }
-    for (size_t a = 0; a < film.layout().channels().size(); ++a) px.push_back(film.aov(x, y, a));
+    for (size_t a : layers.noisy) px.push_back(film.aov(x, y, a));
+    for (size_t a = 0; a < film.layout().channels().size(); ++a)
+        px.push_back(!layers.image.empty() && layers.image[a]
+                         ? (*layers.image[a])[at][layers.component[a]]
+                         : film.aov(x, y, a));
     if (request.has(AovKind::Depth)) px.push_back(film.depth(x, y));
     if (request.has(AovKind::Samples)) px.push_back(float(film.samples(x, y)));
     if (request.has(AovKind::Variance)) px.push_back(float(film.luminanceVariance(x, y)));
@@ -166,6 +203,10 @@ void gatherPixel(const Film& film, int x, int y, std::vector<float>& px,
             film.halfMean(x, y, h, half);
             px.insert(px.end(), half, half + kHalfChannels);
             px.push_back(float(film.halfSamples(x, y, h)));
+            for (size_t l = 0; l < film.layout().denoisedLayers().size(); ++l) {
+                film.layerHalfMean(x, y, h, l, half);
+                px.insert(px.end(), half, half + kLayerHalfChannels);
+            }
         }
 }
 
@@ -250,9 +291,10 @@ void writeExr(const std::string& path, const Film& film, const Metadata& metadat
     memSpec.set_format(OIIO::TypeDesc::FLOAT);
     OIIO::ImageBuf buf(memSpec);
     std::vector<float> px;
+    const DenoisedChannels layers = denoisedChannels(film, options);
     for (int y = 0; y < film.height(); ++y)
         for (int x = 0; x < film.width(); ++x) {
-            gatherPixel(film, x, y, px, options);
+            gatherPixel(film, x, y, px, options, layers);
             buf.setpixel(x + film.originX(), y + film.originY(), px.data(), spec.nchannels);
         }
     writeAtomically(path, "openexr", spec, buf, "EXR");
@@ -274,7 +316,7 @@ std::vector<ExrLayer> exrLayers(const Film& film) {
 }
 
 void exrPixel(const Film& film, int x, int y, std::vector<float>& values) {
-    gatherPixel(film, x, y, values, {});
+    gatherPixel(film, x, y, values, {}, {});
 }
 
 std::map<std::string, ExrAttribute> exrHeader(const Film& film, const Metadata& metadata,

@@ -49,11 +49,15 @@ struct ExrOptions {
     // A denoised beauty (premultiplied RGB per pixel, row-major) for R,G,B; the film's own beauty
     // then goes to noisy.R/G/B, as Cycles' "Noisy Image" pass.
     std::shared_ptr<const std::vector<Color>> denoised;
+    // Denoised light-path layers by name ("direct": the film's layout().denoisedLayers()): each
+    // replaces its layer's R,G,B, the film's own going to noisy.LAYER.R/G/B.
+    std::map<std::string, std::shared_ptr<const std::vector<Color>>> denoisedLayers;
 };
 
 // Beauty R,G,B,A (A: coverage, colour premultiplied by it), every AOV of the film's layout as
 // "layer.channel", Z, samples.X, variance.V and the Cryptomatte layers when requested, the
-// noisy beauty with a denoised one, the half-buffers (halfA.*, halfB.*) with DenoiseHalves.
+// noisy beauty with a denoised one (and noisy.LAYER.* with denoised layers), the half-buffers
+// (halfA.*, then halfA.LAYER.* of each denoised layer, halfB.*, ...) with DenoiseHalves.
 // Metadata keys are written as "kiln:KEY", numbers as numbers. Throws std::runtime_error.
 void writeExr(const std::string& path, const Film& film, const Metadata& metadata,
               const ExrOptions& options = {});

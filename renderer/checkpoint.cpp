@@ -74,6 +74,8 @@ std::string headerText(const CheckpointInfo& info) {
     for (const auto& [k, v] : info.fingerprint) put("fp." + k, v);
     put("aov_mask", std::to_string(info.aovs.mask));
     put("aov_bounce_layers", std::to_string(info.aovs.bounceLayers));
+    // Only with --denoise-aovs: other checkpoints keep the header they had.
+    if (info.aovs.denoisedLight) put("aov_denoised_light", std::to_string(info.aovs.denoisedLight));
     for (auto [k, v] : {std::pair<const char*, int>{"full_width", info.fullWidth},
                         {"full_height", info.fullHeight},
                         {"origin_x", info.originX},
@@ -149,6 +151,8 @@ CheckpointInfo parseHeader(const std::string& text, const std::string& path) {
     }
     info.aovs.mask = uint32_t(std::stoul(h["aov_mask"].empty() ? "0" : h["aov_mask"]));
     info.aovs.bounceLayers = toInt(h, "aov_bounce_layers", path);
+    info.aovs.denoisedLight =
+        h.count("aov_denoised_light") ? uint32_t(toInt(h, "aov_denoised_light", path)) : 0u;
     info.fullWidth = toInt(h, "full_width", path), info.fullHeight = toInt(h, "full_height", path);
     info.originX = toInt(h, "origin_x", path), info.originY = toInt(h, "origin_y", path);
     info.width = toInt(h, "width", path), info.height = toInt(h, "height", path);
@@ -231,9 +235,11 @@ Fingerprint checkpointFingerprint(const RenderJob& job, const std::string& scene
         {"accumulate_bounces", p.accumulateBounces ? "yes" : "no"},
         {"microfacet", toString(p.microfacet)},
         {"guiding", job.guided() ? "on" : "off"},
-        {"aovs", std::to_string(o.aovs.mask) + " bounces " + std::to_string(o.aovs.bounceLayers) +
-                     " depth " + toString(o.aovs.depth) +
-                     (o.aovs.transparent ? " transparent" : "")},
+        {"aovs",
+         std::to_string(o.aovs.mask) + " bounces " + std::to_string(o.aovs.bounceLayers) +
+             " depth " + toString(o.aovs.depth) + (o.aovs.transparent ? " transparent" : "") +
+             (o.aovs.denoisedLight ? " denoised " + AovRequest::namesOf(o.aovs.denoisedLight)
+                                   : "")},
         {"film_scale", "2^" + std::to_string(job.filmScaleExponent())},
         {"adaptive", s.adaptiveText()},
     };

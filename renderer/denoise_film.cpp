@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <sstream>
 
 #include "renderer/core/log.h"
 #include "renderer/film/half_buffers.h"
@@ -23,7 +24,7 @@ void borrowEmptyHalf(denoise::Halves& halves, int x, int y, const float samples[
 
 }  // namespace
 
-denoise::Halves halvesOf(const Film& film) {
+denoise::Halves halvesOf(const Film& film, int layer) {
     denoise::Halves halves;
     for (denoise::Image& half : halves.half)
         half = denoise::Image(film.width(), film.height(), kHalfChannels);
@@ -31,7 +32,10 @@ denoise::Halves halvesOf(const Film& film) {
         for (int x = 0; x < film.width(); ++x) {
             float samples[2];
             for (int h = 0; h < 2; ++h) {
-                film.halfMean(x, y, h, halves.half[h].at(x, y));
+                float* values = halves.half[h].at(x, y);
+                film.halfMean(x, y, h, values);
+                // The layer's colour and variance in place of the beauty's first channels.
+                if (layer >= 0) film.layerHalfMean(x, y, h, size_t(layer), values);
                 samples[h] = float(film.halfSamples(x, y, h));
             }
             borrowEmptyHalf(halves, x, y, samples);
@@ -40,8 +44,9 @@ denoise::Halves halvesOf(const Film& film) {
 }
 
 std::shared_ptr<const std::vector<Color>> denoiseFilm(const Film& film,
-                                                      const denoise::Options& options) {
-    return std::make_shared<const std::vector<Color>>(denoise::denoise(halvesOf(film), options));
+                                                      const denoise::Options& options, int layer) {
+    return std::make_shared<const std::vector<Color>>(
+        denoise::denoise(halvesOf(film, layer), options));
 }
 
 void denoiseForOutputs(const Film& film, int threads, ExrOptions& exr, Metadata& meta) {
@@ -49,20 +54,46 @@ void denoiseForOutputs(const Film& film, int threads, ExrOptions& exr, Metadata&
     options.threads = threads;
     auto start = std::chrono::steady_clock::now();
     exr.denoised = denoiseFilm(film, options);
+    std::string layers;
+    const std::vector<DenoisedLayer>& denoised = film.layout().denoisedLayers();
+    for (size_t l = 0; l < denoised.size(); ++l) {
+        exr.denoisedLayers[denoised[l].name] = denoiseFilm(film, options, int(l));
+        if (!layers.empty()) layers += ',';
+        layers += denoised[l].name;
+    }
     double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     meta["denoised"] = denoise::describe(options);
+    if (!layers.empty()) meta["denoised_aovs"] = layers;
     meta["denoise_seconds"] = fmt::format("{:.3f}", seconds);
-    logInfo("denoised {}x{} in {:.2f}s", film.width(), film.height(), seconds);
+    logInfo("denoised {}x{}{} in {:.2f}s", film.width(), film.height(),
+            layers.empty() ? "" : " (beauty, " + layers + ")", seconds);
 }
 
 namespace {
 
-// The channels of half h in the file, in the film's order; throws naming the first one missing.
-std::vector<int> halfChannelsIn(const ExrImage& exr, int h, const std::string& path) {
+// The channel names of half h in the film's order, a layer's colour channels in place of the
+// beauty's.
+std::vector<std::string> halfChannelNames(int h, const std::string& layer) {
+    std::vector<std::string> names = halfBufferChannels(h);
+    if (!layer.empty()) {
+        std::vector<std::string> own = layerHalfChannels(h, layer);
+        std::copy(own.begin(), own.end(), names.begin());
+    }
+    return names;
+}
+
+// Their channels in the file; throws naming the first one missing.
+std::vector<int> halfChannelsIn(const ExrImage& exr, int h, const std::string& layer,
+                                const std::string& path) {
+    const std::vector<std::string> names = halfChannelNames(h, layer);
     std::vector<int> at;
-    for (const std::string& name : halfBufferChannels(h)) {
+    for (const std::string& name : names) {
         int c = exr.channel(name);
+        if (c < 0 && !layer.empty() && at.size() < size_t(kLayerHalfChannels))
+            throw DenoiseInputError(path + ": carries no half-buffers of the AOV '" + layer +
+                                    "' (render it with kiln render --denoise --denoise-aovs " +
+                                    layer + ")");
         if (c < 0)
             throw DenoiseInputError(
                 path + ": " +
@@ -75,11 +106,16 @@ std::vector<int> halfChannelsIn(const ExrImage& exr, int h, const std::string& p
     return at;
 }
 
+std::string pixelText(int x, int y) {
+    return "pixel (" + std::to_string(x) + ", " + std::to_string(y) + ")";
+}
+
 }  // namespace
 
-denoise::Halves halvesOf(const ExrImage& exr, const std::string& path) {
+denoise::Halves halvesOf(const ExrImage& exr, const std::string& path, const std::string& layer) {
     const int w = exr.width(), h = exr.height();
-    std::vector<int> channels[2] = {halfChannelsIn(exr, 0, path), halfChannelsIn(exr, 1, path)};
+    std::vector<int> channels[2] = {halfChannelsIn(exr, 0, layer, path),
+                                    halfChannelsIn(exr, 1, layer, path)};
     const int count = exr.channel("samples.X");
     denoise::Halves halves;
     for (int k = 0; k < 2; ++k) halves.half[k] = denoise::Image(w, h, kHalfChannels);
@@ -91,8 +127,8 @@ denoise::Halves halvesOf(const ExrImage& exr, const std::string& path) {
                     float v = exr.value(x, y, channels[k][size_t(c)]);
                     if (!std::isfinite(v))
                         throw DenoiseInputError(path + ": non-finite value in " +
-                                                halfBufferChannels(k)[size_t(c)] + " at pixel (" +
-                                                std::to_string(x) + ", " + std::to_string(y) + ")");
+                                                halfChannelNames(k, layer)[size_t(c)] + " at " +
+                                                pixelText(x, y));
                     if (c < kHalfChannels) halves.half[k].at(x, y)[c] = v;
                 }
                 samples[k] = exr.value(x, y, channels[k][kHalfChannels]);
@@ -101,35 +137,82 @@ denoise::Halves halvesOf(const ExrImage& exr, const std::string& path) {
             if (count >= 0 && samples[0] + samples[1] != exr.value(x, y, count))
                 throw DenoiseInputError(path +
                                         ": the half-buffers' sample counts do not add up "
-                                        "to samples.X at pixel (" +
-                                        std::to_string(x) + ", " + std::to_string(y) + ")");
+                                        "to samples.X at " +
+                                        pixelText(x, y));
         }
     return halves;
 }
 
-double denoiseExr(const std::string& in, const std::string& out, const denoise::Options& options) {
+namespace {
+
+// The layers of the kinds in bits that exr holds ("bounces": each bounceN); throws naming a kind
+// it lacks.
+std::vector<std::string> layersIn(const ExrImage& exr, uint32_t bits, const std::string& path) {
+    std::vector<std::string> layers;
+    std::string names = AovRequest::namesOf(bits);
+    std::stringstream list(names);
+    std::string name;
+    while (std::getline(list, name, ',')) {
+        const size_t before = layers.size();
+        if (name != "bounces") {
+            if (exr.channel(name + ".R") >= 0) layers.push_back(name);
+        } else {
+            for (int b = 1; b <= kMaxBounceLayers; ++b)
+                if (exr.channel("bounce" + std::to_string(b) + ".R") >= 0)
+                    layers.push_back("bounce" + std::to_string(b));
+        }
+        if (layers.size() == before)
+            throw DenoiseInputError(path + ": has no AOV layer '" + name +
+                                    "' (render it with --aov " + name + ")");
+    }
+    return layers;
+}
+
+// The EXR's PREFIX{R,G,B} ("" the beauty, "direct." a layer) replaced by denoised, the old values
+// kept as noisy.PREFIX{R,G,B} unless the file holds those already (it was denoised before).
+void replaceWithDenoised(ExrImage& exr, const std::string& prefix,
+                         const std::vector<Color>& denoised) {
+    const bool keptNoisy = exr.channel("noisy." + prefix + "R") >= 0;
+    const char* names[3] = {"R", "G", "B"};
+    for (int c = 0; c < 3; ++c) {
+        std::vector<float> plane(denoised.size()), noisy(denoised.size());
+        const int at = exr.channel(prefix + names[c]);
+        for (size_t p = 0; p < denoised.size(); ++p) {
+            plane[p] = denoised[p][c];
+            noisy[p] = exr.value(int(p % size_t(exr.width())), int(p / size_t(exr.width())), at);
+        }
+        if (!keptNoisy) exr.setChannel("noisy." + prefix + names[c], noisy, false);
+        exr.setChannel(prefix + names[c], plane, false);
+    }
+}
+
+}  // namespace
+
+double denoiseExr(const std::string& in, const std::string& out, const denoise::Options& options,
+                  uint32_t denoisedLight) {
     ExrImage exr = ExrImage::read(in);
     denoise::Halves halves = halvesOf(exr, in);
     for (const char* c : {"R", "G", "B"})
         if (exr.channel(c) < 0) throw DenoiseInputError(in + ": has no beauty channel " + c);
+    const std::vector<std::string> layers =
+        denoisedLight ? layersIn(exr, denoisedLight, in) : std::vector<std::string>{};
+    for (const std::string& layer : layers) halvesOf(exr, in, layer);  // checked before any work
     auto start = std::chrono::steady_clock::now();
     std::vector<Color> denoised = denoise::denoise(halves, options);
     double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const size_t pixels = denoised.size();
-    const char* names[3] = {"R", "G", "B"};
-    const bool keptNoisy = exr.channel("noisy.R") >= 0;
-    for (int c = 0; c < 3; ++c) {
-        std::vector<float> plane(pixels), noisy(pixels);
-        const int at = exr.channel(names[c]);
-        for (size_t p = 0; p < pixels; ++p) {
-            plane[p] = denoised[p][c];
-            noisy[p] = exr.value(int(p % size_t(exr.width())), int(p / size_t(exr.width())), at);
-        }
-        if (!keptNoisy) exr.setChannel(std::string("noisy.") + names[c], noisy, false);
-        exr.setChannel(names[c], plane, false);
+    replaceWithDenoised(exr, "", denoised);
+    std::string names;
+    for (const std::string& layer : layers) {
+        start = std::chrono::steady_clock::now();
+        denoised = denoise::denoise(halvesOf(exr, in, layer), options);
+        seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        replaceWithDenoised(exr, layer + ".", denoised);
+        if (!names.empty()) names += ',';
+        names += layer;
     }
     exr.setAttribute("kiln:denoised", denoise::describe(options));
+    if (!names.empty()) exr.setAttribute("kiln:denoised_aovs", names);
     exr.write(out);
     return seconds;
 }

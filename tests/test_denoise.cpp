@@ -8,6 +8,7 @@
 #include <random>
 
 #include "color/exr_image.h"
+#include "denoise_support.h"
 #include "kiln_run.h"
 #include "long_render_support.h"
 #include "renderer/denoise/denoiser.h"
@@ -120,26 +121,6 @@ TEST(Denoiser, UnusableHalvesAreNamed) {
     EXPECT_NE(denoise::problemWith(halves).find("differ in size"), std::string::npos);
 }
 
-// The relative MSE of luminance against the reference (docs/accuracy.md's figure, (x - r)^2 /
-// (r^2 + 0.01) per pixel), and the standard error of that mean over the pixels.
-struct RelMse {
-    double mean = 0, standardError = 0;
-};
-RelMse relMseOf(const std::vector<Color>& image, const Film& reference) {
-    std::vector<double> e;
-    for (int y = 0; y < reference.height(); ++y)
-        for (int x = 0; x < reference.width(); ++x) {
-            double r = luminance(reference.pixel(x, y));
-            double v = luminance(image[size_t(y) * size_t(reference.width()) + size_t(x)]);
-            e.push_back((v - r) * (v - r) / (r * r + 0.01));
-        }
-    RelMse m;
-    for (double v : e) m.mean += v / double(e.size());
-    for (double v : e) m.standardError += (v - m.mean) * (v - m.mean);
-    m.standardError = std::sqrt(m.standardError / double(e.size() - 1) / double(e.size()));
-    return m;
-}
-
 // CBspheres at 16 spp against 1024 spp. The reference's own noise adds 16/1024 of the raw error
 // to both measured errors (no more than the margin); the denoised error must lie below the raw
 // one by more than three standard errors of the two per-pixel means.
@@ -149,12 +130,11 @@ TEST(Denoiser, LowersTheErrorOfASixteenSampleRender) {
     aovs.add(AovKind::DenoiseHalves);
     const int w = 96, h = 72;
     Film noisy = test::renderJob(s.scene, *s.accel, test::jobOptions(w, h, 16, {}, aovs));
-    Film reference = test::renderJob(s.scene, *s.accel, test::jobOptions(w, h, 1024));
-    std::vector<Color> raw(noisy.pixelCount());
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) raw[size_t(y) * w + size_t(x)] = noisy.pixel(x, y);
-    RelMse before = relMseOf(raw, reference), after = relMseOf(*denoiseFilm(noisy, {}), reference);
-    EXPECT_LT(after.mean + 3 * std::hypot(after.standardError, before.standardError), before.mean)
+    std::vector<Color> reference =
+        test::beautyOf(test::renderJob(s.scene, *s.accel, test::jobOptions(w, h, 1024)));
+    test::RelMse before = test::relMseOf(test::beautyOf(noisy), reference),
+                 after = test::relMseOf(*denoiseFilm(noisy, {}), reference);
+    EXPECT_TRUE(test::clearlyLower(after, before))
         << "raw " << before.mean << " denoised " << after.mean;
 }
 

@@ -64,6 +64,12 @@ TEST(Help, CompletionKnowsEveryCommandSubcommandAndValue) {
     std::string aovs = complete(kiln + " render s.dae --aov ''");
     for (const char* a : {"emission", "crypto_object", "variance", "all", "default"})
         EXPECT_NE(aovs.find(std::string(" ") + a + " "), std::string::npos) << a << aovs;
+    for (const char* command : {" render s.dae", " denoise in.exr"}) {
+        std::string light = complete(kiln + command + " --denoise-aovs ''");
+        for (const char* a : {"emission", "direct", "indirect_transmission", "bounces"})
+            EXPECT_NE(light.find(std::string(" ") + a + " "), std::string::npos) << a << light;
+        EXPECT_EQ(light.find(" albedo "), std::string::npos) << light;
+    }
     EXPECT_NE(complete(kiln + " batch job.json --").find(" --dry-run "), std::string::npos);
     EXPECT_NE(complete(kiln + " farm status --").find(" --json "), std::string::npos);
     EXPECT_NE(complete(kiln + " farm submit s.dae --").find(" --sbatch-arg "), std::string::npos);

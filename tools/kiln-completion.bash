@@ -1,9 +1,9 @@
 # bash completion for kiln (installed as share/bash-completion/completions/kiln).
 # Commands, subcommands, options and enumerated values come from 'kiln [COMMAND [SUB]] --help'
 # itself, so the completion never falls behind the binary: options are the --names of the help,
-# the values of an option are its "a|b|c" in the help (--aov's from its list of layers); the names
-# --display, --view and --look take come from the OCIO config, as 'kiln info --ocio' lists them
-# (one per line, tab-separated: names may hold spaces).
+# the values of an option are its "a|b|c" in the help (--aov's and --denoise-aovs' from their lists
+# of layers); the names --display, --view and --look take come from the OCIO config, as
+# 'kiln info --ocio' lists them (one per line, tab-separated: names may hold spaces).
 _kiln_subcommands() {
     case $1 in
         bench) echo "accel plan accuracy" ;;
@@ -58,6 +58,8 @@ _kiln() {
         local values
         if [[ $prev == --aov ]]; then
             values=$(sed -n 's/.*comma-separated: \([^;]*\); or \([a-z, ]*\) .*/\1, \2/p' <<<"$help" | tr -d ',')
+        elif [[ $prev == --denoise-aovs ]]; then
+            values=$(sed -n 's/^ *--denoise-aovs LIST .*comma-separated: \([a-z_, ]*\)$/\1/p' <<<"$help" | tr -d ',')
         else
             values=$(sed -n "s/^ *\(-[a-zA-Z], \)\{0,1\}$prev \([^ ]*|[^ ]*\).*/\2/p" <<<"$help" | tr '|' ' ')
         fi

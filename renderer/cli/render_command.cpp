@@ -111,6 +111,24 @@ void addDenoiseOptions(ArgParser& parser, RenderCommand& c) {
                 "keep even/odd half-buffers and write the beauty denoised (NFOR; the raw one as "
                 "noisy.R/G/B; docs/denoise.md)",
                 c.denoise);
+    parser.option(
+        "denoise-aovs", "", 1, "LIST",
+        std::string("with --denoise, denoise these rendered light-path AOVs too, each "
+                    "with its own half-buffers (the raw layer as noisy.LAYER.R/G/B), "
+                    "comma-separated: ") +
+            AovRequest::lightNames(),
+        [&c](const std::vector<std::string>& v) { c.denoisedLight = parseDenoisedAovs(v[0]); });
+}
+
+// --denoise-aovs needs --denoise and names layers the render writes.
+void applyDenoiseOptions(const RenderCommand& c, RenderJobOptions& options) {
+    if (c.denoise) options.aovs.add(AovKind::DenoiseHalves);
+    if (!c.denoisedLight) return;
+    if (!c.denoise) throw UsageError("--denoise-aovs needs --denoise");
+    if (uint32_t missing = c.denoisedLight & ~options.aovs.mask)
+        throw UsageError("--denoise-aovs: '" + AovRequest::namesOf(missing) +
+                         "' not rendered (add it to --aov)");
+    options.aovs.denoisedLight = c.denoisedLight;
 }
 
 // What a job queue drives: one JSON result on stdout, progress as JSON lines on stderr.
@@ -195,7 +213,7 @@ RenderJobOptions renderJobOptions(const RenderCommand& c) {
     RenderJobOptions options = c.job.finish();
     applyLongRenderOptions(c, options);
     applyCompositingOptions(c, options);
-    if (c.denoise) options.aovs.add(AovKind::DenoiseHalves);
+    applyDenoiseOptions(c, options);
     return options;
 }
 

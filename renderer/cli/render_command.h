@@ -48,6 +48,7 @@ struct RenderCommand {
     DepthMode depth = DepthMode::Ray;
     bool heatMap = false, quiet = false, traversalFloor = false;
     bool denoise = false;  // --denoise: half-buffers kept, the beauty denoised (docs/denoise.md)
+    uint32_t denoisedLight = 0;  // --denoise-aovs: light-path kinds denoised too (AovRequest bits)
     float aperture = -1, focus = -1;
     int debugX = -1, debugY = -1, debugSample = -1;
     // Long renders (docs/long-renders.md).

@@ -225,6 +225,14 @@ void addTransportOptions(ArgParser& parser, RenderJobArgs& a) {
 
 }  // namespace
 
+uint32_t parseDenoisedAovs(const std::string& list) {
+    try {
+        return AovRequest::parseDenoised(list);
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(std::string("--denoise-aovs: ") + e.what());
+    }
+}
+
 void RenderJobArgs::addOptions(ArgParser& parser) {
     addImageOptions(parser, *this);
     addTransportOptions(parser, *this);

@@ -23,6 +23,10 @@ void addEmitterOption(ArgParser& parser, LoadOptions& load, PathOptions& path);
 // --exposure STOPS: the preview's light scaled by 2^STOPS.
 void addExposureOption(ArgParser& parser, float& stops);
 
+// --denoise-aovs LIST (kiln render, kiln denoise): the light-path kinds it names (AovRequest
+// bits). Throws UsageError naming an unknown or non-light entry.
+uint32_t parseDenoisedAovs(const std::string& list);
+
 // A render job's options as given on the command line; finish() turns them into RenderJobOptions.
 struct RenderJobArgs {
     RenderJobOptions job;

@@ -1,5 +1,6 @@
 #include "renderer/film/aov.h"
 
+#include <algorithm>
 #include <sstream>
 #include <stdexcept>
 
@@ -62,16 +63,61 @@ constexpr const char* kLobeNames[kLobeCount] = {"diffuse", "specular", "transmis
 
 int lobeField(size_t d, size_t l) { return kLobes + 3 * int(kLobeCount * d + l); }
 
+constexpr uint32_t bit(AovKind k) { return 1u << uint32_t(k); }
+
+// The light-path AOVs' bits: the integrator splits the beauty's light into them.
+constexpr uint32_t kLightBits = [] {
+    uint32_t bits = bit(AovKind::Emission) | bit(AovKind::Direct) | bit(AovKind::Indirect) |
+                    bit(AovKind::Bounces);
+    for (const auto& kinds : kLobeKinds)
+        for (AovKind k : kinds) bits |= bit(k);
+    return bits;
+}();
+
+bool isLight(AovKind k) { return kLightBits & bit(k); }
+
+// The names of the light-path kinds in bits, in kNames' order, joined by separator.
+std::string lightNamesIn(uint32_t bits, const char* separator) {
+    std::string names;
+    for (const NamedAov& n : kNames)
+        if (isLight(n.kind) && (bits & bit(n.kind))) {
+            if (!names.empty()) names += separator;
+            names += n.name;
+        }
+    return names;
+}
+
 }  // namespace
 
-bool AovRequest::splitsLight() const {
-    for (AovKind k : {AovKind::Emission, AovKind::Direct, AovKind::Indirect, AovKind::Bounces})
-        if (has(k)) return true;
-    for (const auto& kinds : kLobeKinds)
-        for (AovKind k : kinds)
-            if (has(k)) return true;
-    return false;
+bool AovRequest::splitsLight() const { return mask & kLightBits; }
+
+const char* AovRequest::lightNames() {
+    static const std::string names = lightNamesIn(kLightBits, ", ");
+    return names.c_str();
 }
+
+uint32_t AovRequest::parseDenoised(const std::string& list) {
+    uint32_t bits = 0;
+    std::stringstream ss(list);
+    std::string item;
+    while (std::getline(ss, item, ',')) {
+        if (item.empty()) continue;
+        const NamedAov* named = nullptr;
+        for (const NamedAov& n : kNames)
+            if (item == n.name) named = &n;
+        if (!named)
+            throw std::invalid_argument("unknown AOV '" + item +
+                                        "' (light-path AOVs: " + lightNames() + ")");
+        if (!isLight(named->kind))
+            throw std::invalid_argument(
+                "'" + item + "' is not a light-path AOV (light-path AOVs: " + lightNames() + ")");
+        bits |= bit(named->kind);
+    }
+    if (!bits) throw std::invalid_argument("names no AOV");
+    return bits;
+}
+
+std::string AovRequest::namesOf(uint32_t bits) { return lightNamesIn(bits, ","); }
 
 AovRequest AovRequest::defaults() {
     AovRequest r;
@@ -121,17 +167,20 @@ AovLayout::AovLayout(const AovRequest& request) : request_(request) {
             channels_.push_back({layer + "." + std::string(1, suffix[c]), suffix[0] == 'R', false,
                                  field + c, radiance});
     };
-    auto light = [&](const std::string& layer, int field) { colour(layer, field, "RGB", true); };
-    if (request.has(AovKind::Emission)) light("emission", kEmission);
-    if (request.has(AovKind::Direct)) light("direct", kDirect);
-    if (request.has(AovKind::Indirect)) light("indirect", kIndirect);
+    auto light = [&](const std::string& layer, int field, AovKind kind) {
+        if (request.denoises(kind)) denoised_.push_back({layer, channels_.size()});
+        colour(layer, field, "RGB", true);
+    };
+    if (request.has(AovKind::Emission)) light("emission", kEmission, AovKind::Emission);
+    if (request.has(AovKind::Direct)) light("direct", kDirect, AovKind::Direct);
+    if (request.has(AovKind::Indirect)) light("indirect", kIndirect, AovKind::Indirect);
     for (size_t d = 0; d < 2; ++d)
         for (size_t l = 0; l < kLobeCount; ++l)
             if (request.has(kLobeKinds[d][l]))
                 light(std::string(d == 0 ? "direct_" : "indirect_") + kLobeNames[l],
-                      lobeField(d, l));
+                      lobeField(d, l), kLobeKinds[d][l]);
     for (int b = 0; b < request.bounceLayers; ++b)
-        light("bounce" + std::to_string(b + 1), kBounces + 3 * b);
+        light("bounce" + std::to_string(b + 1), kBounces + 3 * b, AovKind::Bounces);
     if (request.has(AovKind::Albedo)) colour("albedo", kAlbedo);
     if (request.has(AovKind::Normal)) colour("N", kNormal, "XYZ");
     if (request.has(AovKind::Position)) colour("P", kPosition, "XYZ");

@@ -63,7 +63,11 @@ struct AovRequest {
     // and emitters seen directly do not cover (alpha counts only non-emitting surfaces).
     bool transparent = false;
     DepthMode depth = DepthMode::Ray;
+    // --denoise-aovs: the light-path kinds (bits as in mask) whose layers the film keeps
+    // half-buffers of and the denoiser filters (with DenoiseHalves; docs/denoise.md).
+    uint32_t denoisedLight = 0;
     bool has(AovKind k) const { return mask & (1u << uint32_t(k)); }
+    bool denoises(AovKind k) const { return denoisedLight & (1u << uint32_t(k)); }
     void add(AovKind k) { mask |= 1u << uint32_t(k); }
     // Any of the light-path AOVs (the integrator must classify its contributions).
     bool splitsLight() const;
@@ -74,6 +78,12 @@ struct AovRequest {
     static AovRequest parse(const std::string& list, int maxDepth);
     static AovRequest defaults();  // beauty plus what compositing and denoising usually want
     static const char* names();    // for --help
+    // --denoise-aovs "direct,indirect": the light-path kinds named (bits as in mask; "bounces":
+    // every bounceN layer). Throws std::invalid_argument naming an unknown or non-light entry.
+    static uint32_t parseDenoised(const std::string& list);
+    static const char* lightNames();  // the light-path AOVs, for --help
+    // The names of the light-path kinds in bits (as --aov spells them), comma-separated.
+    static std::string namesOf(uint32_t bits);
 };
 
 // How light left the path's first vertex, as Cycles' Diffuse, Glossy, Transmission, Subsurface
@@ -125,10 +135,19 @@ struct AovChannel {
     bool radiance = false;     // light: held in the film's radiance scale (Film::scaleExponent)
 };
 
+// A light-path layer the denoiser filters (AovRequest::denoisedLight): its name and its R channel
+// in the layout (G and B follow).
+struct DenoisedLayer {
+    std::string name;  // "direct", "indirect_diffuse", "bounce2", ...
+    size_t channel = 0;
+};
+
 class AovLayout {
   public:
     explicit AovLayout(const AovRequest& request);
     const std::vector<AovChannel>& channels() const { return channels_; }
+    // The requested layers of the kinds in denoisedLight, in channel order.
+    const std::vector<DenoisedLayer>& denoisedLayers() const { return denoised_; }
     const AovRequest& request() const { return request_; }
     // Writes the record's requested values, in channel order.
     void gather(const SampleRecord& r, double* out) const;
@@ -136,6 +155,7 @@ class AovLayout {
   private:
     AovRequest request_;
     std::vector<AovChannel> channels_;
+    std::vector<DenoisedLayer> denoised_;
 };
 
 }  // namespace kiln

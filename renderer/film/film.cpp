@@ -5,6 +5,17 @@
 #include <stdexcept>
 
 namespace kiln {
+namespace {
+
+// A half-buffer value into the fixed-point range; one beyond it (the square of a channel far above
+// the luminance that was checked) is held at the range's end.
+FixedSum heldInRange(double v) {
+    FixedSum f = 0;
+    if (!toFixed(v, f)) toFixed(std::nextafter(kMaxSampleValue, 0.0), f);
+    return f;
+}
+
+}  // namespace
 
 Film::Film(int width, int height, const AovRequest& aovs)
     : width_(width), height_(height), layout_(aovs) {
@@ -23,7 +34,8 @@ Film::Film(int width, int height, const AovRequest& aovs)
     if (aovs.has(AovKind::CryptoObject)) crypto_[0].resize(n * kCryptoSlots);
     if (aovs.has(AovKind::CryptoMaterial)) crypto_[1].resize(n * kCryptoSlots);
     if (aovs.has(AovKind::DenoiseHalves)) {
-        halves_.resize(n * 2 * kHalfSums);
+        halfStride_ = kHalfSums + kLayerHalfSums * layout_.denoisedLayers().size();
+        halves_.resize(n * 2 * halfStride_);
         halfCount_.resize(n * 2);
     }
 }
@@ -51,7 +63,7 @@ std::vector<FilmBuffer> Film::buffers() {
          crypto_[0].empty() ? 0u : uint32_t(kCryptoSlots), crypto_[0].data()},
         {"crypto_material", Accumulation::CryptoIds, sizeof(CryptoSlot),
          crypto_[1].empty() ? 0u : uint32_t(kCryptoSlots), crypto_[1].data()},
-        sums("denoise_halves", halves_, halves_.empty() ? 0 : 2 * kHalfSums),
+        sums("denoise_halves", halves_, halves_.empty() ? 0 : 2 * halfStride_),
         {"denoise_half_samples", Accumulation::Count, sizeof(uint32_t),
          halfCount_.empty() ? 0u : 2u, halfCount_.data()},
         // Last: merging reads the counts before the shard's are added (FirstSample).
@@ -101,38 +113,54 @@ bool Film::add(int x, int y, const SampleRecord& r, int sample) {
         depth_[i] = std::min(depth_[i], request.depth == DepthMode::CameraZ ? r.cameraZ : r.depth);
     if (!crypto_[0].empty()) addCrypto(i, 0, r.cryptoObject);
     if (!crypto_[1].empty()) addCrypto(i, 1, r.cryptoMaterial);
-    if (!halves_.empty()) addToHalf(i, half, fixed, L * float(down_), r);
+    if (!halves_.empty()) {
+        addToHalf(i, half, fixed, L * float(down_), r);
+        // Light the beauty drops (a transparent background) leaves the layers' sums too.
+        if (keepsLight)
+            addLayersToHalf(&halves_[(2 * i + size_t(half)) * halfStride_], fixed + 5, values);
+    }
     return true;
+}
+
+// The denoised layers' colour (already converted in fixed, the layout's order) and squares.
+void Film::addLayersToHalf(FixedSum* sums, const FixedSum* fixed, const double* values) const {
+    FixedSum* at = sums + kHalfSums;
+    for (const DenoisedLayer& layer : layout_.denoisedLayers()) {
+        for (size_t k = 0; k < 3; ++k) {
+            at[k] += fixed[layer.channel + k];
+            const double v = values[layer.channel + k] * down_;
+            at[3 + k] += heldInRange(v * v);
+        }
+        at += kLayerHalfSums;
+    }
 }
 
 void Film::addToHalf(size_t i, int half, const FixedSum colour[3], const Color& scaled,
                      const SampleRecord& r) {
-    FixedSum* sums = &halves_[(2 * i + size_t(half)) * kHalfSums];
+    FixedSum* sums = &halves_[(2 * i + size_t(half)) * halfStride_];
     double values[kHalfSums];
     for (int k = 0; k < 3; ++k) values[3 + k] = double(scaled[k]) * double(scaled[k]);
     halfFeatures(r, values + 6);
     for (int k = 0; k < 3; ++k) sums[k] += colour[k];
-    for (int k = 3; k < kHalfSums; ++k) {
-        FixedSum f = 0;
-        // Features are finite and in range (halfFeatures); a square beyond the range (a channel
-        // far above the luminance that was checked) is held at the range's end.
-        if (!toFixed(values[k], f)) toFixed(std::nextafter(kMaxSampleValue, 0.0), f);
-        sums[k] += f;
-    }
+    // Features are finite and in range (halfFeatures); squares may not be.
+    for (int k = 3; k < kHalfSums; ++k) sums[k] += heldInRange(values[k]);
 }
 
 void Film::halfMean(int x, int y, int h, float out[kHalfChannels]) const {
     size_t at = 2 * index(x, y) + size_t(h);
     double n = halfCount_[at];
-    const FixedSum* sums = &halves_[at * kHalfSums];
-    for (int k = 0; k < 3; ++k) {
-        double s1 = fromFixed(sums[k]), s2 = fromFixed(sums[3 + k]);
-        out[k] = n > 0 ? float(s1 * up_ / n) : 0.0f;
-        // The sample variance over n, the variance of the half's mean.
-        out[3 + k] =
-            n >= 2 ? float(std::max(0.0, (s2 - s1 * s1 / n) / (n - 1)) / n * up_ * up_) : -1.0f;
-    }
+    const FixedSum* sums = &halves_[at * halfStride_];
+    for (int k = 0; k < 3; ++k)
+        halfMeanAndVariance(fromFixed(sums[k]), fromFixed(sums[3 + k]), n, up_, out[k], out[3 + k]);
     for (int k = 6; k < kHalfChannels; ++k) out[k] = n > 0 ? float(fromFixed(sums[k]) / n) : 0.0f;
+}
+
+void Film::layerHalfMean(int x, int y, int h, size_t layer, float out[kLayerHalfChannels]) const {
+    size_t at = 2 * index(x, y) + size_t(h);
+    const FixedSum* sums = &halves_[at * halfStride_ + kHalfSums + layer * kLayerHalfSums];
+    for (int k = 0; k < 3; ++k)
+        halfMeanAndVariance(fromFixed(sums[k]), fromFixed(sums[3 + k]), halfCount_[at], up_, out[k],
+                            out[3 + k]);
 }
 
 namespace {

@@ -109,6 +109,9 @@ class Film {
     // scene light) and how many samples it holds.
     bool hasHalves() const { return !halves_.empty(); }
     void halfMean(int x, int y, int h, float out[kHalfChannels]) const;
+    // With halves, each denoised light-path layer's too (layout().denoisedLayers()[layer]): half
+    // h's colour and the variance of each mean (in scene light), over halfSamples(x, y, h).
+    void layerHalfMean(int x, int y, int h, size_t layer, float out[kLayerHalfChannels]) const;
     uint32_t halfSamples(int x, int y, int h) const {
         return halfCount_[2 * index(x, y) + size_t(h)];
     }
@@ -143,12 +146,16 @@ class Film {
     std::vector<uint32_t> covered_;      // samples that covered the pixel (alpha)
     std::vector<float> depth_;           // nearest first-hit Z (with the Depth AOV)
     std::vector<CryptoSlot> crypto_[2];  // kCryptoSlots per pixel: objects, materials
-    std::vector<FixedSum> halves_;       // 2 x kHalfSums per pixel (DenoiseHalves)
-    std::vector<uint32_t> halfCount_;    // 2 per pixel: the samples of each half
+    // 2 halves per pixel (DenoiseHalves), each kHalfSums and then kLayerHalfSums per denoised
+    // layer: halfStride_ sums.
+    std::vector<FixedSum> halves_;
+    size_t halfStride_ = kHalfSums;
+    std::vector<uint32_t> halfCount_;  // 2 per pixel: the samples of each half
     size_t sumChannels_ = 0, firstChannels_ = 0;
     void addCrypto(size_t i, int type, uint32_t id);
     void addToHalf(size_t i, int half, const FixedSum colour[3], const Color& scaled,
                    const SampleRecord& r);
+    void addLayersToHalf(FixedSum* sums, const FixedSum* fixed, const double* values) const;
 };
 
 }  // namespace kiln

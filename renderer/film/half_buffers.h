@@ -22,6 +22,12 @@ constexpr int kHalfSums = 3 + 3 + kHalfFeatures;
 // unknown), then the feature means.
 constexpr int kHalfChannels = 3 + 3 + kHalfFeatures;
 
+// Per half and denoised light-path layer (AovLayout::denoisedLayers, --denoise-aovs): the film's
+// sums of its colour and of its squares, and what the denoiser takes in place of the beauty's
+// first six channels (colour RGB, the variance of each mean).
+constexpr int kLayerHalfSums = 6;
+constexpr int kLayerHalfChannels = 6;
+
 inline int halfOfSample(uint32_t sampleIndex) { return int(sampleIndex & 1u); }
 
 // A sample's features for the half-buffers: zero where the camera ray missed; a non-finite
@@ -32,5 +38,15 @@ void halfFeatures(const SampleRecord& r, double out[kHalfFeatures]);
 // "halfA.B", "halfA.var_R", ..., "halfA.albedo_R", ..., "halfA.N_X", ..., "halfA.Z"), then the
 // half's sample count ("halfA.n").
 const std::vector<std::string>& halfBufferChannels(int half);
+
+// The EXR channel names of a denoised layer's half: "halfA.direct.R", ..., "halfA.direct.var_B"
+// (kLayerHalfChannels, in Film::layerHalfMean's order).
+std::vector<std::string> layerHalfChannels(int half, const std::string& layer);
+
+// A half's colour mean and the variance of that mean from its sums of values and squares over n
+// samples, both times scale (the film's radiance scale); the variance is -1 where under two
+// samples leave it unknown.
+void halfMeanAndVariance(double sum, double squares, double n, double scale, float& mean,
+                         float& variance);
 
 }  // namespace kiln

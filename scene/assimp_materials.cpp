@@ -137,9 +137,13 @@ void warnDroppedMaterialFeatures(const aiMaterial* am, const Material& m, Scene&
     bool statesSpecular = am->Get(AI_MATKEY_COLOR_SPECULAR, specular) == AI_SUCCESS;
     if (!principled && statesSpecular && (specular.r > 0 || specular.g > 0 || specular.b > 0))
         warn("specular colour dropped (Lambert)");
-    // A principled material from a Phong one (readPhongSpecular) took the tint; one from
-    // metallic-roughness keys (OBJ Pm/Pr with Ks) did not.
-    if (principled && statesSpecular && m.specularColor == Color(1.0f) &&
+    // A principled material from a Phong one (readPhongSpecular) took the colour; one from
+    // metallic-roughness keys (spec-gloss glTF, OBJ Pm/Pr with Ks) did not.
+    aiColor3D base;
+    float metallic = 0;
+    const bool metallicRoughness = am->Get(AI_MATKEY_BASE_COLOR, base) == AI_SUCCESS ||
+                                   factor(AI_MATKEY_METALLIC_FACTOR, metallic);
+    if (principled && metallicRoughness && statesSpecular &&
         (specular.r != specular.g || specular.g != specular.b || specular.r != 1))
         warn("specular colour tint dropped (KHR_materials_specular colour; its factor is kept)");
 }

@@ -166,11 +166,6 @@ RenderOptions makeOptions(const py::dict& kwargs) {
     RenderOptions o;
     py::dict rest;
     for (const auto& [k, v] : kwargs) {
-        if (k.cast<std::string>() == "denoise") {
-            if (PyObject_IsTrue(v.ptr())) throw py::value_error("denoise: not built yet");
-            o.given[k] = v;
-            continue;
-        }
         if (v.is_none()) continue;
         // A list given is kept as a tuple: changing the caller's list later changes nothing.
         o.given[k] = py::isinstance<py::list>(v) ? py::tuple(py::reinterpret_borrow<py::object>(v))
@@ -201,7 +196,9 @@ struct ImageData {
     FilledLayers filled;
     const FilledLayers& layers() {
         py::gil_scoped_release release;
-        std::call_once(filledOnce, [this] { filled = fillLayers(result.film); });
+        std::call_once(filledOnce, [this] {
+            filled = fillLayers(result.film, result.command.denoise ? &result.command : nullptr);
+        });
         return filled;
     }
 };
@@ -423,8 +420,7 @@ PYBIND11_MODULE(_kiln, m) {
         "Every kiln render option by name (its long name, '-' as '_'), checked now with kiln "
         "render's messages (ValueError):\n\n" +
         optionsDoc(renderKeywords()) +
-        "    aovs=LIST\n        the same as aov: a list, or names separated by commas\n"
-        "    denoise=False\n        not built yet: True raises ValueError\n";
+        "    aovs=LIST\n        the same as aov: a list, or names separated by commas\n";
     static const std::string loadDoc =
         "Loads a scene file with kiln's importers (kiln.SceneError on "
         "bad input). Options: kiln render's Scene group:\n\n" +

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "renderer/core/log.h"
+#include "renderer/denoise_film.h"
 #include "scene/scene_info.h"
 #include "scene/scene_loader.h"
 
@@ -127,7 +128,32 @@ Json LoadedScene::crosscheck(const AcceleratorChoice& choice, size_t raysPerCate
     return crosscheckJson(kiln::crosscheck(scene_, a, b, raysPerCategory, seed), path_);
 }
 
-FilledLayers fillLayers(const Film& film) {
+namespace {
+
+// Layer `name`'s first three channels become `colours`; the raw ones are appended as the layer
+// "noisy" (the beauty's) or "noisy.NAME", as the EXR of kiln render --denoise holds them.
+void substituteDenoised(FilledLayers& out, size_t pixels, const std::string& name,
+                        const std::vector<Color>& colours) {
+    for (size_t l = 0; l < out.layers.size(); ++l) {
+        if (out.layers[l].name != name) continue;
+        const size_t n = out.layers[l].channels.size();
+        std::vector<float> raw(pixels * 3);
+        float* values = out.values.data() + out.offsets[l];
+        for (size_t p = 0; p < pixels; ++p)
+            for (size_t c = 0; c < 3; ++c) {
+                raw[3 * p + c] = values[p * n + c];
+                values[p * n + c] = colours[p][int(c)];
+            }
+        out.offsets.push_back(out.values.size());
+        out.values.insert(out.values.end(), raw.begin(), raw.end());
+        out.layers.push_back({name.empty() ? "noisy" : "noisy." + name, {"R", "G", "B"}, 0});
+        return;
+    }
+}
+
+}  // namespace
+
+FilledLayers fillLayers(const Film& film, const RenderCommand* denoised) {
     FilledLayers out;
     out.layers = exrLayers(film);
     const size_t pixels = size_t(film.width()) * size_t(film.height());
@@ -149,6 +175,13 @@ FilledLayers fillLayers(const Film& film) {
             }
         }
     });
+    if (!denoised) return out;
+    ExrOptions exr;
+    Metadata meta;
+    denoiseForOutputs(film, denoised->job.job.settings.threads, exr, meta);
+    substituteDenoised(out, pixels, "", *exr.denoised);
+    for (const auto& [name, colours] : exr.denoisedLayers)
+        substituteDenoised(out, pixels, name, *colours);
     return out;
 }
 

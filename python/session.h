@@ -91,7 +91,10 @@ struct FilledLayers {
     std::vector<size_t> offsets;
     std::vector<float> values;
 };
-FilledLayers fillLayers(const Film& film);
+// With `denoised` (a render with --denoise): the beauty's R, G, B are the denoised image, the raw
+// one the layer "noisy", and each --denoise-aovs layer likewise (its raw one "noisy.LAYER"), as
+// the EXR kiln render --denoise writes holds them.
+FilledLayers fillLayers(const Film& film, const RenderCommand* denoised = nullptr);
 
 // Writes OUT.exr, OUT.png (and the heat map with -a, --noise-threshold or --heatmap) as kiln
 // render -o OUT does: the paths written. Throws std::runtime_error naming every failed write,

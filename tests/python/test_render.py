@@ -89,3 +89,17 @@ def test_a_render_options_set_renders_any_scene_again(tmp_path, cbspheres):
     b = kiln.render(cbspheres, job)
     assert same_bits(a.beauty, b.beauty)
     assert a.aovs == []
+
+
+def test_denoise_gives_the_denoised_beauty_and_keeps_the_noisy_one_as_kiln_render_does(tmp_path, cbspheres):
+    args = ["-r", 64, 48, "-s", 4, "-m", 5, "--seed", 3, "--denoise", "--denoise-aovs", "direct", "-q"]
+    run_kiln("render", CBSPHERES, *args, "--aov", "direct", "-o", tmp_path / "cli")
+    pixels, names, header = read_exr(tmp_path / "cli.exr")
+
+    image = kiln.render(cbspheres, resolution=(64, 48), spp=4, max_depth=5, seed=3, aovs="direct",
+                        denoise=True, denoise_aovs="direct")
+    assert same_bits(image.beauty, layer_of(pixels, names, ""))
+    assert same_bits(image.aov("noisy"), layer_of(pixels, names, "noisy")[:, :, :3])
+    assert same_bits(image.aov("direct"), layer_of(pixels, names, "direct"))
+    assert same_bits(image.aov("noisy.direct"), layer_of(pixels, names, "noisy.direct"))
+    assert not np.array_equal(image.beauty[:, :, :3], image.aov("noisy"))

@@ -133,8 +133,6 @@ def test_a_bad_option_raises_value_error_with_the_cli_message(tmp_path, keywords
 
 
 def test_options_that_are_not_the_renders_or_are_not_built_say_so(cbspheres):
-    with pytest.raises(ValueError, match="^denoise: not built yet$"):
-        kiln.RenderOptions(denoise=True)
     with pytest.raises(TypeError, match="did you mean spp"):
         kiln.RenderOptions(sppp=4)
     with pytest.raises(TypeError, match="unexpected keyword argument 'output'"):

@@ -47,7 +47,9 @@ def main():
     w, h = desc["resolution"]
     k_exr, c_exr = a.out + "/kiln.exr", a.out + "/cycles.exr"
     subprocess.run([a.kiln, "render", GRID + "/grid.kiln", "-e", GRID + "/white.exr", "-r", str(w),
-                    str(h), "-s", str(a.spp), "-m", str(desc["max_bounces"]), "-t", str(a.threads),
+                    str(h), "-s", str(a.spp),
+                    # kiln -m N traces what Cycles max_bounces N - 1 does
+                    "-m", str(desc["max_bounces"] + 1), "-t", str(a.threads),
                     "-q", "-o", k_exr], check=True)
     blender = subprocess.run(["blender", "-b", "--factory-startup", "--python",
                               "tools/peer/cycles_gltf.py", "--", GRID + "/grid.json", str(a.spp),

@@ -202,6 +202,11 @@ TEST(Batch, SkipsCompleteOutputsAndReportsJson) {
     auto json = nlohmann::json::parse(second.output.substr(second.output.find("{\n")));
     EXPECT_EQ(json["counts"]["skipped"], 2);
     EXPECT_EQ(json["counts"]["rendered"], 0);
+    // -q changes what the renders print, not what they write: still complete without it.
+    farm::CommandResult loud = test::kiln({"batch", job, "--json"});
+    ASSERT_EQ(loud.exitCode, 0) << loud.output;
+    json = nlohmann::json::parse(loud.output.substr(loud.output.find("{\n")));
+    EXPECT_EQ(json["counts"]["skipped"], 2) << loud.output;
 }
 
 // Waits on #16. Ctrl-C reaches the running render through kiln batch, which exits 130 with the

@@ -22,9 +22,12 @@ std::vector<std::string> renderCommand(const RenderTask& task, int checkpointSec
 std::string doneMarkerPath(const std::string& output) { return output + ".done"; }
 
 namespace {
+// The command as the done marker holds it: without -q, which changes what a render prints, not
+// what it writes (a batch run again with or without -q finds the same outputs complete).
 std::string joinLines(const std::vector<std::string>& command) {
     std::string text;
-    for (const std::string& a : command) text += a + "\n";
+    for (const std::string& a : command)
+        if (a != "-q" && a != "--quiet") text += a + "\n";
     return text;
 }
 }  // namespace

@@ -26,7 +26,8 @@ struct RenderTask {
 // continues from OUTPUT.ckpt or starts afresh, --checkpoint-every saves progress.
 std::vector<std::string> renderCommand(const RenderTask& task, int checkpointSeconds, bool quiet);
 
-// The done marker holds the command line that made the output, so a changed job renders again.
+// The done marker holds the command line that made the output (less -q), so a changed job renders
+// again.
 std::string doneMarkerPath(const std::string& output);
 bool isComplete(const std::string& output, const std::vector<std::string>& command);
 void markComplete(const std::string& output, const std::vector<std::string>& command);

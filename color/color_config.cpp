@@ -68,6 +68,13 @@ void checkWorkingSpace(const OCIO::ConstConfigRcPtr& config, ColorSetup& setup) 
             setup.configPath, setup.sceneLinear));
 }
 
+// OCIO's message on one line, naming the config.
+std::invalid_argument unusable(const std::string& path, const OCIO::Exception& e) {
+    std::string what = e.what();
+    std::replace(what.begin(), what.end(), '\n', ' ');
+    return std::invalid_argument(path + ": OCIO config unusable: " + what);
+}
+
 std::string& bundledConfig() {
     static std::string path;
     return path;
@@ -146,9 +153,7 @@ ColorSetup checkColorConfig(const std::string& display, const std::string& view,
         // Last: what kiln uses has been tried above, with the more precise messages.
         config->validate();
     } catch (const OCIO::Exception& e) {
-        std::string what = e.what();
-        std::replace(what.begin(), what.end(), '\n', ' ');
-        throw std::invalid_argument(setup.configPath + ": OCIO config unusable: " + what);
+        throw unusable(setup.configPath, e);
     }
     return setup;
 }
@@ -168,9 +173,7 @@ ColorConfigNames listColorConfig() {
         for (int i = 0; i < config->getNumLooks(); ++i)
             names.looks.emplace_back(config->getLookNameByIndex(i));
     } catch (const OCIO::Exception& e) {
-        std::string what = e.what();
-        std::replace(what.begin(), what.end(), '\n', ' ');
-        throw std::invalid_argument(names.configPath + ": OCIO config unusable: " + what);
+        throw unusable(names.configPath, e);
     }
     return names;
 }

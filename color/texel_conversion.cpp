@@ -1,7 +1,5 @@
 #include "color/texel_conversion.h"
 
-#include <cstring>
-
 #include "color/srgb_decode.h"
 #include "color/working_space.h"
 
@@ -15,18 +13,6 @@ void TexelConversion::apply(float* texels, size_t count, int channels) const {
         Color c = applyMatrix(toWorking, Color(p[0], p[1], p[2]));
         p[0] = c.x, p[1] = c.y, p[2] = c.z;
     }
-}
-
-uint64_t TexelConversion::hash() const {
-    // FNV-1a over the matrix: equal conversions give equal names.
-    uint64_t h = 1469598103934665603ull;
-    auto add = [&](const void* data, size_t bytes) {
-        const auto* b = static_cast<const unsigned char*>(data);
-        for (size_t i = 0; i < bytes; ++i) h = (h ^ b[i]) * 1099511628211ull;
-    };
-    add(&decodeSrgb, sizeof decodeSrgb);
-    if (matrix) add(toWorking.data(), sizeof toWorking);
-    return h;
 }
 
 TexelConversion linearConversion(const Chromaticities* stated) {

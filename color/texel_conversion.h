@@ -5,7 +5,6 @@
 #pragma once
 
 #include <cstddef>
-#include <cstdint>
 
 #include "color/chromaticities.h"
 
@@ -20,8 +19,6 @@ struct TexelConversion {
     // `count` interleaved texels of `channels` floats: the first three are colour; a grey image
     // (fewer than three) only decodes, as a matrix keeps white white.
     void apply(float* texels, size_t count, int channels) const;
-    // What distinguishes this conversion's result, for a converted file's name.
-    uint64_t hash() const;
 };
 
 // A linear image in `stated` chromaticities (null: none stated, taken as linear Rec.709) into the

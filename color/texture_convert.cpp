@@ -43,7 +43,10 @@ std::string convertedTextureName(const std::string& identity, const TexelConvers
     // Decoded sRGB lands in scene_linear: another working space is another file.
     if (const WorkingSpace& space = workingSpace(); decodeSrgb && !space.rec709)
         h = mix64(h ^ hashBytes(space.name));
-    if (conversion.matrix) h = mix64(h ^ conversion.hash());
+    // A matrix (another working space, stated chromaticities): its values name the result.
+    if (conversion.matrix)
+        h = mix64(h ^ hashBytes(std::string(reinterpret_cast<const char*>(&conversion.toWorking),
+                                            sizeof conversion.toWorking)));
     return fmt::format("{:016x}.tx", h);
 }
 

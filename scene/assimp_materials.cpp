@@ -139,11 +139,7 @@ void warnDroppedMaterialFeatures(const aiMaterial* am, const Material& m, Scene&
         warn("specular colour dropped (Lambert)");
     // A principled material from a Phong one (readPhongSpecular) took the colour; one from
     // metallic-roughness keys (spec-gloss glTF, OBJ Pm/Pr with Ks) did not.
-    aiColor3D base;
-    float metallic = 0;
-    const bool metallicRoughness = am->Get(AI_MATKEY_BASE_COLOR, base) == AI_SUCCESS ||
-                                   factor(AI_MATKEY_METALLIC_FACTOR, metallic);
-    if (principled && metallicRoughness && statesSpecular &&
+    if (principled && statesMetallicRoughness(am) && statesSpecular &&
         (specular.r != specular.g || specular.g != specular.b || specular.r != 1))
         warn("specular colour tint dropped (KHR_materials_specular colour; its factor is kept)");
 }

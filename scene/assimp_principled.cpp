@@ -39,6 +39,13 @@ void readPrincipledLayers(
 
 }  // namespace
 
+bool statesMetallicRoughness(const aiMaterial* am) {
+    aiColor3D base;
+    float metallic = 0;
+    return am->Get(AI_MATKEY_BASE_COLOR, base) == AI_SUCCESS ||
+           (am->Get(AI_MATKEY_METALLIC_FACTOR, metallic) == AI_SUCCESS && std::isfinite(metallic));
+}
+
 bool readPrincipled(const aiMaterial* am, bool gltf, Material& m) {
     // Get() overwrites its argument even when the key is missing: only a success counts.
     auto factor = [&](const char* key, unsigned type, unsigned index, float& out) {
@@ -47,11 +54,11 @@ bool readPrincipled(const aiMaterial* am, bool gltf, Material& m) {
         out = v;
         return true;
     };
+    if (!statesMetallicRoughness(am)) return false;  // a Phong/Lambert material
     aiColor3D base;
     bool statesBase = am->Get(AI_MATKEY_BASE_COLOR, base) == AI_SUCCESS;
     float metallic = 1.0f;  // glTF's default
-    bool statesMetallic = factor(AI_MATKEY_METALLIC_FACTOR, metallic);
-    if (!statesBase && !statesMetallic) return false;  // a Phong/Lambert material
+    factor(AI_MATKEY_METALLIC_FACTOR, metallic);
     m.kind = MaterialKind::Principled;
     if (statesBase) m.albedo = Color(base.r, base.g, base.b);
     m.metallic = std::clamp(metallic, 0.0f, 1.0f);

@@ -62,6 +62,8 @@ int addTextureSource(Scene& scene, TextureSource&& source);
 // sheen; glTF: the ior) when the Assimp material states a glTF base colour or a metallic factor;
 // false, m unchanged, otherwise.
 bool readPrincipled(const aiMaterial* am, bool gltf, Material& m);
+// Whether the material states a glTF base colour or a metallic factor (readPrincipled's test).
+bool statesMetallicRoughness(const aiMaterial* am);
 
 // A Phong material with a specular colour as Blender's importers make it, so that it shows the
 // highlight Cycles shows: a principled dielectric (base colour: the diffuse colour) whose specular

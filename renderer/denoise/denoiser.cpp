@@ -3,6 +3,7 @@
 #include <tbb/task_arena.h>
 
 #include <cmath>
+#include <iterator>
 #include <string>
 
 #include "renderer/denoise/nl_means.h"
@@ -58,12 +59,19 @@ struct FilterPair {
     Image a, b;  // half A and half B filtered
 };
 
-// Step 2 and 3's estimate: each half regressed with the other as guide and features.
-FilterPair regressHalves(const Image colour[2], const Image features[2], const Image& variance,
-                         const Options& o, float k) {
-    NlMeansParams p{o.patchRadius, o.windowRadius, k, 2.0f};  // a half's variance: twice the mean's
-    return {collaborativeRegression(colour[0], colour[1], features[1], variance, p),
-            collaborativeRegression(colour[1], colour[0], features[0], variance, p)};
+// Step 2 and 3's estimate at every bandwidth: each half regressed with the other as guide and
+// features.
+std::vector<FilterPair> regressHalves(const Image colour[2], const Image features[2],
+                                      const Image& variance, const Options& o) {
+    // The weights' guide is a half: its variance is twice the mean's.
+    RegressionParams p{{o.patchRadius, o.windowRadius, 1.0f, 2.0f},
+                       {std::begin(kBandwidths), std::end(kBandwidths)},
+                       o.fitStride};
+    std::vector<Image> a = collaborativeRegression(colour[0], colour[1], features[1], variance, p);
+    std::vector<Image> b = collaborativeRegression(colour[1], colour[0], features[0], variance, p);
+    std::vector<FilterPair> pairs;
+    for (size_t k = 0; k < a.size(); ++k) pairs.push_back({std::move(a[k]), std::move(b[k])});
+    return pairs;
 }
 
 // The MSE of the pair's mean, estimated from the halves (each filtered half against the other
@@ -81,6 +89,20 @@ Image estimatedMse(const Image colour[2], const FilterPair& f, const Image& vari
 
 Image smoothedMap(const Image& map, const Image& guide, const Image& variance, const Options& o) {
     return nlMeans(map, guide, variance, {1, o.mseWindow, 1.0f, 1.0f});
+}
+
+// Both MSE maps smoothed with one set of weights (the same guide): side by side as channels.
+void smoothMaps(Image mse[2], const Image& guide, const Image& variance, const Options& o) {
+    Image both(guide.width, guide.height, 6);
+    for (size_t p = 0; p < both.pixels(); ++p)
+        for (int c = 0; c < 3; ++c)
+            for (int b = 0; b < 2; ++b)
+                both.values[p * 6 + size_t(3 * b + c)] = mse[b].values[p * 3 + size_t(c)];
+    both = smoothedMap(both, guide, variance, o);
+    for (size_t p = 0; p < both.pixels(); ++p)
+        for (int c = 0; c < 3; ++c)
+            for (int b = 0; b < 2; ++b)
+                mse[b].values[p * 3 + size_t(c)] = both.values[p * 6 + size_t(3 * b + c)];
 }
 
 std::vector<Color> runNfor(const Halves& in, const Options& o) {
@@ -103,13 +125,10 @@ std::vector<Color> runNfor(const Halves& in, const Options& o) {
                          nlMeans(features[1], features[0], featureVariance, featureParams)};
 
     // 2, 3. Two bandwidths, their MSE, the per-pixel choice.
-    FilterPair pass[2];
+    std::vector<FilterPair> pass = regressHalves(colour, filtered, colourVariance, o);
     Image mse[2];
-    for (int b = 0; b < 2; ++b) {
-        pass[b] = regressHalves(colour, filtered, colourVariance, o, kBandwidths[b]);
-        mse[b] = smoothedMap(estimatedMse(colour, pass[b], colourVariance), colourMean,
-                             colourVariance, o);
-    }
+    for (int b = 0; b < 2; ++b) mse[b] = estimatedMse(colour, pass[size_t(b)], colourVariance);
+    smoothMaps(mse, colourMean, colourVariance, o);
     Image choice(w, h, 3);
     for (size_t i = 0; i < choice.values.size(); ++i)
         choice.values[i] = mse[0].values[i] < mse[1].values[i] ? 0.0f : 1.0f;
@@ -127,8 +146,10 @@ std::vector<Color> runNfor(const Halves& in, const Options& o) {
     Image finalFeatures =
         nlMeans(filteredMean, filteredMean, filteredVariance, {o.patchRadius, 2, 0.5f, 1.0f});
     meanAndVariance(chosen[0], chosen[1], combined, combinedVariance);
-    Image result = collaborativeRegression(combined, combined, finalFeatures, combinedVariance,
-                                           {o.patchRadius, o.windowRadius, 1.0f, 1.0f});
+    Image result =
+        collaborativeRegression(combined, combined, finalFeatures, combinedVariance,
+                                {{o.patchRadius, o.windowRadius, 1.0f, 1.0f}, {1.0f}, o.fitStride})
+            .front();
 
     std::vector<Color> out(result.pixels());
     for (size_t p = 0; p < out.size(); ++p) {
@@ -169,7 +190,8 @@ std::string describe(const Options& o) {
     return "NFOR (Bitterli et al. 2016): first-order regression on albedo, normal, depth from "
            "the even/odd half-buffers; window " +
            std::to_string(window) + "x" + std::to_string(window) + ", patch " +
-           std::to_string(patch) + "x" + std::to_string(patch) + ", bandwidths 0.5 and 1";
+           std::to_string(patch) + "x" + std::to_string(patch) +
+           ", bandwidths 0.5 and 1, fits every " + std::to_string(o.fitStride) + " pixels";
 }
 
 }  // namespace kiln::denoise

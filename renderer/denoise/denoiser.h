@@ -33,8 +33,9 @@ struct Options {
     int threads = 0;        // 0: all cores
     int windowRadius = 4;   // the regression's window: (2R+1)^2 pixels
     int patchRadius = 3;    // NL-means patches: (2F+1)^2
-    int featureWindow = 5;  // the feature prefilter's window radius
-    int mseWindow = 5;      // the MSE and selection maps' smoothing window radius
+    int featureWindow = 4;  // the feature prefilter's window radius
+    int mseWindow = 3;      // the MSE and selection maps' smoothing window radius
+    int fitStride = 2;      // regression fits at every fitStride-th pixel in x and y
 };
 
 // "" when the halves can be denoised, else what is wrong with them.

@@ -20,22 +20,29 @@ struct NlMeansParams {
 
 // The weights of every neighbour offset for the pixels of one tile: weight(o, x, y) for offset o
 // (row-major over [-R, R]^2) and tile pixel (x, y); 0 where the neighbour lies outside the image.
+// The patch distances are kept, so weights at another bandwidth cost only an exp each.
 class TileWeights {
   public:
-    // guide and variance have the same channels (variance: of each guide value).
+    // The patch distances; guide and variance have the same channels (variance: of each guide
+    // value). params.k is not used: weigh() applies a bandwidth.
     void compute(const Image& guide, const Image& variance, const Rect& tile,
                  const NlMeansParams& params);
+    // The weights at bandwidth k.
+    void weigh(float k);
     int offsets() const { return (2 * radius_ + 1) * (2 * radius_ + 1); }
-    const float* offset(int o) const { return &weights_[size_t(o) * pixels_]; }
+    const float* offset(int o) const { return &weights_[size_t(o) * plane_]; }
 
   private:
     void copyRegion(const Image& guide, const Image& variance, const Rect& tile, int margin,
                     float varianceScale);
     void patchSums(int tw, int th, int pw, int ph, int F);
-    int radius_ = 0, regionWidth_ = 0;
-    size_t pixels_ = 0;
+    Rect tile_;
+    int radius_ = 0, regionWidth_ = 0, imageWidth_ = 0, imageHeight_ = 0;
+    size_t pixels_ = 0, plane_ = 0;      // a tile's pixels; the planes' spacing
+    std::vector<float> patchDistances_;  // the patch mean distance per offset and pixel, >= 0
     std::vector<float> weights_, distance_, rows_, patch_;
-    std::vector<float> region_;  // copyRegion: guide planes, then variance planes
+    std::vector<double> columns_;  // patchSums' running sums along columns
+    std::vector<float> region_;    // copyRegion: guide planes, then variance planes
 };
 
 // The NL-means filter of image (any channels) with weights from guide and variance; one weight

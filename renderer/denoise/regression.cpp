@@ -87,6 +87,11 @@ void gatherWindow(const Image& colour, const Image& features, int px, int py, in
 // The weighted least-squares coefficients (N x RGB) of the window.
 template <int N>
 Coefficients<N> fitWindow(const Window<N>& win) {
+    if (win.rows == 1) {  // the centre alone (no neighbour like it): the plane is its colour
+        Coefficients<N> beta{};
+        for (int c = 0; c < 3; ++c) beta[0][size_t(c)] = win.y[0][size_t(c)];
+        return beta;
+    }
     double A[N][N] = {}, b[N][3] = {};
     for (int k = 0; k < win.rows; ++k) {
         const std::array<double, size_t(N)>& x = win.x[size_t(k)];
@@ -132,51 +137,87 @@ void spreadFit(const Window<N>& win, const Coefficients<N>& beta, Image& sum) {
 
 constexpr int kMinTile = 32;
 
+// The classes of tiles: tiles of one class lie two tiles apart, so their windows (R beyond the
+// tile) never meet and they can add into the sums in parallel.
+std::vector<std::vector<size_t>> tileClasses(size_t tiles, int tilesX) {
+    std::vector<std::vector<size_t>> classes(4);
+    for (size_t t = 0; t < tiles; ++t)
+        classes[size_t(int(t % size_t(tilesX)) % 2 + 2 * (int(t / size_t(tilesX)) % 2))].push_back(
+            t);
+    return classes;
+}
+
+// Below this weight of the grid's fits (as the pixel's own weights estimate it) a pixel gets a
+// fit of its own: the grid's planes, evaluated away from their centres, would extrapolate there.
+constexpr float kMinCoverage = 1.0f;
+
+// Whether the pixel is a fit centre: on the grid of every stride-th pixel, or too little like the
+// grid's centres around it.
+template <typename WeightAt>
+bool isCentre(int px, int py, int R, int stride, WeightAt weightAt) {
+    if (px % stride == 0 && py % stride == 0) return true;
+    float coverage = 0;
+    for (int dy = -R + (stride - (py - R) % stride) % stride; dy <= R; dy += stride)
+        for (int dx = -R + (stride - (px - R) % stride) % stride; dx <= R; dx += stride)
+            coverage += weightAt(dx, dy);
+    return coverage < kMinCoverage;
+}
+
+// Each sum's weighted fits over its weight; a pixel no fit reached keeps its colour.
+Image fitsOverWeights(const Image& sum, const Image& colour) {
+    Image out(sum.width, sum.height, 3);
+    for (size_t p = 0; p < out.pixels(); ++p)
+        for (int c = 0; c < 3; ++c) {
+            const float weight = sum.values[p * 4 + 3];
+            out.values[p * 3 + c] =
+                weight > 0 ? sum.values[p * 4 + c] / weight : colour.values[p * 3 + c];
+        }
+    return out;
+}
+
 // N: the regressors, 3 + features, zero-padded to a size the loops unroll for.
 template <int N>
-Image regress(const Image& colour, const Image& guide, const Image& features, const Image& variance,
-              const NlMeansParams& params) {
-    const int w = colour.width, h = colour.height, R = params.windowRadius;
-    // Tiles of one class lie two tiles apart: their windows (R beyond the tile) never meet.
+std::vector<Image> regress(const Image& colour, const Image& guide, const Image& features,
+                           const Image& variance, const RegressionParams& params) {
+    const int w = colour.width, h = colour.height, R = params.weights.windowRadius;
+    const int stride = params.fitStride;
     const int tileSize = std::max(kMinTile, 2 * R);
     const std::vector<Rect> tiles = tilesOf(w, h, tileSize);
-    const int tilesX = (w + tileSize - 1) / tileSize;
-    Image sum(w, h, 4);  // weighted fits RGB, weights
+    std::vector<Image> sums(params.bandwidths.size(), Image(w, h, 4));  // weighted fits, weights
     tbb::enumerable_thread_specific<TileWeights> scratch;
     tbb::enumerable_thread_specific<Window<N>> windows;
-    for (int cls = 0; cls < 4; ++cls) {
-        std::vector<size_t> ofClass;
-        for (size_t t = 0; t < tiles.size(); ++t)
-            if (int(t % size_t(tilesX)) % 2 == cls % 2 && int(t / size_t(tilesX)) % 2 == cls / 2)
-                ofClass.push_back(t);
+    for (const std::vector<size_t>& ofClass :
+         tileClasses(tiles.size(), (w + tileSize - 1) / tileSize))
         tbb::parallel_for(size_t(0), ofClass.size(), [&](size_t i) {
             const Rect& tile = tiles[ofClass[i]];
             TileWeights& weights = scratch.local();
-            weights.compute(guide, variance, tile, params);
-            const int tw = tile.width();
+            weights.compute(guide, variance, tile, params.weights);
             Window<N>& win = windows.local();
-            for (int py = tile.y0; py < tile.y1; ++py)
-                for (int px = tile.x0; px < tile.x1; ++px) {
-                    size_t local = size_t(py - tile.y0) * tw + size_t(px - tile.x0);
-                    auto weightAt = [&](int dx, int dy) {
-                        return weights.offset((dy + R) * (2 * R + 1) + dx + R)[local];
-                    };
-                    gatherWindow(colour, features, px, py, R, weightAt, win);
-                    spreadFit(win, fitWindow(win), sum);
-                }
+            for (size_t b = 0; b < sums.size(); ++b) {
+                weights.weigh(params.bandwidths[b]);
+                for (int py = tile.y0; py < tile.y1; ++py)
+                    for (int px = tile.x0; px < tile.x1; ++px) {
+                        size_t local =
+                            size_t(py - tile.y0) * size_t(tile.width()) + size_t(px - tile.x0);
+                        auto weightAt = [&](int dx, int dy) {
+                            return weights.offset((dy + R) * (2 * R + 1) + dx + R)[local];
+                        };
+                        if (!isCentre(px, py, R, stride, weightAt)) continue;
+                        gatherWindow(colour, features, px, py, R, weightAt, win);
+                        spreadFit(win, fitWindow(win), sums[b]);
+                    }
+            }
         });
-    }
-    Image out(w, h, 3);
-    for (size_t p = 0; p < out.pixels(); ++p)
-        for (int c = 0; c < 3; ++c)
-            out.values[p * 3 + c] = sum.values[p * 4 + c] / sum.values[p * 4 + 3];
+    std::vector<Image> out;
+    for (const Image& sum : sums) out.push_back(fitsOverWeights(sum, colour));
     return out;
 }
 
 }  // namespace
 
-Image collaborativeRegression(const Image& colour, const Image& guide, const Image& features,
-                              const Image& variance, const NlMeansParams& params) {
+std::vector<Image> collaborativeRegression(const Image& colour, const Image& guide,
+                                           const Image& features, const Image& variance,
+                                           const RegressionParams& params) {
     // The film's seven features (half_buffers.h) take the unrolled path.
     if (features.channels == 7) return regress<10>(colour, guide, features, variance, params);
     return regress<kMaxColumns>(colour, guide, features, variance, params);

@@ -1,6 +1,7 @@
 // The accuracy tool's statistics on synthetic images with known answers, and a smoke run of the
 // sweep.
 #include <fstream>
+#include <random>
 
 #include "renderer/validation/accuracy.h"
 #include "test_support.h"
@@ -35,6 +36,55 @@ TEST(AccuracyStats, LogLogSlope) {
     EXPECT_NEAR(logLogSlope(x, z), -0.5, 1e-12);
     EXPECT_EQ(logLogSlope({1.0}, {1.0}), 0.0);  // one point fits no line
     EXPECT_NEAR(efficiency(0.01, 2.0), 50.0, 1e-9);
+}
+
+// A 64x64 checker of 8-pixel cells: albedo 0.2 and 0.8, the image the albedo times 2.
+struct Checker {
+    Image image;
+    std::vector<Color> albedo;
+    Checker() : image(flat(64, 64, 0)) {
+        for (int y = 0; y < 64; ++y)
+            for (int x = 0; x < 64; ++x) {
+                const float a = ((x / 8 + y / 8) % 2) ? 0.8f : 0.2f;
+                albedo.emplace_back(a);
+                image.pixels[size_t(y) * 64 + size_t(x)] = Color(2 * a);
+            }
+    }
+};
+
+TEST(AccuracyStats, AlbedoEdgeContrastFallsWhenEdgesBlur) {
+    Checker c;
+    EXPECT_NEAR(albedoEdgeContrast(c.image, c.image, c.albedo), 1.0, 1e-12);
+    // A horizontal 3-pixel box blur. A step across a vertical edge becomes a third of itself;
+    // a step across a horizontal edge stays whole except in the 14 of 64 columns beside a
+    // vertical edge (7 edges, a column each side), where the blur mixed both cells: a third.
+    // As many pairs cross vertical edges as horizontal ones.
+    Image blurred = c.image;
+    for (int y = 0; y < 64; ++y)
+        for (int x = 1; x < 63; ++x) {
+            Color sum(0.0f);
+            for (int d = -1; d <= 1; ++d) sum += c.image.pixels[size_t(y) * 64 + size_t(x + d)];
+            blurred.pixels[size_t(y) * 64 + size_t(x)] = sum / 3.0f;
+        }
+    const double horizontal = (50.0 + 14.0 / 3.0) / 64.0, vertical = 1.0 / 3.0;
+    EXPECT_NEAR(albedoEdgeContrast(blurred, c.image, c.albedo), (horizontal + vertical) / 2, 1e-5);
+    // No albedo edge: nothing to measure.
+    EXPECT_LT(albedoEdgeContrast(c.image, c.image, std::vector<Color>(64 * 64, Color(0.5f))), 0);
+}
+
+TEST(AccuracyStats, AlbedoEdgeContrastOfANoisyImageIsOneUpToItsNoise) {
+    Checker c;
+    Image noisy = c.image;
+    std::mt19937 rng(5);
+    const double sigma = 0.3;
+    std::normal_distribution<float> noise(0.0f, float(sigma));
+    for (Color& p : noisy.pixels) p += Color(noise(rng));
+    // Each edge pair's step gains the difference of two noises (variance 2 sigma^2); a pixel
+    // lies in at most two pairs, which at most doubles the variance of their sum.
+    const int pairs = 2 * 64 * 7;  // 7 inner edges per row and per column, 64 rows and columns
+    const double sharp = pairs * 1.2, sd = std::sqrt(2.0 * 2.0 * sigma * sigma * pairs) / sharp;
+    EXPECT_NEAR(albedoEdgeContrast(noisy, c.image, c.albedo), 1.0, 4 * sd);
+    EXPECT_GT(sd, 0.0);
 }
 
 TEST(AccuracyStats, SvgPlotHasSeriesAndTheSlopeLine) {

@@ -101,6 +101,28 @@ ErrorStats compareLayer(const Image& test, const Image& reference, const std::st
     return t && r ? compare(*t, *r, {}) : ErrorStats{};
 }
 
+double albedoEdgeContrast(const Image& test, const Image& reference,
+                          const std::vector<Color>& albedo) {
+    const int w = reference.width, h = reference.height;
+    const size_t n = size_t(w) * size_t(h);
+    if (test.pixels.size() != n || reference.pixels.size() != n || albedo.size() != n) return -1;
+    double along = 0, sharp = 0;
+    auto step = [&](size_t p, size_t q) {
+        if (std::abs(luminance(albedo[p]) - luminance(albedo[q])) <= kAlbedoEdge) return;
+        const double r = luminance(reference.pixels[p]) - luminance(reference.pixels[q]);
+        const double t = luminance(test.pixels[p]) - luminance(test.pixels[q]);
+        along += r >= 0 ? t : -t;
+        sharp += std::abs(r);
+    };
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const size_t p = size_t(y) * size_t(w) + size_t(x);
+            if (x + 1 < w) step(p, p + 1);
+            if (y + 1 < h) step(p, p + size_t(w));
+        }
+    return sharp > 0 ? along / sharp : -1;
+}
+
 double logLogSlope(const std::vector<double>& x, const std::vector<double>& y) {
     double sx = 0, sy = 0, sxx = 0, sxy = 0;
     int n = 0;

@@ -43,6 +43,16 @@ ErrorStats compareImages(const Image& test, const Image& reference);
 // AOVs).
 ErrorStats compareLayer(const Image& test, const Image& reference, const std::string& layer);
 
+// How sharp the test image keeps the reference's albedo edges (texture and geometry edges; issue
+// 29): over horizontally and vertically neighbouring pixels whose albedo luminance differs by more
+// than kAlbedoEdge, the test image's luminance step taken along the sign of the reference's step,
+// summed, over the sum of the reference's |step|. 1: as sharp as the reference; below 1: blurred.
+// Zero-mean noise leaves it unbiased (a raw render reads 1 up to its noise). Negative when the
+// albedo has no such edge.
+constexpr double kAlbedoEdge = 0.1;
+double albedoEdgeContrast(const Image& test, const Image& reference,
+                          const std::vector<Color>& albedo);
+
 // Least-squares slope of log(y) against log(x) (e.g. relMSE against spp: -1 for an unbiased
 // estimator).
 double logLogSlope(const std::vector<double>& x, const std::vector<double>& y);
@@ -67,6 +77,8 @@ struct AccuracyRun {
     uint64_t rays = 0;
     ErrorStats error;
     std::vector<std::pair<std::string, ErrorStats>> aovErrors;  // on request (--aov)
+    double edgeContrast =
+        -1;  // albedoEdgeContrast where the reference has albedo; < 0: not measured
     double efficiency = 0;
 };
 

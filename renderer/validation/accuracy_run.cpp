@@ -68,16 +68,24 @@ uint64_t fnv(const std::string& s, uint64_t h = 1469598103934665603ull) {
     return h;
 }
 
+// The reference's AOVs: those asked for, and for the denoised sweep the albedo whose edges it
+// measures (albedoEdgeContrast).
+std::string referenceAovs(const AccuracyOptions& o) {
+    if (!o.denoise || ("," + o.aovs + ",").find(",albedo,") != std::string::npos) return o.aovs;
+    return o.aovs.empty() ? "albedo" : "albedo," + o.aovs;
+}
+
 // The reference for a depth, from the cache when its key matches, else rendered and cached as EXR.
 Image reference(const Scene& scene, const Accelerator& accel, const AccuracyOptions& o, int depth,
                 double& seconds, bool& cached) {
+    const std::string aovs = referenceAovs(o);
     std::error_code ec;
     std::string key = o.scene + "|" + o.environmentMap + "|" +
                       std::to_string(fs::file_size(o.scene, ec)) + "|" +
                       std::to_string(fs::last_write_time(o.scene, ec).time_since_epoch().count()) +
                       "|" + std::to_string(o.width) + "x" + std::to_string(o.height) + "|" +
                       std::to_string(o.referenceSpp) + "|m" + std::to_string(depth) + "|" +
-                      KILN_VERSION + "|aovs:" + o.aovs;
+                      KILN_VERSION + "|aovs:" + aovs;
     std::string name = fmt::format("reference-m{}-{:016x}.exr", depth, fnv(key));
     std::string path = (fs::path(o.outDir) / name).string();
     ChannelImage cachedImage;
@@ -85,7 +93,7 @@ Image reference(const Scene& scene, const Accelerator& accel, const AccuracyOpti
         cachedImage.height == o.height && cachedImage.channel("variance.V") >= 0) {
         cached = true;
         std::vector<std::string> layers;
-        AovLayout layout(AovRequest::parse(o.aovs, depth));
+        AovLayout layout(AovRequest::parse(aovs, depth));
         for (const AovChannel& c : layout.channels())
             if (c.name.size() > 2 && c.name.compare(c.name.size() - 2, 2, ".R") == 0)
                 layers.push_back(c.name.substr(0, c.name.size() - 2));
@@ -96,7 +104,7 @@ Image reference(const Scene& scene, const Accelerator& accel, const AccuracyOpti
     s.spp = o.referenceSpp;
     RenderJobOptions options;
     options.path = s.path;
-    options.aovs = AovRequest::parse("variance," + o.aovs, depth);
+    options.aovs = AovRequest::parse("variance," + aovs, depth);
     options.settings.width = o.width, options.settings.height = o.height;
     options.settings.spp = s.spp, options.settings.seed = 999, options.settings.progress = false;
     RenderJob job(scene, accel, options);
@@ -166,7 +174,10 @@ AccuracyResult runAccuracy(const AccuracyOptions& o) {
         a.seconds = r.seconds, a.meanSpp = r.meanSpp, a.rays = r.rays;
         a.error = compareImages(r.image, ref);
         for (const std::string& layer : ref.layerNames)
-            a.aovErrors.emplace_back(layer, compareLayer(r.image, ref, layer));
+            if (r.image.layer(layer))
+                a.aovErrors.emplace_back(layer, compareLayer(r.image, ref, layer));
+        if (const std::vector<Color>* albedo = ref.layer("albedo"))
+            a.edgeContrast = albedoEdgeContrast(r.image, ref, *albedo);
         a.efficiency = efficiency(a.error.relMse, a.seconds);
         result.runs.push_back(a);
         std::fprintf(stderr, "  %-14s %-16s %8.3f s  relMSE %.4g\n", group.c_str(), label.c_str(),

@@ -192,13 +192,21 @@ struct SceneHandle {
 struct ImageData {
     LoadedScene::Result result;
     std::vector<std::string> args;  // kiln render's arguments after the scene path
-    std::once_flag filledOnce;
+    std::once_flag filledOnce, denoisedOnce;
     FilledLayers filled;
+    DenoisedFrame denoised;
+    // The frame denoised once for both layers() and write(); null without --denoise. Call
+    // without the GIL.
+    const DenoisedFrame* denoisedFrame() {
+        if (!result.command.denoise || !result.film.hasHalves()) return nullptr;
+        std::call_once(denoisedOnce, [this] {
+            denoised = denoiseFrame(result.film, result.command.job.job.settings.threads);
+        });
+        return &denoised;
+    }
     const FilledLayers& layers() {
         py::gil_scoped_release release;
-        std::call_once(filledOnce, [this] {
-            filled = fillLayers(result.film, result.command.denoise ? &result.command : nullptr);
-        });
+        std::call_once(filledOnce, [this] { filled = fillLayers(result.film, denoisedFrame()); });
         return filled;
     }
 };
@@ -585,7 +593,7 @@ PYBIND11_MODULE(_kiln, m) {
                 {
                     py::gil_scoped_release release;
                     std::lock_guard lock(writing);
-                    paths = writeImage(d.result, base, heat);
+                    paths = writeImage(d.result, base, heat, d.denoisedFrame());
                 }
                 py::dict written("exr"_a = paths.exr, "preview"_a = paths.preview);
                 if (!heat.empty()) written["heatmap"] = heat;

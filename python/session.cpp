@@ -153,7 +153,7 @@ void substituteDenoised(FilledLayers& out, size_t pixels, const std::string& nam
 
 }  // namespace
 
-FilledLayers fillLayers(const Film& film, const RenderCommand* denoised) {
+FilledLayers fillLayers(const Film& film, const DenoisedFrame* denoised) {
     FilledLayers out;
     out.layers = exrLayers(film);
     const size_t pixels = size_t(film.width()) * size_t(film.height());
@@ -176,23 +176,22 @@ FilledLayers fillLayers(const Film& film, const RenderCommand* denoised) {
         }
     });
     if (!denoised) return out;
-    ExrOptions exr;
-    Metadata meta;
-    denoiseForOutputs(film, denoised->job.job.settings.threads, exr, meta);
-    substituteDenoised(out, pixels, "", *exr.denoised);
-    for (const auto& [name, colours] : exr.denoisedLayers)
+    substituteDenoised(out, pixels, "", *denoised->exr.denoised);
+    for (const auto& [name, colours] : denoised->exr.denoisedLayers)
         substituteDenoised(out, pixels, name, *colours);
     return out;
 }
 
 OutputPaths writeImage(const LoadedScene::Result& image, const std::string& output,
-                       std::string& heatPath) {
+                       std::string& heatPath, const DenoisedFrame* denoised) {
     RenderCommand c = image.command;
     c.output = output;
     OutputPaths out = outputPaths(c, image.metadata.at("scene"));
     std::string errors;
-    writeOutputs(c, out, image.film, image.metadata, heatPath,
-                 [&errors](const std::string& e) { errors += (errors.empty() ? "" : "; ") + e; });
+    writeOutputs(
+        c, out, image.film, image.metadata, heatPath,
+        [&errors](const std::string& e) { errors += (errors.empty() ? "" : "; ") + e; }, nullptr,
+        denoised);
     if (!errors.empty()) throw std::runtime_error(errors);
     return out;
 }

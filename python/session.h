@@ -91,15 +91,15 @@ struct FilledLayers {
     std::vector<size_t> offsets;
     std::vector<float> values;
 };
-// With `denoised` (a render with --denoise): the beauty's R, G, B are the denoised image, the raw
-// one the layer "noisy", and each --denoise-aovs layer likewise (its raw one "noisy.LAYER"), as
-// the EXR kiln render --denoise writes holds them.
-FilledLayers fillLayers(const Film& film, const RenderCommand* denoised = nullptr);
+// With `denoised` (a render with --denoise, its frame denoised): the beauty's R, G, B are the
+// denoised image, the raw one the layer "noisy", and each --denoise-aovs layer likewise (its raw
+// one "noisy.LAYER"), as the EXR kiln render --denoise writes holds them.
+FilledLayers fillLayers(const Film& film, const DenoisedFrame* denoised = nullptr);
 
 // Writes OUT.exr, OUT.png (and the heat map with -a, --noise-threshold or --heatmap) as kiln
 // render -o OUT does: the paths written. Throws std::runtime_error naming every failed write,
 // UsageError when the directory does not exist.
 OutputPaths writeImage(const LoadedScene::Result& image, const std::string& output,
-                       std::string& heatPath);
+                       std::string& heatPath, const DenoisedFrame* denoised = nullptr);
 
 }  // namespace kiln::python

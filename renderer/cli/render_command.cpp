@@ -287,10 +287,16 @@ Metadata renderMetadata(const RenderJob& job, const RenderCommand& c, const std:
     return meta;
 }
 
+DenoisedFrame denoiseFrame(const Film& film, int threads) {
+    DenoisedFrame frame;
+    denoiseForOutputs(film, threads, frame.exr, frame.meta);
+    return frame;
+}
+
 int writeOutputs(const RenderCommand& c, const OutputPaths& out, const Film& film,
                  const Metadata& meta, std::string& heatPath,
                  const std::function<void(const std::string&)>& onError,
-                 std::vector<OutputWrite>* writes) {
+                 std::vector<OutputWrite>* writes, const DenoisedFrame* denoised) {
     int failures = 0;
     auto attempt = [&failures, &onError, writes](const char* kind, const std::string& path,
                                                  auto&& write) {
@@ -311,7 +317,10 @@ int writeOutputs(const RenderCommand& c, const OutputPaths& out, const Film& fil
     Metadata denoisedMeta = meta;
     if (c.denoise && film.hasHalves()) {
         try {  // a denoiser failure is an error, but the raw image is still written
-            denoiseForOutputs(film, c.job.job.settings.threads, exr, denoisedMeta);
+            const DenoisedFrame frame =
+                denoised ? *denoised : denoiseFrame(film, c.job.job.settings.threads);
+            exr.denoised = frame.exr.denoised, exr.denoisedLayers = frame.exr.denoisedLayers;
+            for (const auto& [key, value] : frame.meta) denoisedMeta[key] = value;
         } catch (const std::exception& e) {
             logError("{}: denoising failed: {}", out.exr, e.what());
             ++failures;

@@ -96,13 +96,25 @@ OutputPaths outputPaths(const RenderCommand& c, const std::string& scenePath);
 Metadata renderMetadata(const RenderJob& job, const RenderCommand& c, const std::string& scenePath,
                         const RenderStats& stats, const Film& film);
 
+// A --denoise render's denoised images (exr.denoised, exr.denoisedLayers) and the metadata
+// entries that say so, as denoiseForOutputs makes them: made once where a caller needs them
+// besides the files (the Python module's kiln.Image).
+struct DenoisedFrame {
+    ExrOptions exr;
+    Metadata meta;
+};
+// The film's denoised frame for a render with --denoise (threads: the render's -t).
+DenoisedFrame denoiseFrame(const Film& film, int threads);
+
 // Writes OUT.exr, OUT.png and, with -a, --noise-threshold or --heatmap, OUT.samples.png (its path
 // in heatPath), each on its own: one failing write does not stop the others. Each failure's
 // message goes to onError (default: logged as an error); returns how many failed. writes, when
-// given, receives each file and how its write went.
+// given, receives each file and how its write went. With --denoise, `denoised` (when given) is
+// the film's denoised frame, else it is denoised here.
 int writeOutputs(const RenderCommand& c, const OutputPaths& out, const Film& film,
                  const Metadata& meta, std::string& heatPath,
                  const std::function<void(const std::string&)>& onError = {},
-                 std::vector<OutputWrite>* writes = nullptr);
+                 std::vector<OutputWrite>* writes = nullptr,
+                 const DenoisedFrame* denoised = nullptr);
 
 }  // namespace kiln

@@ -103,3 +103,11 @@ def test_denoise_gives_the_denoised_beauty_and_keeps_the_noisy_one_as_kiln_rende
     assert same_bits(image.aov("direct"), layer_of(pixels, names, "direct"))
     assert same_bits(image.aov("noisy.direct"), layer_of(pixels, names, "noisy.direct"))
     assert not np.array_equal(image.beauty[:, :, :3], image.aov("noisy"))
+    # Denoised once for reading and writing: each write carries that one denoising's time, and
+    # its pixels.
+    image.write(tmp_path / "a")
+    image.write(tmp_path / "b")
+    a_pixels, a_names, a_header = read_exr(tmp_path / "a.exr")
+    b_header = read_exr(tmp_path / "b.exr")[2]
+    assert a_header["kiln:denoise_seconds"] == b_header["kiln:denoise_seconds"]
+    assert same_bits(layer_of(a_pixels, a_names, ""), image.beauty)

@@ -53,11 +53,15 @@ void denoiseForOutputs(const Film& film, int threads, ExrOptions& exr, Metadata&
     denoise::Options options;
     options.threads = threads;
     auto start = std::chrono::steady_clock::now();
-    exr.denoised = denoiseFilm(film, options);
-    std::string layers;
     const std::vector<DenoisedLayer>& denoised = film.layout().denoisedLayers();
+    // The beauty, then each layer, sharing the prefiltered features.
+    std::vector<std::vector<Color>> images = denoise::denoiseAll(
+        denoised.size() + 1, [&film](size_t i) { return halvesOf(film, int(i) - 1); }, options);
+    exr.denoised = std::make_shared<const std::vector<Color>>(std::move(images[0]));
+    std::string layers;
     for (size_t l = 0; l < denoised.size(); ++l) {
-        exr.denoisedLayers[denoised[l].name] = denoiseFilm(film, options, int(l));
+        exr.denoisedLayers[denoised[l].name] =
+            std::make_shared<const std::vector<Color>>(std::move(images[l + 1]));
         if (!layers.empty()) layers += ',';
         layers += denoised[l].name;
     }
@@ -198,18 +202,18 @@ double denoiseExr(const std::string& in, const std::string& out, const denoise::
         denoisedLight ? layersIn(exr, denoisedLight, in) : std::vector<std::string>{};
     for (const std::string& layer : layers) halvesOf(exr, in, layer);  // checked before any work
     auto start = std::chrono::steady_clock::now();
-    std::vector<Color> denoised = denoise::denoise(halves, options);
+    // The beauty, then each layer, sharing the prefiltered features.
+    std::vector<std::vector<Color>> denoised = denoise::denoiseAll(
+        layers.size() + 1,
+        [&](size_t i) { return i == 0 ? halves : halvesOf(exr, in, layers[i - 1]); }, options);
     double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    replaceWithDenoised(exr, "", denoised);
+    replaceWithDenoised(exr, "", denoised[0]);
     std::string names;
-    for (const std::string& layer : layers) {
-        start = std::chrono::steady_clock::now();
-        denoised = denoise::denoise(halvesOf(exr, in, layer), options);
-        seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        replaceWithDenoised(exr, layer + ".", denoised);
+    for (size_t l = 0; l < layers.size(); ++l) {
+        replaceWithDenoised(exr, layers[l] + ".", denoised[l + 1]);
         if (!names.empty()) names += ',';
-        names += layer;
+        names += layers[l];
     }
     exr.setAttribute("kiln:denoised", denoise::describe(options));
     if (!names.empty()) exr.setAttribute("kiln:denoised_aovs", names);

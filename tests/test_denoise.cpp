@@ -72,6 +72,24 @@ TEST(Denoiser, BitIdenticalForAnyThreadCount) {
     }
 }
 
+// A beauty and a light-path layer share the features: denoised together (the features
+// prefiltered once) each comes back with the bits it has denoised alone.
+TEST(Denoiser, ImagesSharingTheFeaturesGiveWhatEachGivesAlone) {
+    Halves beauty = syntheticHalves(70, 40, 0.5f, 0.05f, 7);
+    Halves layer = syntheticHalves(70, 40, 0.8f, 0.05f, 9);
+    for (int h = 0; h < 2; ++h)  // the layer's colour and variance, the beauty's features
+        for (size_t p = 0; p < layer.half[h].pixels(); ++p)
+            for (int c = 6; c < kChannels; ++c)
+                layer.half[h].values[p * kChannels + size_t(c)] =
+                    beauty.half[h].values[p * kChannels + size_t(c)];
+    const Halves* frames[2] = {&beauty, &layer};
+    std::vector<std::vector<Color>> both =
+        denoise::denoiseAll(2, [&frames](size_t i) { return *frames[i]; });
+    EXPECT_TRUE(sameBits(both[0], denoise::denoise(beauty)));
+    EXPECT_TRUE(sameBits(both[1], denoise::denoise(layer)));
+    EXPECT_FALSE(sameBits(both[0], both[1]));
+}
+
 TEST(Denoiser, AConstantImageComesBackUnchanged) {
     Halves halves = syntheticHalves(40, 36, 0.0f, 0.1f);  // noisy features
     for (Image& half : halves.half)

@@ -3,7 +3,9 @@
 #include <tbb/task_arena.h>
 
 #include <cmath>
+#include <functional>
 #include <iterator>
+#include <optional>
 #include <string>
 
 #include "renderer/denoise/nl_means.h"
@@ -105,24 +107,40 @@ void smoothMaps(Image mse[2], const Image& guide, const Image& variance, const O
                 mse[b].values[p * 3 + size_t(c)] = both.values[p * 6 + size_t(3 * b + c)];
 }
 
-std::vector<Color> runNfor(const Halves& in, const Options& o) {
-    const int w = in.half[0].width, h = in.half[0].height;
-    const int nf = in.half[0].channels - kFeatures;
-    Image colour[2], features[2];
-    for (int k = 0; k < 2; ++k) {
-        colour[k] = channelsOf(in.half[k], kColour, 3);
-        features[k] = channelsOf(in.half[k], kFeatures, nf);
-    }
-    Image colourMean, colourVariance, featureMean, featureVariance;
-    meanAndVariance(colour[0], colour[1], colourMean, colourVariance);
-    meanAndVariance(features[0], features[1], featureMean, featureVariance);
-    colourVariance = sampleVariance(in, boxMean(colourVariance, kVarianceRadius));
-    featureVariance = boxMean(featureVariance, kVarianceRadius);
+// The features prefiltered once for every colour image of a frame (steps 1 and 4's feature
+// filter).
+struct Prefiltered {
+    Image filtered[2];    // each half's features, guided by the other half
+    Image finalFeatures;  // the filtered halves' mean, filtered once more
+};
 
+Prefiltered prefilter(const Halves& in, const Options& o) {
+    const int nf = in.half[0].channels - kFeatures;
+    Image features[2];
+    for (int k = 0; k < 2; ++k) features[k] = channelsOf(in.half[k], kFeatures, nf);
+    Image featureMean, featureVariance;
+    meanAndVariance(features[0], features[1], featureMean, featureVariance);
+    featureVariance = boxMean(featureVariance, kVarianceRadius);
     // 1. Feature prefiltering, each half guided by the other.
     NlMeansParams featureParams{o.patchRadius, o.featureWindow, 0.5f, 2.0f};
-    Image filtered[2] = {nlMeans(features[0], features[1], featureVariance, featureParams),
-                         nlMeans(features[1], features[0], featureVariance, featureParams)};
+    Prefiltered p{{nlMeans(features[0], features[1], featureVariance, featureParams),
+                   nlMeans(features[1], features[0], featureVariance, featureParams)},
+                  {}};
+    Image filteredMean, filteredVariance;
+    meanAndVariance(p.filtered[0], p.filtered[1], filteredMean, filteredVariance);
+    p.finalFeatures =
+        nlMeans(filteredMean, filteredMean, filteredVariance, {o.patchRadius, 2, 0.5f, 1.0f});
+    return p;
+}
+
+std::vector<Color> runNfor(const Halves& in, const Prefiltered& features, const Options& o) {
+    const int w = in.half[0].width, h = in.half[0].height;
+    Image colour[2];
+    for (int k = 0; k < 2; ++k) colour[k] = channelsOf(in.half[k], kColour, 3);
+    Image colourMean, colourVariance;
+    meanAndVariance(colour[0], colour[1], colourMean, colourVariance);
+    colourVariance = sampleVariance(in, boxMean(colourVariance, kVarianceRadius));
+    const Image* filtered = features.filtered;
 
     // 2, 3. Two bandwidths, their MSE, the per-pixel choice.
     std::vector<FilterPair> pass = regressHalves(colour, filtered, colourVariance, o);
@@ -141,13 +159,10 @@ std::vector<Color> runNfor(const Halves& in, const Options& o) {
     }
 
     // 4. The second pass over the averaged halves.
-    Image filteredMean, filteredVariance, combined, combinedVariance;
-    meanAndVariance(filtered[0], filtered[1], filteredMean, filteredVariance);
-    Image finalFeatures =
-        nlMeans(filteredMean, filteredMean, filteredVariance, {o.patchRadius, 2, 0.5f, 1.0f});
+    Image combined, combinedVariance;
     meanAndVariance(chosen[0], chosen[1], combined, combinedVariance);
     Image result =
-        collaborativeRegression(combined, combined, finalFeatures, combinedVariance,
+        collaborativeRegression(combined, combined, features.finalFeatures, combinedVariance,
                                 {{o.patchRadius, o.windowRadius, 1.0f, 1.0f}, {1.0f}, o.fitStride})
             .front();
 
@@ -177,12 +192,26 @@ std::string problemWith(const Halves& halves) {
     return "";
 }
 
-std::vector<Color> denoise(const Halves& halves, const Options& options) {
-    Halves clean = sanitized(halves);
+std::vector<std::vector<Color>> denoiseAll(size_t count,
+                                           const std::function<Halves(size_t)>& halvesOf,
+                                           const Options& options) {
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
-    std::vector<Color> out;
-    arena.execute([&] { out = runNfor(clean, options); });
+    std::vector<std::vector<Color>> out(count);
+    std::optional<Prefiltered> features;
+    for (size_t i = 0; i < count; ++i) {
+        Halves clean = sanitized(halvesOf(i));
+        arena.execute([&] {
+            if (!features) features = prefilter(clean, options);
+            out[i] = runNfor(clean, *features, options);
+        });
+    }
     return out;
+}
+
+std::vector<Color> denoise(const Halves& halves, const Options& options) {
+    return denoiseAll(
+               1, [&halves](size_t) { return halves; }, options)
+        .front();
 }
 
 std::string describe(const Options& o) {

@@ -14,6 +14,7 @@
 // spread.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,13 @@ std::string problemWith(const Halves& halves);
 
 // The denoised colour, row-major. Bit-identical for any thread count.
 std::vector<Color> denoise(const Halves& halves, const Options& options = {});
+
+// Several colour images of one frame that share its features (the beauty, then light-path
+// layers): halvesOf(i) gives the i-th one's halves, asked for one at a time. The features are
+// prefiltered once, from the first; each result is the one denoise() gives.
+std::vector<std::vector<Color>> denoiseAll(size_t count,
+                                           const std::function<Halves(size_t)>& halvesOf,
+                                           const Options& options = {});
 
 // One line for the EXR header: the method and its parameters.
 std::string describe(const Options& options);

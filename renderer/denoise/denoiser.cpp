@@ -23,8 +23,7 @@ constexpr float kBandwidths[2] = {0.5f, 1.0f};
 constexpr int kVarianceRadius = 2;
 
 // The halves with non-finite values replaced by 0 (variances: by "unknown").
-Halves sanitized(const Halves& in) {
-    Halves out = in;
+Halves sanitized(Halves out) {
     for (Image& half : out.half)
         for (size_t i = 0; i < half.values.size(); ++i) {
             const int c = int(i % size_t(half.channels));
@@ -122,7 +121,8 @@ Prefiltered prefilter(const Halves& in, const Options& o) {
     meanAndVariance(features[0], features[1], featureMean, featureVariance);
     featureVariance = boxMean(featureVariance, kVarianceRadius);
     // 1. Feature prefiltering, each half guided by the other.
-    NlMeansParams featureParams{o.patchRadius, o.featureWindow, 0.5f, 2.0f};
+    // Where both halves' features agree over a tile's whole reach there is nothing to filter.
+    NlMeansParams featureParams{o.patchRadius, o.featureWindow, 0.5f, 2.0f, true};
     Prefiltered p{{nlMeans(features[0], features[1], featureVariance, featureParams),
                    nlMeans(features[1], features[0], featureVariance, featureParams)},
                   {}};

@@ -143,6 +143,22 @@ void TileWeights::weigh(float k) {
         }
 }
 
+namespace {
+
+// Whether the variance is 0 everywhere within margin of the tile.
+bool noiseFree(const Image& variance, const Rect& tile, int margin) {
+    const int x0 = std::max(0, tile.x0 - margin), x1 = std::min(variance.width, tile.x1 + margin);
+    const int y0 = std::max(0, tile.y0 - margin), y1 = std::min(variance.height, tile.y1 + margin);
+    for (int y = y0; y < y1; ++y) {
+        const float* v = variance.at(x0, y);
+        for (size_t i = 0; i < size_t(x1 - x0) * size_t(variance.channels); ++i)
+            if (v[i] != 0) return false;
+    }
+    return true;
+}
+
+}  // namespace
+
 Image nlMeans(const Image& image, const Image& guide, const Image& variance,
               const NlMeansParams& params) {
     const int nc = image.channels, R = params.windowRadius;
@@ -152,6 +168,13 @@ Image nlMeans(const Image& image, const Image& guide, const Image& variance,
     tbb::enumerable_thread_specific<std::vector<double>> sums;
     tbb::parallel_for(size_t(0), tiles.size(), [&](size_t t) {
         const Rect& tile = tiles[t];
+        if (params.keepNoiseFree &&
+            noiseFree(variance, tile, params.windowRadius + params.patchRadius)) {
+            for (int y = tile.y0; y < tile.y1; ++y)
+                std::copy_n(image.at(tile.x0, y), size_t(tile.width()) * size_t(nc),
+                            out.at(tile.x0, y));
+            return;
+        }
         TileWeights& weights = scratch.local();
         weights.compute(guide, variance, tile, params);
         weights.weigh(params.k);

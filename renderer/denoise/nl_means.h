@@ -16,6 +16,9 @@ struct NlMeansParams {
     int windowRadius = 5;     // R: neighbours within (2R+1)^2
     float k = 0.5f;           // bandwidth: larger averages more
     float varianceScale = 1;  // the guide's variance is variance * varianceScale (2: a half)
+    // The image is the guide wherever the variance is 0 (features: both halves agree there): a
+    // tile whose whole reach is noise-free is kept as it is, unfiltered.
+    bool keepNoiseFree = false;
 };
 
 // The weights of every neighbour offset for the pixels of one tile: weight(o, x, y) for offset o

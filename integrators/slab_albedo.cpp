@@ -61,8 +61,11 @@ const std::array<double, kSteps + 1>& albedoByU() {
 }  // namespace
 
 HMoments hFunctionMoments(double omega) {
+    // Within 1e-8 of 1 (sqrt(1 - omega) < 1e-4) the iteration would take millions of steps; the
+    // conservative limits are within 2e-4 there.
+    if (omega > 1 - 1e-8) return {2.0, 2 / std::sqrt(3.0)};
     const Quadrature& q = gaussLegendre();
-    const double root = std::sqrt(std::max(0.0, 1 - omega));
+    const double root = std::sqrt(1 - std::max(omega, 0.0));
     // The H-equation in the form 1 / H(mu) = sqrt(1 - omega) + omega / 2 int_0^1 mu' H(mu') /
     // (mu + mu') dmu', iterated from H = 1: for omega < 1 each step shrinks the error by about
     // 1 - 2.2 sqrt(1 - omega), so the error left is below change / (2.2 sqrt(1 - omega)) (1e-10 at

@@ -22,6 +22,7 @@ TEST(SlabAlbedo, HFunctionMomentsMatchTheirClosedForms) {
     const double h1At128 = hFunctionMoments(1 - 1.0 / (128 * 128)).h1;
     const double h1At256 = hFunctionMoments(1 - 1.0 / (256 * 256)).h1;
     EXPECT_NEAR(2 * h1At256 - h1At128, 2 / std::sqrt(3.0), 1e-4);
+    EXPECT_NEAR(hFunctionMoments(1).h1, 2 / std::sqrt(3.0), 1e-12);
     EXPECT_NEAR(slabAlbedo(0), 0.0, 1e-12);  // H = 1: R = 1 - 2 (1/2)
     EXPECT_DOUBLE_EQ(slabAlbedo(1), 1.0);
 }

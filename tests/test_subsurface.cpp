@@ -134,9 +134,9 @@ TEST(Subsurface, KilnParametersAndThePlan) {
 }
 
 // A principled sphere under a uniform environment: with subsurface the light that enters it comes
-// back out (white base colour: nearly all of it), so the sphere is as bright as its diffuse twin
-// within what the walk's Lambertian exit and the albedo fit change, and never brighter than the
-// environment by more than noise.
+// back out (white base colour: a single-scattering albedo of 1, all of it), so the sphere is as
+// bright as its diffuse twin within what the walk's Lambertian exit changes, and never brighter
+// than the environment by more than noise.
 TEST(Subsurface, WhiteSubsurfaceSphereReturnsTheEnvironmentLikeItsDiffuseTwin) {
     auto render = [](float subsurface) {
         TriangleMesh sphere = test::sphereMesh(32, 64);

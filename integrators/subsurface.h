@@ -2,8 +2,8 @@
 // Subsurface Scattering for Production Path Tracing", Cycles' method): light that enters a closed
 // mesh below its specular layer walks through a homogeneous, isotropic medium whose coefficients
 // are set so that a thick slab reflects the surface's albedo with the given mean free path, until
-// it reaches the surface again; it leaves there by a Lambertian exit (next-event estimation at the
-// exit point, as Cycles).
+// it reaches the surface again (no reflection at the boundary from inside); it leaves there by a
+// Lambertian exit (next-event estimation at the exit point, as Cycles).
 #pragma once
 
 #include "integrators/medium.h"
@@ -14,16 +14,16 @@
 
 namespace kiln {
 
-// The walk's medium for a multiple-scattering albedo and a mean free path per channel, with the
-// throughput factor that goes with it (below a single-scattering albedo of 0.2 Cycles raises the
-// albedo to 0.2 and scales the throughput down by as much, so very dark albedos do not need walks
-// of hundreds of steps).
+// The walk's medium for a multiple-scattering albedo A and a mean free path d per channel, with the
+// throughput factor that goes with it. The single-scattering albedo is the one whose semi-infinite
+// medium reflects A under this walk's conventions (integrators/slab_albedo.h); the extinction is
+// Chiang et al.'s 1 / (d s(A)), s(A) = 1.9 - A + 3.5 (A - 0.8)^2. Below a single-scattering albedo
+// of 0.2 the medium is that of 0.2 (Cycles' floor, so very dark albedos need no long walks) and the
+// throughput scales what it reflects down to A.
 struct WalkMedium {
     HomogeneousMedium medium;
     Color weight{1.0f};
 };
-// Chiang et al.'s fit: single-scattering albedo alpha = 1 - exp(-5.09406 A + 2.61188 A^2 -
-// 4.31805 A^3), sigma_t = 1 / (d (1.9 - A + 3.5 (A - 0.8)^2)).
 WalkMedium walkMedium(const Color& albedo, const Color& meanFreePath);
 
 // Where a walk left the mesh: the exit point, its normal facing out of the mesh, and the walk's
@@ -34,8 +34,9 @@ struct WalkExit {
 };
 
 // A walk from the surface point `entry` (si.ng facing the side the path came from) into the mesh:
-// a cosine-distributed direction inwards, then free flights and isotropic scattering. pathBeta
-// steers the choice of the colour channel. False when the walk ends inside (absorbed, or lost).
+// a cosine-distributed direction inwards, then free flights and isotropic scattering until a flight
+// reaches the surface. pathBeta steers the choice of the colour channel. False when the walk ends
+// inside (absorbed, or lost: through a hole in the mesh or after too many steps).
 bool randomWalk(const Scene& scene, const Accelerator& accel, const SurfaceInteraction& entry,
                 const WalkMedium& walk, const Color& pathBeta, Sampler& sampler, WalkExit& exit,
                 uint64_t& rays);

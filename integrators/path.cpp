@@ -1,5 +1,6 @@
 #include "integrators/path.h"
 
+#include <algorithm>
 #include <array>
 #include <optional>
 #include <type_traits>
@@ -206,6 +207,15 @@ struct PendingLight {
 
 }  // namespace
 
+// A vertex's light samples drawn ahead (drawAhead): valid while its path's sampler is at
+// `dimension` (dimensions only grow, so no later vertex of the path matches).
+struct PathIntegrator::DrawnAhead {
+    static constexpr uint32_t kNone = ~0u;
+    uint32_t dimension = kNone;
+    Sampler after{0, 0, 0};  // the sampler past the draws
+    std::array<LightDraw, kLightChunk> draws;
+};
+
 // Scratch reused by every batch a thread traces.
 struct PathIntegrator::Scratch {
     std::vector<PathState> paths;
@@ -221,6 +231,7 @@ struct PathIntegrator::Scratch {
     std::vector<Ray> probeRays;
     std::vector<Hit> probeHits;
     std::vector<PendingLight> probes;
+    std::vector<DrawnAhead> ahead;  // per path
 };
 
 // A surface vertex of one path, as its stages see it.
@@ -252,6 +263,8 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
     thread_local Scratch scratch;
     Scratch& w = scratch;
     w.paths.assign(batch.size(), PathState{});
+    w.ahead.resize(batch.size());
+    for (DrawnAhead& a : w.ahead) a.dimension = DrawnAhead::kNone;
     size_t perVertex = size_t(rules_.lightSamplesPerVertex(opt_.lightSamples, lights_.size()));
     w.pending.reserve(batch.size() * perVertex);
     w.shadowRays.reserve(batch.size() * perVertex);
@@ -285,14 +298,19 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
         w.probeRays.clear();
 
         // Mesh data of hits a few ahead requested from memory while this one is shaded.
-        constexpr size_t kIndicesAhead = 16, kVerticesAhead = 8;
+        constexpr size_t kIndicesAhead = 16, kVerticesAhead = 8, kLightsAhead = 4;
         for (size_t j = 0; j < std::min(kIndicesAhead, w.hits.size()); ++j)
             prefetchHitIndices(scene_, w.hits[j]);
+        if constexpr (!F::media)
+            for (size_t j = 0; j < std::min(kLightsAhead, w.hits.size()); ++j)
+                drawAhead(batch, w, j, bounce);
         for (size_t j = 0; j < w.active.size(); ++j) {
             if (j + kIndicesAhead < w.hits.size())
                 prefetchHitIndices(scene_, w.hits[j + kIndicesAhead]);
             if (j + kVerticesAhead < w.hits.size())
                 prefetchHitVertices(scene_, w.hits[j + kVerticesAhead]);
+            if constexpr (!F::media)
+                if (j + kLightsAhead < w.hits.size()) drawAhead(batch, w, j + kLightsAhead, bounce);
             // With media, the boundaries a path passed through are no bounce of its.
             shadePath<F>(batch, w, j, F::media ? bounce - w.paths[w.active[j]].crossings : bounce);
         }
@@ -512,30 +530,21 @@ void PathIntegrator::shadeVertex(const Vertex& v, const B& bsdf, Scratch& w) con
 template <class F, class B>
 void PathIntegrator::sampleDirectLight(const Vertex& v, const B& bsdf, const Vec3& wo,
                                        bool lightOnly, Scratch& w) const {
-    const bool eachOnce = rules_.eachDeltaLightOnce;
     const int samples = rules_.lightSamplesPerVertex(opt_.lightSamples, lights_.size());
     // In chunks: every sample's numbers drawn (in the order a loop of single samples draws them)
     // and its first table entry asked for, then the lights sampled, then the estimates queued, so
     // the cache misses of an environment map's tables overlap instead of following one another.
-    constexpr int kChunk = 8;
-    std::array<LightDraw, kChunk> draws;
-    std::array<LightSample, kChunk> found;
-    std::array<bool, kChunk> sampled;
-    for (int k0 = 0; k0 < samples; k0 += kChunk) {
-        const int m = std::min(kChunk, samples - k0);
-        for (int j = 0; j < m; ++j) {
-            LightDraw& d = draws[size_t(j)];
-            d = {size_t(k0 + j), 1.0f, 0.5f, 0.5f};
-            if (eachOnce) continue;
-            if (lights_.size() == 1) {  // the one light: no choice to draw
-                v.sampler.skip1D();
-                d.light = 0, d.pmf = lights_.selectPmf(0);
-            } else {
-                d.light = lights_.select(v.sampler.next1D(), d.pmf);
-            }
-            auto [a, b] = v.sampler.next2D();
-            d.u1 = a, d.u2 = b;
-            lights_.prefetch(d.light, d.u1, d.u2);
+    std::array<LightDraw, kLightChunk> draws;
+    std::array<LightSample, kLightChunk> found;
+    std::array<bool, kLightChunk> sampled;
+    const DrawnAhead& ahead = w.ahead[v.path];
+    for (int k0 = 0; k0 < samples; k0 += kLightChunk) {
+        const int m = std::min(kLightChunk, samples - k0);
+        if (k0 == 0 && ahead.dimension == v.sampler.dimension()) {  // the same numbers, drawn
+            std::copy_n(ahead.draws.begin(), m, draws.begin());
+            v.sampler = ahead.after;
+        } else {
+            drawLights(v.sampler, k0, m, draws.data());
         }
         for (size_t j = 0; j < size_t(m); ++j)
             sampled[j] =
@@ -544,6 +553,39 @@ void PathIntegrator::sampleDirectLight(const Vertex& v, const B& bsdf, const Vec
         for (size_t j = 0; j < size_t(m); ++j)
             if (sampled[j]) queueLightSample<F>(v, bsdf, wo, lightOnly, draws[j], found[j], w);
     }
+}
+
+void PathIntegrator::drawLights(Sampler& sampler, int k0, int m, LightDraw* out) const {
+    for (int j = 0; j < m; ++j) {
+        LightDraw& d = out[j];
+        d = {size_t(k0 + j), 1.0f, 0.5f, 0.5f};
+        if (rules_.eachDeltaLightOnce) continue;
+        if (lights_.size() == 1) {  // the one light: no choice to draw
+            sampler.skip1D();
+            d.light = 0, d.pmf = lights_.selectPmf(0);
+        } else {
+            d.light = lights_.select(sampler.next1D(), d.pmf);
+        }
+        auto [a, b] = sampler.next2D();
+        d.u1 = a, d.u2 = b;
+        lights_.prefetch(d.light, d.u1, d.u2);
+    }
+}
+
+// Only where the vertex's first numbers are its light samples' (no media: a free flight draws
+// first) and they fit one chunk; a guess that the vertex then does not take (a delta BSDF, say)
+// costs the draws and nothing else.
+void PathIntegrator::drawAhead(std::span<CameraSample> batch, Scratch& w, size_t k,
+                               int bounce) const {
+    const int samples = rules_.lightSamplesPerVertex(opt_.lightSamples, lights_.size());
+    if (!useNee_ || rules_.eachDeltaLightOnce || samples > kLightChunk || !w.hits[k].valid() ||
+        bounce >= opt_.maxDepth || !rules_.gathersAt(bounce))
+        return;
+    const uint32_t pi = w.active[k];
+    DrawnAhead& a = w.ahead[pi];
+    a.after = batch[pi].sampler;
+    a.dimension = a.after.dimension();
+    drawLights(a.after, 0, samples, a.draws.data());
 }
 
 // One light sample's estimate, its shadow ray queued (MIS-weighted against the BSDF's sampling).

@@ -26,6 +26,17 @@ bool EnvironmentEmitter::sample(const Vec3&, float u1, float u2, LightSample& ou
     return maxComponent(out.Li) > 0;
 }
 
+Color EnvironmentEmitter::escaped(const Vec3& dir, float& pdf) const {
+    if (env_.pixels.empty()) {
+        pdf = uniformSpherePdf();
+        return env_.constant;
+    }
+    float u, v;
+    env_.coordinates(dir, u, v);
+    pdf = env_.pdf(u, v, dir);
+    return env_.lookup(u, v);
+}
+
 float EnvironmentEmitter::pdf(const Vec3&, const Vec3& wi, const Vec3&, const Vec3&) const {
     return env_.pixels.empty() ? uniformSpherePdf() : env_.pdf(wi);
 }

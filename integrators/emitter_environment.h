@@ -20,6 +20,8 @@ class EnvironmentEmitter {
     }
     float pdf(const Vec3& ref, const Vec3& wi, const Vec3& x, const Vec3& n) const;
     Color escaped(const Vec3& dir, bool) const { return env_.lookup(dir); }
+    // escaped() and, in pdf, pdf() towards dir: the map coordinates found once for both.
+    Color escaped(const Vec3& dir, float& pdf) const;
     Color emitted(const Vec3&, const Vec3&, const Vec3&) const { return l_.radiance; }
 
   private:

@@ -105,6 +105,10 @@ bool EnvironmentMap::sample(float u1, float u2, EnvironmentSample& out) const {
 float EnvironmentMap::pdf(const Vec3& dir) const {
     float u, v;
     coordinates(dir, u, v);
+    return pdf(u, v, dir);
+}
+
+float EnvironmentMap::pdf(float u, float v, const Vec3& dir) const {
     const size_t iu = std::min(size_t(u * float(width)), size_t(width) - 1),
                  iv = std::min(size_t(v * float(height)), size_t(height) - 1);
     const float pdfUV = rows.density(iv) * columns.density(iv, iu);

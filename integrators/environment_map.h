@@ -47,6 +47,8 @@ struct EnvironmentMap {
     bool sample(float u1, float u2, EnvironmentSample& out) const;
     // Solid-angle density of sample() drawing the unit direction dir.
     float pdf(const Vec3& dir) const;
+    // The same at dir's own coordinates (u, v), as coordinates() gives them.
+    float pdf(float u, float v, const Vec3& dir) const;
 };
 
 // The light's map in memory: scaled, non-finite and negative texels zeroed, with its sampling

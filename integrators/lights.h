@@ -75,6 +75,9 @@ class LightSet {
     // scene.
     const std::vector<size_t>& infiniteLights() const { return infinite_; }
     Color escaped(size_t i, const Vec3& dir, bool cameraRay) const;
+    // escaped() of a ray from ref, and pdf(i, ref, dir, .) for MIS (an environment map looks its
+    // coordinates up once for both).
+    Color escaped(size_t i, const Vec3& ref, const Vec3& dir, bool cameraRay, float& pdf) const;
     bool allDelta() const;
     // Light leaving an area light or emitting mesh, chosen by power: a point by area, a
     // cosine-weighted direction on a side it emits from. False where the scene has none.

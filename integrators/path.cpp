@@ -459,11 +459,14 @@ void PathIntegrator::addEscaped(const PathState& st, SampleRecord& rec, const Ra
     if constexpr (F::infinite) {
         Vec3 dir = normalize(ray.dir);
         for (size_t i : lights_.infiniteLights()) {
-            Color Le = lights_.escaped(i, dir, bounce == 0);
+            // The light's density for MIS comes with its radiance where the weight needs it.
+            const std::optional<float> fixed = fixedEmissionWeight<F>(st, int(i));
+            float pdf = 0;
+            Color Le = fixed ? lights_.escaped(i, dir, bounce == 0)
+                             : lights_.escaped(i, st.prevP, dir, bounce == 0, pdf);
             if (maxComponent(Le) > 0)
                 addLight<F::splitLight>(
-                    rec, bounce,
-                    st.beta * Le * emissionWeight<F>(st, int(i), dir, Vec3(0.0f), Vec3(0.0f)),
+                    rec, bounce, st.beta * Le * (fixed ? *fixed : neeWeight(st, int(i), pdf)),
                     st.firstLobe);
         }
     }
@@ -486,11 +489,23 @@ void PathIntegrator::addSurfaceEmission(const PathState& st, SampleRecord& rec, 
 template <class F>
 float PathIntegrator::emissionWeight(const PathState& st, int li, const Vec3& dir, const Vec3& x,
                                      const Vec3& n) const {
+    if (const std::optional<float> fixed = fixedEmissionWeight<F>(st, li)) return *fixed;
+    return neeWeight(st, li, lights_.pdf(size_t(li), st.prevP, dir, x, n));
+}
+
+// The weight where it does not depend on light li's density (none where it does).
+template <class F>
+std::optional<float> PathIntegrator::fixedEmissionWeight(const PathState& st, int li) const {
     if constexpr (F::deltaLightsOnly) return 1.0f;  // no light can be hit: emission is unweighted
     if (rules_.hemisphere && !st.specular) return 0.0f;  // the probes counted it
     if (st.specular || li < 0 || !useNee_) return 1.0f;
     if (opt_.sampling == DirectSampling::Light) return 0.0f;
-    float pl = lights_.selectPmf(size_t(li)) * lights_.pdf(size_t(li), st.prevP, dir, x, n);
+    return std::nullopt;
+}
+
+// MIS weight of emission the BSDF-sampled ray found, light li's density towards it being lightPdf.
+float PathIntegrator::neeWeight(const PathState& st, int li, float lightPdf) const {
+    float pl = lights_.selectPmf(size_t(li)) * lightPdf;
     return misWeight(1, st.prevPdf, float(opt_.lightSamples), pl);
 }
 

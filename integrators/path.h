@@ -4,6 +4,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "integrators/bsdf.h"
@@ -89,6 +90,9 @@ class PathIntegrator final : public Integrator {
     template <class F>
     float emissionWeight(const PathState& st, int li, const Vec3& dir, const Vec3& x,
                          const Vec3& n) const;
+    template <class F>
+    std::optional<float> fixedEmissionWeight(const PathState& st, int li) const;
+    float neeWeight(const PathState& st, int li, float lightPdf) const;
     SurfaceInputs surfaceInputs(PathState& st, const Material& mat, const Ray& ray, const Hit& hit,
                                 SurfaceInteraction& si) const;
     template <class F, class B>

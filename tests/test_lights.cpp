@@ -244,6 +244,33 @@ TEST(LightSampling, EnvironmentSamplesIntegrateTheMap) {
     EXPECT_NEAR(mean, exact, 5 * stderr_) << "standard error " << stderr_;
 }
 
+// An escaped ray's radiance and MIS density looked up together (the map coordinates found once)
+// are, bit for bit, the two looked up apart, for the environment map (turned and not) and for an
+// ambient light.
+TEST(LightSampling, EscapedRadianceWithDensityIsBothApart) {
+    for (float rotation : {0.0f, 30.0f}) {
+        Scene s;
+        s.lights.emplace_back();
+        syntheticEnvironment(rotation, s.lights.back());
+        s.lights.emplace_back();
+        s.lights.back().kind = LightKind::Ambient;
+        s.lights.back().radiance = Color(0.5f);
+        LightSet lights(s);
+        const Vec3 ref(0.1f, 0.2f, 0.3f);
+        for (int k = 0; k < 2000; ++k) {
+            Sampler smp(5, uint64_t(k), 0);
+            const Vec3 dir = uniformSphere(smp.next1D(), smp.next1D());
+            for (size_t i = 0; i < lights.size(); ++i) {
+                float pdf = -1;
+                const Color both = lights.escaped(i, ref, dir, false, pdf);
+                const Color alone = lights.escaped(i, dir, false);
+                for (int c = 0; c < 3; ++c) ASSERT_EQ(both[c], alone[c]) << i << " " << k;
+                ASSERT_EQ(pdf, lights.pdf(i, ref, dir, Vec3(0.0f), Vec3(0.0f))) << i << " " << k;
+            }
+        }
+    }
+}
+
 // An 8 x 4 map whose texel (x, y) holds x + 10 y: the lookup is bilinear between texel centres
 // (nearest texel would give a step), longitude wraps, and --env-rotate turns it about +Y.
 TEST(LightSampling, EnvironmentLookupIsBilinearAndRotates) {

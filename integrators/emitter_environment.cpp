@@ -19,10 +19,15 @@ bool EnvironmentEmitter::sample(const Vec3&, float u1, float u2, LightSample& ou
         return maxComponent(out.Li) > 0;
     }
     EnvironmentSample s;
-    if (!env_.sample(u1, u2, s)) return false;
+    if (!env_.locate(u1, u2, s)) return false;
+    return sampleLocated(s, out);
+}
+
+bool EnvironmentEmitter::sampleLocated(const EnvironmentSample& s, LightSample& out) const {
+    out.infinite = true;
     out.wi = s.dir;
     out.pdf = s.pdf;
-    out.Li = s.radiance;
+    out.Li = env_.radianceAt(s);
     return maxComponent(out.Li) > 0;
 }
 

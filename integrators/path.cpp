@@ -214,6 +214,11 @@ struct PathIntegrator::DrawnAhead {
     uint32_t dimension = kNone;
     Sampler after{0, 0, 0};  // the sampler past the draws
     std::array<LightDraw, kLightChunk> draws;
+    // Environment-light draws located (locateAhead): the point, its density and texel addresses
+    // (asked for from memory); the radiance is read at shading.
+    bool locatedAll = false;
+    std::array<bool, kLightChunk> located;
+    std::array<EnvironmentSample, kLightChunk> points;
 };
 
 // Scratch reused by every batch a thread traces.
@@ -298,7 +303,7 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
         w.probeRays.clear();
 
         // Mesh data of hits a few ahead requested from memory while this one is shaded.
-        constexpr size_t kIndicesAhead = 16, kVerticesAhead = 8, kLightsAhead = 4;
+        constexpr size_t kIndicesAhead = 16, kVerticesAhead = 8, kLightsAhead = 4, kLocateAhead = 2;
         for (size_t j = 0; j < std::min(kIndicesAhead, w.hits.size()); ++j)
             prefetchHitIndices(scene_, w.hits[j]);
         if constexpr (!F::media)
@@ -311,6 +316,8 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
                 prefetchHitVertices(scene_, w.hits[j + kVerticesAhead]);
             if constexpr (!F::media)
                 if (j + kLightsAhead < w.hits.size()) drawAhead(batch, w, j + kLightsAhead, bounce);
+            if constexpr (!F::media)
+                if (j + kLocateAhead < w.hits.size()) locateAhead(batch, w, j + kLocateAhead);
             // With media, the boundaries a path passed through are no bounce of its.
             shadePath<F>(batch, w, j, F::media ? bounce - w.paths[w.active[j]].crossings : bounce);
         }
@@ -555,16 +562,20 @@ void PathIntegrator::sampleDirectLight(const Vertex& v, const B& bsdf, const Vec
     const DrawnAhead& ahead = w.ahead[v.path];
     for (int k0 = 0; k0 < samples; k0 += kLightChunk) {
         const int m = std::min(kLightChunk, samples - k0);
-        if (k0 == 0 && ahead.dimension == v.sampler.dimension()) {  // the same numbers, drawn
+        const bool taken = k0 == 0 && ahead.dimension == v.sampler.dimension();
+        if (taken) {  // the same numbers, drawn
             std::copy_n(ahead.draws.begin(), m, draws.begin());
             v.sampler = ahead.after;
         } else {
             drawLights(v.sampler, k0, m, draws.data());
         }
-        for (size_t j = 0; j < size_t(m); ++j)
-            sampled[j] =
-                lights_.sample(draws[j].light, v.si.p, draws[j].u1, draws[j].u2, found[j]) &&
-                draws[j].pmf != 0;
+        for (size_t j = 0; j < size_t(m); ++j) {
+            const LightDraw& d = draws[j];
+            sampled[j] = (taken && ahead.locatedAll && ahead.located[j]
+                              ? lights_.sampleLocated(d.light, ahead.points[j], found[j])
+                              : lights_.sample(d.light, v.si.p, d.u1, d.u2, found[j])) &&
+                         d.pmf != 0;
+        }
         for (size_t j = 0; j < size_t(m); ++j)
             if (sampled[j]) queueLightSample<F>(v, bsdf, wo, lightOnly, draws[j], found[j], w);
     }
@@ -600,7 +611,20 @@ void PathIntegrator::drawAhead(std::span<CameraSample> batch, Scratch& w, size_t
     DrawnAhead& a = w.ahead[pi];
     a.after = batch[pi].sampler;
     a.dimension = a.after.dimension();
+    a.locatedAll = false;
     drawLights(a.after, 0, samples, a.draws.data());
+}
+
+// The environment-light samples drawn ahead for ray k's path located, their texels asked for (their
+// table entries were asked for when they were drawn, a few paths ago).
+void PathIntegrator::locateAhead(std::span<CameraSample> batch, Scratch& w, size_t k) const {
+    const uint32_t pi = w.active[k];
+    DrawnAhead& a = w.ahead[pi];
+    if (a.dimension != batch[pi].sampler.dimension()) return;  // none drawn for this vertex
+    const int samples = rules_.lightSamplesPerVertex(opt_.lightSamples, lights_.size());
+    for (size_t j = 0; j < size_t(samples); ++j)
+        a.located[j] = lights_.locate(a.draws[j].light, a.draws[j].u1, a.draws[j].u2, a.points[j]);
+    a.locatedAll = true;
 }
 
 // One light sample's estimate, its shadow ray queued (MIS-weighted against the BSDF's sampling).

@@ -115,6 +115,7 @@ class PathIntegrator final : public Integrator {
     // sampler, so that their tables are in cache when it is shaded (sampleDirectLight takes them
     // if the sampler is still where they start).
     void drawAhead(std::span<CameraSample> batch, Scratch& w, size_t k, int bounce) const;
+    void locateAhead(std::span<CameraSample> batch, Scratch& w, size_t k) const;
     template <class F, class B>
     void queueLightSample(const Vertex& v, const B& bsdf, const Vec3& wo, bool lightOnly,
                           const LightDraw& d, const LightSample& ls, Scratch& w) const;

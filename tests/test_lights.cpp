@@ -271,6 +271,36 @@ TEST(LightSampling, EscapedRadianceWithDensityIsBothApart) {
     }
 }
 
+// An environment sample taken in two steps (located ahead of shading, its radiance read later) is,
+// bit for bit, the sample taken at once; other lights are not located.
+TEST(LightSampling, LocatedEnvironmentSampleIsTheSample) {
+    Scene s;
+    s.lights.emplace_back();
+    syntheticEnvironment(30.0f, s.lights.back());
+    s.lights.emplace_back();
+    s.lights.back().kind = LightKind::Ambient;
+    s.lights.back().radiance = Color(0.5f);
+    LightSet lights(s);
+    EnvironmentSample point;
+    EXPECT_FALSE(lights.locate(1, 0.3f, 0.6f, point));
+    for (int k = 0; k < 4000; ++k) {
+        Sampler smp(9, uint64_t(k), 0);
+        const float u1 = smp.next1D(), u2 = smp.next1D();
+        LightSample once, twice;
+        const bool a = lights.sample(0, Vec3(0.0f), u1, u2, once);
+        const bool located = lights.locate(0, u1, u2, point);
+        const bool b = located && lights.sampleLocated(0, point, twice);
+        ASSERT_EQ(a, b) << k;
+        if (!located) continue;
+        for (int c = 0; c < 3; ++c) {
+            ASSERT_EQ(once.wi[c], twice.wi[c]) << k;
+            ASSERT_EQ(once.Li[c], twice.Li[c]) << k;
+        }
+        ASSERT_EQ(once.pdf, twice.pdf) << k;
+        ASSERT_EQ(once.infinite, twice.infinite) << k;
+    }
+}
+
 // An 8 x 4 map whose texel (x, y) holds x + 10 y: the lookup is bilinear between texel centres
 // (nearest texel would give a step), longitude wraps, and --env-rotate turns it about +Y.
 TEST(LightSampling, EnvironmentLookupIsBilinearAndRotates) {

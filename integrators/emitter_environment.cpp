@@ -19,11 +19,27 @@ bool EnvironmentEmitter::sample(const Vec3&, float u1, float u2, LightSample& ou
         return maxComponent(out.Li) > 0;
     }
     EnvironmentSample s;
-    if (!env_.sample(u1, u2, s)) return false;
+    if (!env_.locate(u1, u2, s)) return false;
+    return sampleLocated(s, out);
+}
+
+bool EnvironmentEmitter::sampleLocated(const EnvironmentSample& s, LightSample& out) const {
+    out.infinite = true;
     out.wi = s.dir;
     out.pdf = s.pdf;
-    out.Li = s.radiance;
+    out.Li = env_.radianceAt(s);
     return maxComponent(out.Li) > 0;
+}
+
+Color EnvironmentEmitter::escaped(const Vec3& dir, float& pdf) const {
+    if (env_.pixels.empty()) {
+        pdf = uniformSpherePdf();
+        return env_.constant;
+    }
+    float u, v;
+    env_.coordinates(dir, u, v);
+    pdf = env_.pdf(u, v, dir);
+    return env_.lookup(u, v);
 }
 
 float EnvironmentEmitter::pdf(const Vec3&, const Vec3& wi, const Vec3&, const Vec3&) const {

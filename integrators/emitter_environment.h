@@ -18,8 +18,16 @@ class EnvironmentEmitter {
     void prefetch(float u1, float u2) const {
         if (!env_.pixels.empty()) env_.prefetch(u1, u2);
     }
+    // sample() in two steps (EnvironmentMap::locate): false from locate where there is no map or
+    // no density (sample() then says so), false from sampleLocated where sample() is false.
+    bool locate(float u1, float u2, EnvironmentSample& out) const {
+        return !env_.pixels.empty() && env_.locate(u1, u2, out);
+    }
+    bool sampleLocated(const EnvironmentSample& s, LightSample& out) const;
     float pdf(const Vec3& ref, const Vec3& wi, const Vec3& x, const Vec3& n) const;
     Color escaped(const Vec3& dir, bool) const { return env_.lookup(dir); }
+    // escaped() and, in pdf, pdf() towards dir: the map coordinates found once for both.
+    Color escaped(const Vec3& dir, float& pdf) const;
     Color emitted(const Vec3&, const Vec3&, const Vec3&) const { return l_.radiance; }
 
   private:

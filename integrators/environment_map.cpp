@@ -86,25 +86,45 @@ void EnvironmentMap::prefetch(float u1, float u2) const {
 }
 
 bool EnvironmentMap::sample(float u1, float u2, EnvironmentSample& out) const {
+    if (!locate(u1, u2, out)) return false;
+    out.radiance = radianceAt(out);
+    return true;
+}
+
+bool EnvironmentMap::locate(float u1, float u2, EnvironmentSample& out) const {
     float pdfV, pdfU;
-    size_t iv, iu;
-    out.v = rows.sampleContinuous(u2, pdfV, iv);
-    out.u = columns.sampleContinuous(iv, u1, pdfU, iu);
+    out.v = rows.sampleContinuous(u2, pdfV, out.iv);
+    out.u = columns.sampleContinuous(out.iv, u1, pdfU, out.iu);
     float sinTheta, cosTheta, sinPhi, cosPhi;
     theta.sinCos(out.v, sinTheta, cosTheta);
     phi.sinCos(out.u, sinPhi, cosPhi);
     out.dir = {sinTheta * sinPhi, cosTheta, -sinTheta * cosPhi};
     out.pdf = solidAngleDensity(pdfV * pdfU, sinTheta);
     if (out.pdf <= 0) return false;
-    // The radiance where the sample landed, from the (u, v) it was drawn at: no coordinates
-    // recovered from the direction.
-    out.radiance = bilinear ? bilinearLookup(out.u, out.v) : pixels[iv * size_t(width) + iu];
+    if (!bilinear) {
+        __builtin_prefetch(&pixels[out.iv * size_t(width) + out.iu]);
+        return true;
+    }
+    const BilinearTexels t = bilinearTexels(out.u, out.v);
+    for (int y : {t.y0, t.y1})
+        for (int x : {t.x0, t.x1})
+            __builtin_prefetch(&pixels[size_t(y) * size_t(width) + size_t(x)]);
     return true;
+}
+
+// The radiance where the sample landed, from the (u, v) it was drawn at: no coordinates recovered
+// from the direction.
+Color EnvironmentMap::radianceAt(const EnvironmentSample& s) const {
+    return bilinear ? bilinearLookup(s.u, s.v) : pixels[s.iv * size_t(width) + s.iu];
 }
 
 float EnvironmentMap::pdf(const Vec3& dir) const {
     float u, v;
     coordinates(dir, u, v);
+    return pdf(u, v, dir);
+}
+
+float EnvironmentMap::pdf(float u, float v, const Vec3& dir) const {
     const size_t iu = std::min(size_t(u * float(width)), size_t(width) - 1),
                  iv = std::min(size_t(v * float(height)), size_t(height) - 1);
     const float pdfUV = rows.density(iv) * columns.density(iv, iu);
@@ -128,13 +148,14 @@ Color EnvironmentMap::lookup(float u, float v) const {
 // clamps. The same filter as a TextureSystem bilinear lookup on the finest level, at a small
 // fraction of its cost: an escaped ray in an environment-lit scene spent a third of the render in
 // OIIO's texture calls.
-Color EnvironmentMap::bilinearLookup(float u, float v) const {
+EnvironmentMap::BilinearTexels EnvironmentMap::bilinearTexels(float u, float v) const {
     float x = u * float(width) - 0.5f,
           y = std::clamp(v * float(height) - 0.5f, 0.0f, float(height - 1));
     float fx = std::floor(x), fy = std::floor(y);
-    float tx = x - fx, ty = y - fy;
-    int x0 = int(fx), y0 = int(fy);
-    int x1 = x0 + 1, y1 = std::min(y0 + 1, height - 1);
+    BilinearTexels t;
+    t.tx = x - fx, t.ty = y - fy;
+    t.x0 = int(fx), t.y0 = int(fy);
+    t.x1 = t.x0 + 1, t.y1 = std::min(t.y0 + 1, height - 1);
     // Longitude wraps. u in [0, 1) puts x0 in [-1, width - 1]: one add or subtract (two integer
     // divisions per lookup were a fifth of its cost); any other u by the remainder.
     auto wrap = [&](int xx) {
@@ -142,10 +163,16 @@ Color EnvironmentMap::bilinearLookup(float u, float v) const {
         if (xx >= width && xx < 2 * width) return xx - width;
         return xx >= 0 && xx < width ? xx : (xx % width + width) % width;
     };
-    x0 = wrap(x0), x1 = wrap(x1);
+    t.x0 = wrap(t.x0), t.x1 = wrap(t.x1);
+    return t;
+}
+
+Color EnvironmentMap::bilinearLookup(float u, float v) const {
+    const BilinearTexels t = bilinearTexels(u, v);
+    const float tx = t.tx, ty = t.ty;
     auto at = [&](int xx, int yy) { return pixels[size_t(yy) * size_t(width) + size_t(xx)]; };
-    return (at(x0, y0) * (1 - tx) + at(x1, y0) * tx) * (1 - ty) +
-           (at(x0, y1) * (1 - tx) + at(x1, y1) * tx) * ty;
+    return (at(t.x0, t.y0) * (1 - tx) + at(t.x1, t.y0) * tx) * (1 - ty) +
+           (at(t.x0, t.y1) * (1 - tx) + at(t.x1, t.y1) * tx) * ty;
 }
 
 }  // namespace kiln

@@ -15,6 +15,7 @@ struct EnvironmentSample {
     Vec3 dir;
     float pdf = 0;  // solid angle
     Color radiance;
+    size_t iu = 0, iv = 0;  // the texel drawn
 };
 
 // A lat-long environment map in memory (scaled, in the working space), looked up bilinearly
@@ -39,14 +40,26 @@ struct EnvironmentMap {
     Color lookup(const Vec3& dir) const;
     Color lookup(float u, float v) const;          // (u, v) in [0,1)^2
     Color bilinearLookup(float u, float v) const;  // (u, v) in [0,1)^2
-    Vec3 direction(float u, float v) const;        // (u, v) in [0,1)^2 -> unit direction
+    // The four texels a bilinear lookup at (u, v) blends, and its weights.
+    struct BilinearTexels {
+        int x0, x1, y0, y1;
+        float tx, ty;
+    };
+    BilinearTexels bilinearTexels(float u, float v) const;
+    Vec3 direction(float u, float v) const;  // (u, v) in [0,1)^2 -> unit direction
     void coordinates(const Vec3& dir, float& u, float& v) const;
     // Asks memory for the first table entry sample(u1, u2) reads (the row's is in cache).
     void prefetch(float u1, float u2) const;
     // Importance sampling (a map with pixels): false where the drawn point has no density.
     bool sample(float u1, float u2, EnvironmentSample& out) const;
+    // sample() in two steps: the point and its density (its texels asked for from memory), then
+    // its radiance; between them the texels' cache misses can overlap other work.
+    bool locate(float u1, float u2, EnvironmentSample& out) const;
+    Color radianceAt(const EnvironmentSample& s) const;
     // Solid-angle density of sample() drawing the unit direction dir.
     float pdf(const Vec3& dir) const;
+    // The same at dir's own coordinates (u, v), as coordinates() gives them.
+    float pdf(float u, float v, const Vec3& dir) const;
 };
 
 // The light's map in memory: scaled, non-finite and negative texels zeroed, with its sampling

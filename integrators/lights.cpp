@@ -86,4 +86,12 @@ Color LightSet::escaped(size_t i, const Vec3& dir, bool cameraRay) const {
     return lights_[i].visit([&](const auto& e) { return e.escaped(dir, cameraRay); });
 }
 
+Color LightSet::escaped(size_t i, const Vec3& ref, const Vec3& dir, bool cameraRay,
+                        float& pdf) const {
+    if (const auto* env = std::get_if<EnvironmentEmitter>(&lights_[i].emitter))
+        return env->escaped(dir, pdf);
+    pdf = this->pdf(i, ref, dir, Vec3(0.0f), Vec3(0.0f));
+    return escaped(i, dir, cameraRay);
+}
+
 }  // namespace kiln

@@ -55,6 +55,16 @@ class LightSet {
         if (const auto* env = std::get_if<EnvironmentEmitter>(&lights_[i].emitter))
             env->prefetch(u1, u2);
     }
+    // sample() of an environment light in two steps (EnvironmentEmitter::locate): locate is false
+    // for other lights (sample() them) and where the map gives no point.
+    bool locate(size_t i, float u1, float u2, EnvironmentSample& out) const {
+        const auto* env = std::get_if<EnvironmentEmitter>(&lights_[i].emitter);
+        return env && env->locate(u1, u2, out);
+    }
+    bool sampleLocated(size_t i, const EnvironmentSample& s, LightSample& out) const {
+        out = LightSample{};
+        return std::get<EnvironmentEmitter>(lights_[i].emitter).sampleLocated(s, out);
+    }
     // Solid-angle density of sampling direction wi from ref towards light i, given the point hit on
     // it.
     float pdf(size_t i, const Vec3& ref, const Vec3& wi, const Vec3& pointOnLight,
@@ -75,6 +85,9 @@ class LightSet {
     // scene.
     const std::vector<size_t>& infiniteLights() const { return infinite_; }
     Color escaped(size_t i, const Vec3& dir, bool cameraRay) const;
+    // escaped() of a ray from ref, and pdf(i, ref, dir, .) for MIS (an environment map looks its
+    // coordinates up once for both).
+    Color escaped(size_t i, const Vec3& ref, const Vec3& dir, bool cameraRay, float& pdf) const;
     bool allDelta() const;
     // Light leaving an area light or emitting mesh, chosen by power: a point by area, a
     // cosine-weighted direction on a side it emits from. False where the scene has none.

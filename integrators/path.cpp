@@ -1,5 +1,6 @@
 #include "integrators/path.h"
 
+#include <algorithm>
 #include <array>
 #include <optional>
 #include <type_traits>
@@ -206,6 +207,20 @@ struct PendingLight {
 
 }  // namespace
 
+// A vertex's light samples drawn ahead (drawAhead): valid while its path's sampler is at
+// `dimension` (dimensions only grow, so no later vertex of the path matches).
+struct PathIntegrator::DrawnAhead {
+    static constexpr uint32_t kNone = ~0u;
+    uint32_t dimension = kNone;
+    Sampler after{0, 0, 0};  // the sampler past the draws
+    std::array<LightDraw, kLightChunk> draws;
+    // Environment-light draws located (locateAhead): the point, its density and texel addresses
+    // (asked for from memory); the radiance is read at shading.
+    bool locatedAll = false;
+    std::array<bool, kLightChunk> located;
+    std::array<EnvironmentSample, kLightChunk> points;
+};
+
 // Scratch reused by every batch a thread traces.
 struct PathIntegrator::Scratch {
     std::vector<PathState> paths;
@@ -221,6 +236,7 @@ struct PathIntegrator::Scratch {
     std::vector<Ray> probeRays;
     std::vector<Hit> probeHits;
     std::vector<PendingLight> probes;
+    std::vector<DrawnAhead> ahead;  // per path
 };
 
 // A surface vertex of one path, as its stages see it.
@@ -252,6 +268,8 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
     thread_local Scratch scratch;
     Scratch& w = scratch;
     w.paths.assign(batch.size(), PathState{});
+    w.ahead.resize(batch.size());
+    for (DrawnAhead& a : w.ahead) a.dimension = DrawnAhead::kNone;
     size_t perVertex = size_t(rules_.lightSamplesPerVertex(opt_.lightSamples, lights_.size()));
     w.pending.reserve(batch.size() * perVertex);
     w.shadowRays.reserve(batch.size() * perVertex);
@@ -285,14 +303,21 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
         w.probeRays.clear();
 
         // Mesh data of hits a few ahead requested from memory while this one is shaded.
-        constexpr size_t kIndicesAhead = 16, kVerticesAhead = 8;
+        constexpr size_t kIndicesAhead = 16, kVerticesAhead = 8, kLightsAhead = 4, kLocateAhead = 2;
         for (size_t j = 0; j < std::min(kIndicesAhead, w.hits.size()); ++j)
             prefetchHitIndices(scene_, w.hits[j]);
+        if constexpr (!F::media)
+            for (size_t j = 0; j < std::min(kLightsAhead, w.hits.size()); ++j)
+                drawAhead(batch, w, j, bounce);
         for (size_t j = 0; j < w.active.size(); ++j) {
             if (j + kIndicesAhead < w.hits.size())
                 prefetchHitIndices(scene_, w.hits[j + kIndicesAhead]);
             if (j + kVerticesAhead < w.hits.size())
                 prefetchHitVertices(scene_, w.hits[j + kVerticesAhead]);
+            if constexpr (!F::media)
+                if (j + kLightsAhead < w.hits.size()) drawAhead(batch, w, j + kLightsAhead, bounce);
+            if constexpr (!F::media)
+                if (j + kLocateAhead < w.hits.size()) locateAhead(batch, w, j + kLocateAhead);
             // With media, the boundaries a path passed through are no bounce of its.
             shadePath<F>(batch, w, j, F::media ? bounce - w.paths[w.active[j]].crossings : bounce);
         }
@@ -441,11 +466,14 @@ void PathIntegrator::addEscaped(const PathState& st, SampleRecord& rec, const Ra
     if constexpr (F::infinite) {
         Vec3 dir = normalize(ray.dir);
         for (size_t i : lights_.infiniteLights()) {
-            Color Le = lights_.escaped(i, dir, bounce == 0);
+            // The light's density for MIS comes with its radiance where the weight needs it.
+            const std::optional<float> fixed = fixedEmissionWeight<F>(st, int(i));
+            float pdf = 0;
+            Color Le = fixed ? lights_.escaped(i, dir, bounce == 0)
+                             : lights_.escaped(i, st.prevP, dir, bounce == 0, pdf);
             if (maxComponent(Le) > 0)
                 addLight<F::splitLight>(
-                    rec, bounce,
-                    st.beta * Le * emissionWeight<F>(st, int(i), dir, Vec3(0.0f), Vec3(0.0f)),
+                    rec, bounce, st.beta * Le * (fixed ? *fixed : neeWeight(st, int(i), pdf)),
                     st.firstLobe);
         }
     }
@@ -468,11 +496,23 @@ void PathIntegrator::addSurfaceEmission(const PathState& st, SampleRecord& rec, 
 template <class F>
 float PathIntegrator::emissionWeight(const PathState& st, int li, const Vec3& dir, const Vec3& x,
                                      const Vec3& n) const {
+    if (const std::optional<float> fixed = fixedEmissionWeight<F>(st, li)) return *fixed;
+    return neeWeight(st, li, lights_.pdf(size_t(li), st.prevP, dir, x, n));
+}
+
+// The weight where it does not depend on light li's density (none where it does).
+template <class F>
+std::optional<float> PathIntegrator::fixedEmissionWeight(const PathState& st, int li) const {
     if constexpr (F::deltaLightsOnly) return 1.0f;  // no light can be hit: emission is unweighted
     if (rules_.hemisphere && !st.specular) return 0.0f;  // the probes counted it
     if (st.specular || li < 0 || !useNee_) return 1.0f;
     if (opt_.sampling == DirectSampling::Light) return 0.0f;
-    float pl = lights_.selectPmf(size_t(li)) * lights_.pdf(size_t(li), st.prevP, dir, x, n);
+    return std::nullopt;
+}
+
+// MIS weight of emission the BSDF-sampled ray found, light li's density towards it being lightPdf.
+float PathIntegrator::neeWeight(const PathState& st, int li, float lightPdf) const {
+    float pl = lights_.selectPmf(size_t(li)) * lightPdf;
     return misWeight(1, st.prevPdf, float(opt_.lightSamples), pl);
 }
 
@@ -512,38 +552,79 @@ void PathIntegrator::shadeVertex(const Vertex& v, const B& bsdf, Scratch& w) con
 template <class F, class B>
 void PathIntegrator::sampleDirectLight(const Vertex& v, const B& bsdf, const Vec3& wo,
                                        bool lightOnly, Scratch& w) const {
-    const bool eachOnce = rules_.eachDeltaLightOnce;
     const int samples = rules_.lightSamplesPerVertex(opt_.lightSamples, lights_.size());
     // In chunks: every sample's numbers drawn (in the order a loop of single samples draws them)
     // and its first table entry asked for, then the lights sampled, then the estimates queued, so
     // the cache misses of an environment map's tables overlap instead of following one another.
-    constexpr int kChunk = 8;
-    std::array<LightDraw, kChunk> draws;
-    std::array<LightSample, kChunk> found;
-    std::array<bool, kChunk> sampled;
-    for (int k0 = 0; k0 < samples; k0 += kChunk) {
-        const int m = std::min(kChunk, samples - k0);
-        for (int j = 0; j < m; ++j) {
-            LightDraw& d = draws[size_t(j)];
-            d = {size_t(k0 + j), 1.0f, 0.5f, 0.5f};
-            if (eachOnce) continue;
-            if (lights_.size() == 1) {  // the one light: no choice to draw
-                v.sampler.skip1D();
-                d.light = 0, d.pmf = lights_.selectPmf(0);
-            } else {
-                d.light = lights_.select(v.sampler.next1D(), d.pmf);
-            }
-            auto [a, b] = v.sampler.next2D();
-            d.u1 = a, d.u2 = b;
-            lights_.prefetch(d.light, d.u1, d.u2);
+    std::array<LightDraw, kLightChunk> draws;
+    std::array<LightSample, kLightChunk> found;
+    std::array<bool, kLightChunk> sampled;
+    const DrawnAhead& ahead = w.ahead[v.path];
+    for (int k0 = 0; k0 < samples; k0 += kLightChunk) {
+        const int m = std::min(kLightChunk, samples - k0);
+        const bool taken = k0 == 0 && ahead.dimension == v.sampler.dimension();
+        if (taken) {  // the same numbers, drawn
+            std::copy_n(ahead.draws.begin(), m, draws.begin());
+            v.sampler = ahead.after;
+        } else {
+            drawLights(v.sampler, k0, m, draws.data());
         }
-        for (size_t j = 0; j < size_t(m); ++j)
-            sampled[j] =
-                lights_.sample(draws[j].light, v.si.p, draws[j].u1, draws[j].u2, found[j]) &&
-                draws[j].pmf != 0;
+        for (size_t j = 0; j < size_t(m); ++j) {
+            const LightDraw& d = draws[j];
+            sampled[j] = (taken && ahead.locatedAll && ahead.located[j]
+                              ? lights_.sampleLocated(d.light, ahead.points[j], found[j])
+                              : lights_.sample(d.light, v.si.p, d.u1, d.u2, found[j])) &&
+                         d.pmf != 0;
+        }
         for (size_t j = 0; j < size_t(m); ++j)
             if (sampled[j]) queueLightSample<F>(v, bsdf, wo, lightOnly, draws[j], found[j], w);
     }
+}
+
+void PathIntegrator::drawLights(Sampler& sampler, int k0, int m, LightDraw* out) const {
+    for (int j = 0; j < m; ++j) {
+        LightDraw& d = out[j];
+        d = {size_t(k0 + j), 1.0f, 0.5f, 0.5f};
+        if (rules_.eachDeltaLightOnce) continue;
+        if (lights_.size() == 1) {  // the one light: no choice to draw
+            sampler.skip1D();
+            d.light = 0, d.pmf = lights_.selectPmf(0);
+        } else {
+            d.light = lights_.select(sampler.next1D(), d.pmf);
+        }
+        auto [a, b] = sampler.next2D();
+        d.u1 = a, d.u2 = b;
+        lights_.prefetch(d.light, d.u1, d.u2);
+    }
+}
+
+// Only where the vertex's first numbers are its light samples' (no media: a free flight draws
+// first) and they fit one chunk; a guess that the vertex then does not take (a delta BSDF, say)
+// costs the draws and nothing else.
+void PathIntegrator::drawAhead(std::span<CameraSample> batch, Scratch& w, size_t k,
+                               int bounce) const {
+    const int samples = rules_.lightSamplesPerVertex(opt_.lightSamples, lights_.size());
+    if (!useNee_ || rules_.eachDeltaLightOnce || samples > kLightChunk || !w.hits[k].valid() ||
+        bounce >= opt_.maxDepth || !rules_.gathersAt(bounce))
+        return;
+    const uint32_t pi = w.active[k];
+    DrawnAhead& a = w.ahead[pi];
+    a.after = batch[pi].sampler;
+    a.dimension = a.after.dimension();
+    a.locatedAll = false;
+    drawLights(a.after, 0, samples, a.draws.data());
+}
+
+// The environment-light samples drawn ahead for ray k's path located, their texels asked for (their
+// table entries were asked for when they were drawn, a few paths ago).
+void PathIntegrator::locateAhead(std::span<CameraSample> batch, Scratch& w, size_t k) const {
+    const uint32_t pi = w.active[k];
+    DrawnAhead& a = w.ahead[pi];
+    if (a.dimension != batch[pi].sampler.dimension()) return;  // none drawn for this vertex
+    const int samples = rules_.lightSamplesPerVertex(opt_.lightSamples, lights_.size());
+    for (size_t j = 0; j < size_t(samples); ++j)
+        a.located[j] = lights_.locate(a.draws[j].light, a.draws[j].u1, a.draws[j].u2, a.points[j]);
+    a.locatedAll = true;
 }
 
 // One light sample's estimate, its shadow ray queued (MIS-weighted against the BSDF's sampling).

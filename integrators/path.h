@@ -4,6 +4,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "integrators/bsdf.h"
@@ -89,6 +90,9 @@ class PathIntegrator final : public Integrator {
     template <class F>
     float emissionWeight(const PathState& st, int li, const Vec3& dir, const Vec3& x,
                          const Vec3& n) const;
+    template <class F>
+    std::optional<float> fixedEmissionWeight(const PathState& st, int li) const;
+    float neeWeight(const PathState& st, int li, float lightPdf) const;
     SurfaceInputs surfaceInputs(PathState& st, const Material& mat, const Ray& ray, const Hit& hit,
                                 SurfaceInteraction& si) const;
     template <class F, class B>
@@ -101,6 +105,17 @@ class PathIntegrator final : public Integrator {
         size_t light;
         float pmf, u1, u2;
     };
+    // Light samples a vertex draws at once (their cache misses overlap).
+    static constexpr int kLightChunk = 8;
+    struct DrawnAhead;  // path.cpp: a vertex's light samples drawn before it is shaded
+    // Draws light samples k0 .. k0 + m - 1 of a vertex (the order a loop of single samples draws
+    // them in), each table entry the light will read asked for from memory.
+    void drawLights(Sampler& sampler, int k0, int m, LightDraw* out) const;
+    // The light samples of the vertex the path of ray k will shade, drawn now on a copy of its
+    // sampler, so that their tables are in cache when it is shaded (sampleDirectLight takes them
+    // if the sampler is still where they start).
+    void drawAhead(std::span<CameraSample> batch, Scratch& w, size_t k, int bounce) const;
+    void locateAhead(std::span<CameraSample> batch, Scratch& w, size_t k) const;
     template <class F, class B>
     void queueLightSample(const Vertex& v, const B& bsdf, const Vec3& wo, bool lightOnly,
                           const LightDraw& d, const LightSample& ls, Scratch& w) const;

@@ -244,6 +244,63 @@ TEST(LightSampling, EnvironmentSamplesIntegrateTheMap) {
     EXPECT_NEAR(mean, exact, 5 * stderr_) << "standard error " << stderr_;
 }
 
+// An escaped ray's radiance and MIS density looked up together (the map coordinates found once)
+// are, bit for bit, the two looked up apart, for the environment map (turned and not) and for an
+// ambient light.
+TEST(LightSampling, EscapedRadianceWithDensityIsBothApart) {
+    for (float rotation : {0.0f, 30.0f}) {
+        Scene s;
+        s.lights.emplace_back();
+        syntheticEnvironment(rotation, s.lights.back());
+        s.lights.emplace_back();
+        s.lights.back().kind = LightKind::Ambient;
+        s.lights.back().radiance = Color(0.5f);
+        LightSet lights(s);
+        const Vec3 ref(0.1f, 0.2f, 0.3f);
+        for (int k = 0; k < 2000; ++k) {
+            Sampler smp(5, uint64_t(k), 0);
+            const Vec3 dir = uniformSphere(smp.next1D(), smp.next1D());
+            for (size_t i = 0; i < lights.size(); ++i) {
+                float pdf = -1;
+                const Color both = lights.escaped(i, ref, dir, false, pdf);
+                const Color alone = lights.escaped(i, dir, false);
+                for (int c = 0; c < 3; ++c) ASSERT_EQ(both[c], alone[c]) << i << " " << k;
+                ASSERT_EQ(pdf, lights.pdf(i, ref, dir, Vec3(0.0f), Vec3(0.0f))) << i << " " << k;
+            }
+        }
+    }
+}
+
+// An environment sample taken in two steps (located ahead of shading, its radiance read later) is,
+// bit for bit, the sample taken at once; other lights are not located.
+TEST(LightSampling, LocatedEnvironmentSampleIsTheSample) {
+    Scene s;
+    s.lights.emplace_back();
+    syntheticEnvironment(30.0f, s.lights.back());
+    s.lights.emplace_back();
+    s.lights.back().kind = LightKind::Ambient;
+    s.lights.back().radiance = Color(0.5f);
+    LightSet lights(s);
+    EnvironmentSample point;
+    EXPECT_FALSE(lights.locate(1, 0.3f, 0.6f, point));
+    for (int k = 0; k < 4000; ++k) {
+        Sampler smp(9, uint64_t(k), 0);
+        const float u1 = smp.next1D(), u2 = smp.next1D();
+        LightSample once, twice;
+        const bool a = lights.sample(0, Vec3(0.0f), u1, u2, once);
+        const bool located = lights.locate(0, u1, u2, point);
+        const bool b = located && lights.sampleLocated(0, point, twice);
+        ASSERT_EQ(a, b) << k;
+        if (!located) continue;
+        for (int c = 0; c < 3; ++c) {
+            ASSERT_EQ(once.wi[c], twice.wi[c]) << k;
+            ASSERT_EQ(once.Li[c], twice.Li[c]) << k;
+        }
+        ASSERT_EQ(once.pdf, twice.pdf) << k;
+        ASSERT_EQ(once.infinite, twice.infinite) << k;
+    }
+}
+
 // An 8 x 4 map whose texel (x, y) holds x + 10 y: the lookup is bilinear between texel centres
 // (nearest texel would give a step), longitude wraps, and --env-rotate turns it about +Y.
 TEST(LightSampling, EnvironmentLookupIsBilinearAndRotates) {

@@ -149,15 +149,17 @@ TEST(Distribution1D, GuideTablePicksTheBinABinarySearchPicks) {
 
 // Rows in flat arrays draw exactly what a Distribution1D of each row draws (bin, position,
 // density), for every u on a fine grid and at every CDF point and its float neighbours, on rows
-// with zero runs, spikes, all zero and tiny bins beside large ones.
+// with zero runs, spikes, all zero, tiny bins beside large ones and evenly varying weights (bins
+// about a bucket wide: a bucket's bottom bin often ends inside it).
 TEST(Distribution1DRows, DrawEachRowAsItsDistribution1D) {
     constexpr size_t n = 64;
-    std::vector<std::vector<float>> rows(5, std::vector<float>(n, 1.0f));
+    std::vector<std::vector<float>> rows(6, std::vector<float>(n, 1.0f));
     for (size_t i = 0; i < n; ++i) {
         rows[0][i] = float(i * i % 7);
         rows[1][i] = i == 9 ? 1e6f : (i % 5 == 0 ? 0.0f : 1e-6f);
         rows[2][i] = 0.0f;
         rows[3][i] = float(i % 3 == 0) * float(i);
+        rows[5][i] = 1.0f + 0.5f * float(i * 37 % 11) / 11.0f;
     }
     std::vector<float> flat;
     for (const auto& r : rows) flat.insert(flat.end(), r.begin(), r.end());

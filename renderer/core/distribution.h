@@ -89,10 +89,11 @@ class Distribution1D {
 
 // Equal-sized distributions in flat arrays (an environment map's rows, one per row of texels), each
 // drawn exactly as a Distribution1D of its weights draws, bit for bit. Each guide bucket also holds
-// the CDF interval of the bin its bottom falls in, so a draw that lands in that bin (every draw,
-// for bins at least a bucket wide) reads one 16-byte entry; the others walk the row's CDF as
-// Distribution1D does. A Distribution1D per row costs three dependent cache misses (the object, its
-// guide, its CDF) on a map too large for the cache.
+// the CDF points of the bin its bottom falls in and of the next bin, so a draw that lands in either
+// (every draw, for bins at least a bucket wide) reads one 16-byte entry; the others walk the row's
+// CDF as Distribution1D does. A Distribution1D per row costs three dependent cache misses (the
+// object, its guide, its CDF) on a map too large for the cache; with one bin per entry, half the
+// draws of an evenly lit row walked (a bucket's bottom bin ends inside it), a second miss.
 class Distribution1DRows {
   public:
     Distribution1DRows() = default;
@@ -107,7 +108,9 @@ class Distribution1DRows {
             integrals_.push_back(row.integral());
             for (uint32_t p : row.guide_) {
                 bool inside = p >= 1 && p <= n;  // else no first bin: always walk
-                guide_.push_back({p, inside ? row.cdf_[p - 1] : 1.0f, inside ? row.cdf_[p] : 0.0f});
+                bool next = inside && p < n;     // a second bin follows the first
+                guide_.push_back({p, inside ? row.cdf_[p - 1] : 1.0f, inside ? row.cdf_[p] : 0.0f,
+                                  next ? row.cdf_[p + 1] : 0.0f});
             }
         }
     }
@@ -115,9 +118,13 @@ class Distribution1DRows {
     float sampleContinuous(size_t r, float u, float& pdf, size_t& i) const {
         size_t bucket = u >= 0 ? std::min(n_ - 1, size_t(u * float(n_))) : 0;  // NaN: bucket 0
         const Bucket& b = guide_[r * n_ + bucket];
-        if (b.lo <= u && u < b.hi) {  // the walk would stay at b.p
+        if (b.lo <= u && u < b.mid) {  // the walk would stay at b.p
             i = b.p - 1;
-            return positionInBin(i, b.lo, b.hi, n_, u, pdf);
+            return positionInBin(i, b.lo, b.mid, n_, u, pdf);
+        }
+        if (b.mid <= u && u < b.hi) {  // the walk would take one step
+            i = b.p;
+            return positionInBin(i, b.mid, b.hi, n_, u, pdf);
         }
         std::span<const float> cdf(cdf_.data() + r * (n_ + 1), n_ + 1);
         i = cdfWalk(cdf, b.p, u);
@@ -138,9 +145,10 @@ class Distribution1DRows {
 
   private:
     struct Bucket {
-        uint32_t p;    // upper_bound of the bucket's bottom in the row's CDF
-        float lo, hi;  // CDF interval of bin p - 1 (lo > hi: none)
-        float unused = 0;
+        uint32_t p;  // upper_bound of the bucket's bottom in the row's CDF
+        // CDF intervals of bin p - 1, [lo, mid) (lo > mid: none), and bin p, [mid, hi) (hi <= mid:
+        // none).
+        float lo, mid, hi;
     };
     size_t n_ = 0;
     std::vector<float> cdf_;     // rows x (n + 1)

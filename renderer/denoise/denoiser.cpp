@@ -100,10 +100,7 @@ void smoothMaps(Image mse[2], const Image& guide, const Image& variance, const O
             for (int b = 0; b < 2; ++b)
                 both.values[p * 6 + size_t(3 * b + c)] = mse[b].values[p * 3 + size_t(c)];
     both = smoothedMap(both, guide, variance, o);
-    for (size_t p = 0; p < both.pixels(); ++p)
-        for (int c = 0; c < 3; ++c)
-            for (int b = 0; b < 2; ++b)
-                mse[b].values[p * 3 + size_t(c)] = both.values[p * 6 + size_t(3 * b + c)];
+    for (int b = 0; b < 2; ++b) mse[b] = channelsOf(both, 3 * b, 3);
 }
 
 // The features prefiltered once for every colour image of a frame (steps 1 and 4's feature

@@ -14,9 +14,7 @@
 namespace kiln {
 
 struct RayCounter {
-    uint64_t rays = 0;        // every ray traced (shadow rays included)
-    uint64_t shadowRays = 0;  // of which next-event shadow rays
-    uint64_t lightDraws = 0;  // lights sampled for next-event estimation (shadow ray or not)
+    uint64_t rays = 0;
 };
 
 // One camera sample on its way through an integrator: its ray, its random numbers and what it

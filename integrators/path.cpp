@@ -230,7 +230,6 @@ struct PathIntegrator::Scratch {
     std::vector<PendingLight> pending;
     std::vector<int> shadowMedia;  // with media: the medium each shadow ray starts in
     uint64_t walkRays = 0;         // rays traced by subsurface walks
-    uint64_t lightDraws = 0;       // light samples drawn (RayCounter::lightDraws)
     std::vector<uint8_t> occluded;
     // -H: hemisphere probes (closest-hit rays whose emission is the direct light), their
     // throughput waiting in PendingLight::contribution.
@@ -323,8 +322,6 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
             shadePath<F>(batch, w, j, F::media ? bounce - w.paths[w.active[j]].crossings : bounce);
         }
         if constexpr (F::media) counter.rays += std::exchange(w.walkRays, 0);
-        counter.lightDraws += std::exchange(w.lightDraws, 0);
-        counter.shadowRays += w.shadowRays.size();
         resolveShadowRays<F>(batch, w, counter);
         resolveProbes<F>(batch, w, counter);
         w.active.swap(w.next);
@@ -556,7 +553,6 @@ template <class F, class B>
 void PathIntegrator::sampleDirectLight(const Vertex& v, const B& bsdf, const Vec3& wo,
                                        bool lightOnly, Scratch& w) const {
     const int samples = rules_.lightSamplesPerVertex(opt_.lightSamples, lights_.size());
-    w.lightDraws += uint64_t(samples);
     // In chunks: every sample's numbers drawn (in the order a loop of single samples draws them)
     // and its first table entry asked for, then the lights sampled, then the estimates queued, so
     // the cache misses of an environment map's tables overlap instead of following one another.

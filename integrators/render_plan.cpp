@@ -95,7 +95,6 @@ RenderPlan planFor(const Scene& scene, const Accelerator& accel, const AovReques
         p.environmentMap |= l.kind == LightKind::Environment && l.environmentImage != nullptr;
     }
     p.defaultLightSamples = p.environmentMap ? RenderPlan::kEnvironmentLightSamples : 1;
-    p.lightSamplesOpen = p.environmentMap;
     p.spheres = !scene.spheres.empty();
     p.instances = !scene.instances.empty();
     p.caustics = p.deltaSpecular && anyDiffuse && !scene.lights.empty();
@@ -142,12 +141,9 @@ RenderPlan planFor(const Scene& scene, const Accelerator& accel, const AovReques
                                     : "no environment lookup on escape",
         p.infiniteLights ? "environment or ambient light present"
                          : "no environment or ambient light");
-    say(p.lightSamplesOpen
-            ? "light samples per shading point chosen by a pilot unless -l is given"
-            : fmt::format("{} light sample{} per shading point unless -l is given",
-                          p.defaultLightSamples, p.defaultLightSamples > 1 ? "s" : ""),
-        p.environmentMap ? "an environment map lights the scene: how many samples pay depends on "
-                           "where its noise comes from"
+    say(fmt::format("{} light sample{} per shading point unless -l is given", p.defaultLightSamples,
+                    p.defaultLightSamples > 1 ? "s" : ""),
+        p.environmentMap ? "an environment map lights the scene: measured faster to equal error"
                          : "no environment map");
     say(p.spheres ? "sphere geometry registered" : "no sphere geometry registered",
         p.spheres ? std::to_string(scene.spheres.size()) + " analytic spheres"

@@ -40,9 +40,6 @@ struct RenderPlan {
     // on the area-lit box).
     int defaultLightSamples = 1;
     static constexpr int kEnvironmentLightSamples = 4;
-    // With an environment map the best count depends on where the noise comes from (4 is only the
-    // fallback): kiln render's job picks it by a pilot (renderer/light_sample_pilot.h).
-    bool lightSamplesOpen = false;
     bool emitters = false;  // surfaces with emission
     bool spheres = false, instances = false;
     bool caustics = false;  // light can reach a diffuse surface through a specular chain

@@ -51,18 +51,11 @@ RenderJob::RenderJob(const Scene& scene, const Accelerator& accel, const RenderJ
       accel_(accel),
       options_(options),
       plan_(planFor(scene, accel, options.aovs, options.plan)),
+      integrator_(
+          makeIntegrator(options.integrator, scene, accel, withPixelSpread(scene, options), plan_)),
       filmScaleExponent_(kiln::filmScaleExponent(scene.brightestEmission())) {
-    options_.path = withPixelSpread(scene, options_);
-    if (pilotChoosesLightSamples(options_.integrator, options_.path, plan_)) {
-        StageProgress stage("light_sample_pilot");
-        pilot_ = pilotLightSamples(scene, accel, options_.integrator, options_.path,
-                                   options_.settings, plan_);
-        options_.path.lightSamples = pilot_.chosen;
-        uncountedTrainingSeconds_ = pilot_.seconds;
-    }
     // The number the integrator uses, for the EXR header and checkpoint fingerprints.
     options_.path.lightSamples = resolvedLightSamples(options_.path, plan_);
-    integrator_ = makeIntegrator(options_.integrator, scene, accel, options_.path, plan_);
     guided_ = wantsGuide(options_, plan_);
 }
 
@@ -71,9 +64,9 @@ RenderJob::RenderJob(const RenderJob& job, const Accelerator& accel)
       accel_(accel),
       options_(job.options_),
       plan_(job.plan_),
-      integrator_(makeIntegrator(options_.integrator, scene_, accel, options_.path, plan_)),
+      integrator_(makeIntegrator(options_.integrator, scene_, accel,
+                                 withPixelSpread(scene_, options_), plan_)),
       filmScaleExponent_(job.filmScaleExponent_),
-      pilot_(job.pilot_),
       guided_(job.guided_) {
     // The same field, not a second training: the original's, this job's marked as trained.
     job.trainGuideOnce();
@@ -92,8 +85,7 @@ double RenderJob::trainGuideOnce() const {
         guide_ = trainGuide(path, options_.settings);
         path.setGuide(guide_);
         seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        guideSeconds_ = seconds;
-        uncountedTrainingSeconds_ += seconds;
+        guideSeconds_ = uncountedTrainingSeconds_ = seconds;
     });
     return seconds;
 }
@@ -112,8 +104,8 @@ Film RenderJob::makeFilm() const {
 }
 
 RenderStats RenderJob::render(Film& film, const RenderControl& control) const {
-    // The first render counts the training and the pilot in its time, whatever traced first (the
-    // frame probe of kiln render trains the guide before the render starts).
+    // The first render counts the training in its time, whatever traced first (the frame probe
+    // of kiln render trains the guide before the render starts).
     trainGuideOnce();
     const double training = std::exchange(uncountedTrainingSeconds_, 0.0);
     RenderStats stats = renderImage(scene_, *integrator_, options_.settings, film, control);
@@ -146,7 +138,6 @@ Metadata RenderJob::metadata(const RenderStats& stats, const Film& film) const {
         {"interrupted", stats.interrupted ? "yes" : "no"},
         {"max_depth", text(p.maxDepth)},
         {"light_samples", text(p.lightSamples)},
-        {"light_samples_pilot", pilot_.chosen ? pilot_.describe() : "none"},
         {"sampling", toString(p.sampling)},
         {"roulette", toString(p.roulette)},
         {"accumulate_bounces", p.accumulateBounces ? "yes" : "no"},

@@ -11,7 +11,6 @@
 #include "color/image_output.h"
 #include "integrators/path_options.h"
 #include "integrators/render_plan.h"
-#include "renderer/light_sample_pilot.h"
 #include "renderer/render_loop.h"
 
 namespace kiln {
@@ -47,8 +46,6 @@ class RenderJob {
     // "off", or what the training found (the EXR header); its seconds count in the render's.
     std::string guidingText() const;
     double guideTrainingSeconds() const { return guideSeconds_; }
-    // How the light samples per vertex were chosen (chosen 0: by -l or the plan, no pilot).
-    const LightSamplePilot& lightSamplePilot() const { return pilot_; }
 
     // A film of the render region's size, placed in the full image.
     Film makeFilm() const;
@@ -66,16 +63,14 @@ class RenderJob {
     RenderJobOptions options_;
     RenderPlan plan_;
     std::unique_ptr<Integrator> integrator_;
-    int filmScaleExponent_;   // from the scene's brightest emitter (fixed_sum.h)
-    LightSamplePilot pilot_;  // chosen 0: the light samples were not the pilot's
+    int filmScaleExponent_;  // from the scene's brightest emitter (fixed_sum.h)
     // Trains the guide field if this job is guided and has none yet: the seconds this call took.
     double trainGuideOnce() const;
     bool guided_ = false;
     mutable std::once_flag guideTrained_;
     mutable std::shared_ptr<const GuideField> guide_;
     mutable double guideSeconds_ = 0;
-    // Training and pilot time no render has counted yet.
-    mutable double uncountedTrainingSeconds_ = 0;
+    mutable double uncountedTrainingSeconds_ = 0;  // training no render has counted yet
 };
 
 }  // namespace kiln

@@ -119,14 +119,12 @@ TEST(SpecialisedPaths, DeltaLightsOnlySkipsTheUselessLastRay) {
               general);  // camera + shadow rays only; the general path also traces a continuation
 }
 
-// Without -l the plan picks the light samples: 1 where no environment map lights the scene; where
-// one does, the job's pilot chooses (renderer/light_sample_pilot.h); -l wins. The job renders with
-// the number it states (the same rays as that -l).
-TEST(PlanLightSamples, OneForAreaLightsAPilotsChoiceForAnEnvironmentMapUnlessStated) {
+// Without -l the plan picks the light samples: 4 where an environment map lights the scene, 1
+// elsewhere; -l wins. The job renders with the number it states (the same rays as -l 4).
+TEST(PlanLightSamples, FourForAnEnvironmentMapUnlessStated) {
     Scene box = loadScene(test::cs184("sky/CBbunny.dae"));
     auto boxAccel = makeEmbreeAccelerator(box);
     EXPECT_EQ(planFor(box, *boxAccel, AovRequest{}).defaultLightSamples, 1);
-    EXPECT_FALSE(planFor(box, *boxAccel, AovRequest{}).lightSamplesOpen);
     EXPECT_EQ(RenderJob(box, *boxAccel, test::jobOptions(8, 6, 1)).options().path.lightSamples, 1);
 
     LoadOptions load;
@@ -134,22 +132,21 @@ TEST(PlanLightSamples, OneForAreaLightsAPilotsChoiceForAnEnvironmentMapUnlessSta
     Scene lit = loadScene(test::cs184("sky/CBbunny.dae"), load);
     auto accel = makeEmbreeAccelerator(lit);
     RenderPlan plan = planFor(lit, *accel, AovRequest{});
-    EXPECT_TRUE(plan.lightSamplesOpen);
-    EXPECT_NE(plan.text().find("chosen by a pilot"), std::string::npos) << plan.text();
+    EXPECT_EQ(plan.defaultLightSamples, RenderPlan::kEnvironmentLightSamples);
+    EXPECT_NE(plan.text().find("4 light samples per shading point"), std::string::npos)
+        << plan.text();
     RenderJob chosen(lit, *accel, test::jobOptions(16, 12, 2));
-    const int n = chosen.lightSamplePilot().chosen;
-    EXPECT_GE(n, 1);
-    EXPECT_EQ(chosen.options().path.lightSamples, n);
+    EXPECT_EQ(chosen.options().path.lightSamples, 4);
     PathOptions two;
     two.lightSamples = 2;
     EXPECT_EQ(RenderJob(lit, *accel, test::jobOptions(16, 12, 2, two)).options().path.lightSamples,
               2);
-    PathOptions same;
-    same.lightSamples = n;
-    RenderStats byPilot, stated;
-    Film a = test::renderJob(lit, *accel, test::jobOptions(16, 12, 2), &byPilot);
-    Film b = test::renderJob(lit, *accel, test::jobOptions(16, 12, 2, same), &stated);
-    EXPECT_EQ(byPilot.rays, stated.rays);
+    PathOptions four;
+    four.lightSamples = 4;
+    RenderStats byPlan, stated;
+    Film a = test::renderJob(lit, *accel, test::jobOptions(16, 12, 2), &byPlan);
+    Film b = test::renderJob(lit, *accel, test::jobOptions(16, 12, 2, four), &stated);
+    EXPECT_EQ(byPlan.rays, stated.rays);
     for (int y = 0; y < 12; ++y)
         for (int x = 0; x < 16; ++x) EXPECT_EQ(a.pixel(x, y), b.pixel(x, y)) << x << " " << y;
 }

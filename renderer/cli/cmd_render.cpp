@@ -307,11 +307,6 @@ int renderLong(RenderCommand& c, const RenderJob& job, const Accelerator& accel,
     if (job.guided())
         logInfo("path guiding {}; trained in {:.3f}s (counted in the render time)",
                 job.guidingText(), job.guideTrainingSeconds());
-    if (job.lightSamplePilot().chosen)
-        logInfo(
-            "light samples per vertex chosen by a pilot: {}; in {:.3f}s (counted in the render "
-            "time)",
-            job.lightSamplePilot().describe(), job.lightSamplePilot().seconds);
     const bool stopped = r.stats.interrupted || r.stats.timeLimitReached;
     int code = failures              ? 1
                : !stopped            ? 0

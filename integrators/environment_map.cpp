@@ -85,12 +85,6 @@ void EnvironmentMap::prefetch(float u1, float u2) const {
     columns.prefetch(iv, u1);
 }
 
-bool EnvironmentMap::sample(float u1, float u2, EnvironmentSample& out) const {
-    if (!locate(u1, u2, out)) return false;
-    out.radiance = radianceAt(out);
-    return true;
-}
-
 bool EnvironmentMap::locate(float u1, float u2, EnvironmentSample& out) const {
     float pdfV, pdfU;
     out.v = rows.sampleContinuous(u2, pdfV, out.iv);

@@ -9,12 +9,12 @@
 
 namespace kiln {
 
-// A point of the map drawn by importance: its (u, v), direction, density and radiance.
+// A point of the map drawn by importance: its (u, v), direction, density and texel (its radiance:
+// EnvironmentMap::radianceAt).
 struct EnvironmentSample {
     float u = 0, v = 0;
     Vec3 dir;
-    float pdf = 0;  // solid angle
-    Color radiance;
+    float pdf = 0;          // solid angle
     size_t iu = 0, iv = 0;  // the texel drawn
 };
 
@@ -48,15 +48,14 @@ struct EnvironmentMap {
     BilinearTexels bilinearTexels(float u, float v) const;
     Vec3 direction(float u, float v) const;  // (u, v) in [0,1)^2 -> unit direction
     void coordinates(const Vec3& dir, float& u, float& v) const;
-    // Asks memory for the first table entry sample(u1, u2) reads (the row's is in cache).
+    // Asks memory for the first table entry locate(u1, u2) reads (the row's is in cache).
     void prefetch(float u1, float u2) const;
-    // Importance sampling (a map with pixels): false where the drawn point has no density.
-    bool sample(float u1, float u2, EnvironmentSample& out) const;
-    // sample() in two steps: the point and its density (its texels asked for from memory), then
-    // its radiance; between them the texels' cache misses can overlap other work.
+    // Importance sampling (a map with pixels) in two steps: the point and its density (its texels
+    // asked for from memory; false where it has no density), then its radiance; between them the
+    // texels' cache misses can overlap other work.
     bool locate(float u1, float u2, EnvironmentSample& out) const;
     Color radianceAt(const EnvironmentSample& s) const;
-    // Solid-angle density of sample() drawing the unit direction dir.
+    // Solid-angle density of locate() drawing the unit direction dir.
     float pdf(const Vec3& dir) const;
     // The same at dir's own coordinates (u, v), as coordinates() gives them.
     float pdf(float u, float v, const Vec3& dir) const;

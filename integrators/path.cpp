@@ -316,7 +316,8 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
                 prefetchHitVertices(scene_, w.hits[j + kVerticesAhead]);
             if constexpr (!F::media)
                 if (j + kLightsAhead < w.hits.size()) drawAhead(batch, w, j + kLightsAhead, bounce);
-            if constexpr (!F::media)
+            // Only an environment map has samples to locate (F::infinite: a light at infinity).
+            if constexpr (!F::media && F::infinite)
                 if (j + kLocateAhead < w.hits.size()) locateAhead(batch, w, j + kLocateAhead);
             // With media, the boundaries a path passed through are no bounce of its.
             shadePath<F>(batch, w, j, F::media ? bounce - w.paths[w.active[j]].crossings : bounce);

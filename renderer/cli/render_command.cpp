@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <filesystem>
+#include <optional>
 
 #include "renderer/build_info.h"
 #include "renderer/core/log.h"
@@ -317,8 +318,9 @@ int writeOutputs(const RenderCommand& c, const OutputPaths& out, const Film& fil
     Metadata denoisedMeta = meta;
     if (c.denoise && film.hasHalves()) {
         try {  // a denoiser failure is an error, but the raw image is still written
-            const DenoisedFrame frame =
-                denoised ? *denoised : denoiseFrame(film, c.job.job.settings.threads);
+            std::optional<DenoisedFrame> own;
+            const DenoisedFrame& frame =
+                denoised ? *denoised : own.emplace(denoiseFrame(film, c.job.job.settings.threads));
             exr.denoised = frame.exr.denoised, exr.denoisedLayers = frame.exr.denoisedLayers;
             for (const auto& [key, value] : frame.meta) denoisedMeta[key] = value;
         } catch (const std::exception& e) {

@@ -2,6 +2,7 @@
 
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <iterator>
@@ -163,12 +164,16 @@ std::vector<Color> runNfor(const Halves& in, const Prefiltered& features, const 
                                 {{o.patchRadius, o.windowRadius, 1.0f, 1.0f}, {1.0f}, o.fitStride})
             .front();
 
+    // A plane fitted across a light's edge can overshoot below zero next to it; light is never
+    // negative, so neither is the result where no input value is.
+    const float floor =
+        std::min(0.0f, *std::min_element(colourMean.values.begin(), colourMean.values.end()));
     std::vector<Color> out(result.pixels());
     for (size_t p = 0; p < out.size(); ++p) {
         Color c(result.values[3 * p], result.values[3 * p + 1], result.values[3 * p + 2]);
         // A failed fit falls back to the noisy pixel rather than spread anything.
         bool finite = std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z);
-        out[p] = finite ? c
+        out[p] = finite ? max(c, Color(floor))
                         : Color(colourMean.values[3 * p], colourMean.values[3 * p + 1],
                                 colourMean.values[3 * p + 2]);
     }

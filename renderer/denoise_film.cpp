@@ -28,18 +28,24 @@ denoise::Halves halvesOf(const Film& film, int layer) {
     denoise::Halves halves;
     for (denoise::Image& half : halves.half)
         half = denoise::Image(film.width(), film.height(), kHalfChannels);
-    for (int y = 0; y < film.height(); ++y)
-        for (int x = 0; x < film.width(); ++x) {
-            float samples[2];
-            for (int h = 0; h < 2; ++h) {
-                float* values = halves.half[h].at(x, y);
-                film.halfMean(x, y, h, values);
-                // The layer's colour and variance in place of the beauty's first channels.
-                if (layer >= 0) film.layerHalfMean(x, y, h, size_t(layer), values);
-                samples[h] = float(film.halfSamples(x, y, h));
-            }
-            borrowEmptyHalf(halves, x, y, samples);
-        }
+    // Each pixel from its own sums: rows in parallel give the same image for any thread count.
+    denoise::parallelChunks(
+        size_t(film.height()),
+        [&](size_t y0, size_t y1) {
+            for (int y = int(y0); y < int(y1); ++y)
+                for (int x = 0; x < film.width(); ++x) {
+                    float samples[2];
+                    for (int h = 0; h < 2; ++h) {
+                        float* values = halves.half[h].at(x, y);
+                        film.halfMean(x, y, h, values);
+                        // The layer's colour and variance in place of the beauty's first channels.
+                        if (layer >= 0) film.layerHalfMean(x, y, h, size_t(layer), values);
+                        samples[h] = float(film.halfSamples(x, y, h));
+                    }
+                    borrowEmptyHalf(halves, x, y, samples);
+                }
+        },
+        4);
     return halves;
 }
 

@@ -26,34 +26,40 @@ constexpr int kVarianceRadius = 2;
 // The halves with non-finite values replaced by 0 (variances: by "unknown").
 Halves sanitized(Halves out) {
     for (Image& half : out.half)
-        for (size_t i = 0; i < half.values.size(); ++i) {
-            const int c = int(i % size_t(half.channels));
-            if (!std::isfinite(half.values[i]))
-                half.values[i] = c >= kVariance && c < kFeatures ? -1.0f : 0.0f;
-        }
+        parallelChunks(half.values.size(), [&half](size_t begin, size_t end) {
+            for (size_t i = begin; i < end; ++i) {
+                const int c = int(i % size_t(half.channels));
+                if (!std::isfinite(half.values[i]))
+                    half.values[i] = c >= kVariance && c < kFeatures ? -1.0f : 0.0f;
+            }
+        });
     return out;
 }
 
 // Per channel: (a + b) / 2 and its variance (a - b)^2 / 4 (two independent halves).
 void meanAndVariance(const Image& a, const Image& b, Image& mean, Image& variance) {
     mean = Image(a.width, a.height, a.channels), variance = mean;
-    for (size_t i = 0; i < a.values.size(); ++i) {
-        float d = a.values[i] - b.values[i];
-        mean.values[i] = 0.5f * (a.values[i] + b.values[i]);
-        variance.values[i] = 0.25f * d * d;
-    }
+    parallelChunks(a.values.size(), [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) {
+            float d = a.values[i] - b.values[i];
+            mean.values[i] = 0.5f * (a.values[i] + b.values[i]);
+            variance.values[i] = 0.25f * d * d;
+        }
+    });
 }
 
 // The variance of the halves' mean colour from the halves' sample variances, (vA + vB) / 4;
 // where a half's is unknown, the estimate from their difference.
 Image sampleVariance(const Halves& in, const Image& fromDifference) {
     Image v = fromDifference;
-    for (size_t p = 0; p < v.pixels(); ++p)
-        for (int c = 0; c < 3; ++c) {
-            size_t at = p * size_t(in.half[0].channels) + size_t(kVariance + c);
-            float a = in.half[0].values[at], b = in.half[1].values[at];
-            if (a >= 0 && b >= 0) v.values[p * 3 + size_t(c)] = 0.25f * (a + b);
-        }
+    parallelChunks(v.pixels(), [&](size_t begin, size_t end) {
+        for (size_t p = begin; p < end; ++p)
+            for (int c = 0; c < 3; ++c) {
+                size_t at = p * size_t(in.half[0].channels) + size_t(kVariance + c);
+                float a = in.half[0].values[at], b = in.half[1].values[at];
+                if (a >= 0 && b >= 0) v.values[p * 3 + size_t(c)] = 0.25f * (a + b);
+            }
+    });
     return v;
 }
 
@@ -80,12 +86,15 @@ std::vector<FilterPair> regressHalves(const Image colour[2], const Image feature
 // noisy half, less that half's variance and the filtered halves' own difference).
 Image estimatedMse(const Image colour[2], const FilterPair& f, const Image& variance) {
     Image mse(f.a.width, f.a.height, 3);
-    for (size_t i = 0; i < mse.values.size(); ++i) {
-        float ea = colour[1].values[i] - f.a.values[i], eb = colour[0].values[i] - f.b.values[i];
-        float between = f.b.values[i] - f.a.values[i];
-        mse.values[i] =
-            0.5f * (ea * ea + eb * eb) - 2.0f * variance.values[i] - 0.25f * between * between;
-    }
+    parallelChunks(mse.values.size(), [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) {
+            float ea = colour[1].values[i] - f.a.values[i];
+            float eb = colour[0].values[i] - f.b.values[i];
+            float between = f.b.values[i] - f.a.values[i];
+            mse.values[i] =
+                0.5f * (ea * ea + eb * eb) - 2.0f * variance.values[i] - 0.25f * between * between;
+        }
+    });
     return mse;
 }
 
@@ -96,10 +105,12 @@ Image smoothedMap(const Image& map, const Image& guide, const Image& variance, c
 // Both MSE maps smoothed with one set of weights (the same guide): side by side as channels.
 void smoothMaps(Image mse[2], const Image& guide, const Image& variance, const Options& o) {
     Image both(guide.width, guide.height, 6);
-    for (size_t p = 0; p < both.pixels(); ++p)
-        for (int c = 0; c < 3; ++c)
-            for (int b = 0; b < 2; ++b)
-                both.values[p * 6 + size_t(3 * b + c)] = mse[b].values[p * 3 + size_t(c)];
+    parallelChunks(both.pixels(), [&](size_t begin, size_t end) {
+        for (size_t p = begin; p < end; ++p)
+            for (int c = 0; c < 3; ++c)
+                for (int b = 0; b < 2; ++b)
+                    both.values[p * 6 + size_t(3 * b + c)] = mse[b].values[p * 3 + size_t(c)];
+    });
     both = smoothedMap(both, guide, variance, o);
     for (int b = 0; b < 2; ++b) mse[b] = channelsOf(both, 3 * b, 3);
 }
@@ -146,15 +157,19 @@ std::vector<Color> runNfor(const Halves& in, const Prefiltered& features, const 
     for (int b = 0; b < 2; ++b) mse[b] = estimatedMse(colour, pass[size_t(b)], colourVariance);
     smoothMaps(mse, colourMean, colourVariance, o);
     Image choice(w, h, 3);
-    for (size_t i = 0; i < choice.values.size(); ++i)
-        choice.values[i] = mse[0].values[i] < mse[1].values[i] ? 0.0f : 1.0f;
+    parallelChunks(choice.values.size(), [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i)
+            choice.values[i] = mse[0].values[i] < mse[1].values[i] ? 0.0f : 1.0f;
+    });
     choice = smoothedMap(choice, colourMean, colourVariance, o);
     Image chosen[2] = {Image(w, h, 3), Image(w, h, 3)};
-    for (size_t i = 0; i < choice.values.size(); ++i) {
-        float t = choice.values[i];
-        chosen[0].values[i] = (1 - t) * pass[0].a.values[i] + t * pass[1].a.values[i];
-        chosen[1].values[i] = (1 - t) * pass[0].b.values[i] + t * pass[1].b.values[i];
-    }
+    parallelChunks(choice.values.size(), [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) {
+            float t = choice.values[i];
+            chosen[0].values[i] = (1 - t) * pass[0].a.values[i] + t * pass[1].a.values[i];
+            chosen[1].values[i] = (1 - t) * pass[0].b.values[i] + t * pass[1].b.values[i];
+        }
+    });
 
     // 4. The second pass over the averaged halves.
     Image combined, combinedVariance;
@@ -169,14 +184,16 @@ std::vector<Color> runNfor(const Halves& in, const Prefiltered& features, const 
     const float floor =
         std::min(0.0f, *std::min_element(colourMean.values.begin(), colourMean.values.end()));
     std::vector<Color> out(result.pixels());
-    for (size_t p = 0; p < out.size(); ++p) {
-        Color c(result.values[3 * p], result.values[3 * p + 1], result.values[3 * p + 2]);
-        // A failed fit falls back to the noisy pixel rather than spread anything.
-        bool finite = std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z);
-        out[p] = finite ? max(c, Color(floor))
-                        : Color(colourMean.values[3 * p], colourMean.values[3 * p + 1],
-                                colourMean.values[3 * p + 2]);
-    }
+    parallelChunks(out.size(), [&](size_t begin, size_t end) {
+        for (size_t p = begin; p < end; ++p) {
+            Color c(result.values[3 * p], result.values[3 * p + 1], result.values[3 * p + 2]);
+            // A failed fit falls back to the noisy pixel rather than spread anything.
+            bool finite = std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z);
+            out[p] = finite ? max(c, Color(floor))
+                            : Color(colourMean.values[3 * p], colourMean.values[3 * p + 1],
+                                    colourMean.values[3 * p + 2]);
+        }
+    });
     return out;
 }
 
@@ -201,8 +218,8 @@ std::vector<std::vector<Color>> denoiseAll(size_t count,
     std::vector<std::vector<Color>> out(count);
     std::optional<Prefiltered> features;
     for (size_t i = 0; i < count; ++i) {
-        Halves clean = sanitized(halvesOf(i));
         arena.execute([&] {
+            const Halves clean = sanitized(halvesOf(i));
             if (!features) features = prefilter(clean, options);
             out[i] = runNfor(clean, *features, options);
         });

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 namespace kiln::denoise {
@@ -24,6 +25,11 @@ struct Rect {
     int width() const { return x1 - x0; }
     int height() const { return y1 - y0; }
 };
+
+// body(begin, end) over [0, n) in chunks of at least grain on TBB's threads: for passes that
+// write each index from one chunk, so the result is the same for any thread count.
+void parallelChunks(size_t n, const std::function<void(size_t, size_t)>& body,
+                    size_t grain = 16384);
 
 // Channels [first, first + count) of an image.
 Image channelsOf(const Image& image, int first, int count);

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 #include "renderer/core/log.h"
 #include "renderer/film/half_buffers.h"
@@ -51,8 +52,11 @@ denoise::Halves halvesOf(const Film& film, int layer) {
 
 std::shared_ptr<const std::vector<Color>> denoiseFilm(const Film& film,
                                                       const denoise::Options& options, int layer) {
+    // The halves read inside the denoiser's threads (options.threads), as the denoising itself.
     return std::make_shared<const std::vector<Color>>(
-        denoise::denoise(halvesOf(film, layer), options));
+        std::move(denoise::denoiseAll(
+                      1, [&](size_t) { return halvesOf(film, layer); }, options)
+                      .front()));
 }
 
 void denoiseForOutputs(const Film& film, int threads, ExrOptions& exr, Metadata& meta) {

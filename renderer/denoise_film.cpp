@@ -212,10 +212,12 @@ double denoiseExr(const std::string& in, const std::string& out, const denoise::
         denoisedLight ? layersIn(exr, denoisedLight, in) : std::vector<std::string>{};
     for (const std::string& layer : layers) halvesOf(exr, in, layer);  // checked before any work
     auto start = std::chrono::steady_clock::now();
-    // The beauty, then each layer, sharing the prefiltered features.
+    // The beauty, then each layer, sharing the prefiltered features; each is asked for once, so
+    // the beauty's halves are moved in, not copied.
     std::vector<std::vector<Color>> denoised = denoise::denoiseAll(
         layers.size() + 1,
-        [&](size_t i) { return i == 0 ? halves : halvesOf(exr, in, layers[i - 1]); }, options);
+        [&](size_t i) { return i == 0 ? std::move(halves) : halvesOf(exr, in, layers[i - 1]); },
+        options);
     double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     replaceWithDenoised(exr, "", denoised[0]);

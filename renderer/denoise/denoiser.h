@@ -4,8 +4,8 @@
 // 35(4), 2016 (EGSR). Written for kiln after reading Tungsten's src/denoiser (docs/denoise.md):
 // 1. the features (albedo, normal, depth) of each half are prefiltered by NL-means guided by the
 //    other half (they are noisy under depth of field, motion and glossy reflection; 5.1);
-// 2. each half's colour is regressed on the other half's filtered features with weights from the
-//    other half's colour (cross-filtering), at two bandwidths (5.2);
+// 2. each half's colour is regressed on its own filtered features with weights from the other
+//    half's colour (cross-filtering), at two bandwidths (5.2);
 // 3. each pixel picks its bandwidth by the MSE the half-buffers estimate, the estimates and the
 //    choice smoothed by NL-means (5.3);
 // 4. the two filtered halves are averaged and filtered once more with their difference as the

@@ -6,16 +6,6 @@
 #include <algorithm>
 #include <cmath>
 
-// The patch-distance loops also compiled for AVX2 and chosen at load time where the CPU has it
-// (the build targets plain x86-64): 8 floats a step instead of 4, 5 % of the denoiser's time on the
-// 1280x720 Lucy. No FMA: each value is the same IEEE result either way, so images are the same bits
-// on any machine.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define KILN_AVX2_CLONE __attribute__((target_clones("avx2", "default")))
-#else
-#define KILN_AVX2_CLONE
-#endif
-
 namespace kiln::denoise {
 namespace {
 

@@ -86,7 +86,7 @@ void gatherWindow(const Image& colour, const Image& features, int px, int py, in
 
 // The weighted least-squares coefficients (N x RGB) of the window.
 template <int N>
-Coefficients<N> fitWindow(const Window<N>& win) {
+KILN_AVX2_CLONE Coefficients<N> fitWindow(const Window<N>& win) {
     if (win.rows == 1) {  // the centre alone (no neighbour like it): the plane is its colour
         Coefficients<N> beta{};
         for (int c = 0; c < 3; ++c) beta[0][size_t(c)] = win.y[0][size_t(c)];
@@ -122,7 +122,7 @@ Coefficients<N> fitWindow(const Window<N>& win) {
 
 // Each neighbour's fitted colour, weighted, into sum (RGB, weight per pixel).
 template <int N>
-void spreadFit(const Window<N>& win, const Coefficients<N>& beta, Image& sum) {
+KILN_AVX2_CLONE void spreadFit(const Window<N>& win, const Coefficients<N>& beta, Image& sum) {
     for (int k = 0; k < win.rows; ++k) {
         const std::array<double, size_t(N)>& x = win.x[size_t(k)];
         double v[3] = {0, 0, 0};

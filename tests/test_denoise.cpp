@@ -186,9 +186,9 @@ struct StripedFrame {
     std::vector<float> trueAlbedo;
 };
 
-StripedFrame stripedFrame() {
+StripedFrame stripedFrame(uint32_t seed) {
     StripedFrame f;
-    std::mt19937 rng(11);
+    std::mt19937 rng(seed);
     std::uniform_real_distribution<float> jitter(0.0f, 1.0f);
     std::normal_distribution<float> gauss(0.0f, 1.0f);
     auto texture = [](float x, float y) {
@@ -210,8 +210,10 @@ StripedFrame stripedFrame() {
             f.truth.push_back(fine * Color(shade(x, y, 0), shade(x, y, 1), shade(x, y, 2)));
             for (Image& half : f.halves.half) {
                 Color albedo(0.0f);
-                for (int s = 0; s < 8; ++s)
-                    albedo += texture(float(x) + jitter(rng), float(y) + jitter(rng)) / 8.0f;
+                for (int s = 0; s < 8; ++s) {
+                    const float sx = jitter(rng), sy = jitter(rng);  // in this order
+                    albedo += texture(float(x) + sx, float(y) + sy) / 8.0f;
+                }
                 float* p = half.at(x, y);
                 for (int c = 0; c < 3; ++c) {
                     const float sd = 0.3f * albedo[c] * shade(x, y, c);
@@ -225,28 +227,37 @@ StripedFrame stripedFrame() {
     return f;
 }
 
-// Issue 29's goal on texture edges: the denoised albedo-edge contrast within 2 % of the
-// reference's (here the truth's).
+// Luminance steps between neighbours whose true albedo differs by more than 0.1, taken along the
+// true albedo's step (albedoEdgeContrast's measure).
+double edgeSteps(const StripedFrame& f, const std::vector<Color>& image) {
+    double along = 0;
+    for (size_t p = 0; p + 1 < image.size(); ++p) {
+        const float step = f.trueAlbedo[p] - f.trueAlbedo[p + 1];
+        if ((p + 1) % size_t(f.w) != 0 && std::fabs(step) > 0.1f)
+            along += (step > 0 ? 1 : -1) * (luminance(image[p]) - luminance(image[p + 1]));
+    }
+    return along;
+}
+
+// Issue 29's goal on texture edges, the denoised albedo-edge contrast within 2 % of the
+// reference's (here the truth's), over 8 frames; and no softer than the raw input's, on average
+// beyond three standard errors of the frames' differences. Measured: 0.997-1.014 of the truth,
+// -0.1 to +0.5 % beside the raw input. Regressed on the other half's features, whose samples fell
+// elsewhere in the pixel, the fit flattens its slope on albedo: 0.986-1.002 of the truth, so the
+// goal alone would not tell, but 0.6-1.3 % below the raw input on every frame (mean 0.85 %, its
+// standard error 0.07 %).
 TEST(Denoiser, KeepsATextureEdgeThatEachHalfCoversWithItsOwnSamples) {
-    const StripedFrame f = stripedFrame();
-    const std::vector<Color> raw = meanOf(f.halves), denoised = denoise::denoise(f.halves);
-    // Luminance steps between neighbours whose true albedo differs by more than 0.1, taken along
-    // the true albedo's step (albedoEdgeContrast's measure).
-    auto edgeSteps = [&f](const std::vector<Color>& image) {
-        double along = 0;
-        for (size_t p = 0; p + 1 < image.size(); ++p) {
-            const float step = f.trueAlbedo[p] - f.trueAlbedo[p + 1];
-            if ((p + 1) % size_t(f.w) != 0 && std::fabs(step) > 0.1f)
-                along += (step > 0 ? 1 : -1) * (luminance(image[p]) - luminance(image[p + 1]));
-        }
-        return along;
-    };
-    // Measured: 0.998 (the raw mean 0.992, its standard error 0.005). Regressed on the other
-    // half's features, whose samples fell elsewhere in the pixel, the fit flattens its slope on
-    // albedo: 0.985.
-    EXPECT_GT(edgeSteps(denoised), 0.98 * edgeSteps(f.truth))
-        << edgeSteps(denoised) / edgeSteps(f.truth) << " (raw "
-        << edgeSteps(raw) / edgeSteps(f.truth) << ")";
+    std::vector<double> softening;
+    for (uint32_t seed = 1; seed <= 8; ++seed) {
+        const StripedFrame f = stripedFrame(seed);
+        const double truth = edgeSteps(f, f.truth);
+        const double raw = edgeSteps(f, meanOf(f.halves));
+        const double denoised = edgeSteps(f, denoise::denoise(f.halves));
+        EXPECT_GT(denoised, 0.98 * truth) << "seed " << seed << ": " << denoised / truth;
+        softening.push_back((raw - denoised) / truth);
+    }
+    const test::RelMse mean = test::meanOf(softening);
+    EXPECT_LT(mean.mean, 3 * mean.standardError) << mean.mean << " +- " << mean.standardError;
 }
 
 // One sample per pixel leaves half B empty: it takes half A's values and the pixel stays as it is.

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "renderer/denoise/avx2_clone.h"
+
 namespace kiln::denoise {
 namespace {
 

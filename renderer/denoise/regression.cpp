@@ -7,6 +7,8 @@
 #include <array>
 #include <cmath>
 
+#include "renderer/denoise/avx2_clone.h"
+
 namespace kiln::denoise {
 namespace {
 

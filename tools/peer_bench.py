@@ -5,6 +5,7 @@ the same scene, each against its own converged reference (a benchmark, not a tes
   tools/peer_bench.py [--scene NAME] [--spp 16,64,256] [--ref-spp 1024] [--repeats 2] [--threads 2]
                       [--resolution W H] [--out out/peer] [--samplers sobol]
                       [--variant LABEL=ARGS[@P1,...]]... [--check] [--write-scenes DIR]
+                      [--scene-file JSON]
 
 Scenes: lucy_env (an environment-lit mesh), box_bunny (a closed box lit by an emissive ceiling quad, a
 diffuse bunny inside), box_metal (the same box, the bunny in rough chrome), glossy_env (a GGX conductor
@@ -12,7 +13,8 @@ bunny on a diffuse floor under the environment), room_uplight (a closed room lit
 facing the ceiling, a diffuse bunny on its floor). Before timing, the two converged references are put
 side by side (OUT/SCENE.refs.png) and their mean RGB printed: the scenes are identical when those agree
 (--check stops there). --write-scenes DIR writes every scene's .kiln (and quads .dae) there and stops
-(scenes/peer holds them).
+(scenes/peer holds them). --scene-file JSON takes scenes from a file instead, in the same form
+(tools/peer/outside_set.json: scenes the set's settings were not tuned on).
 
 A --variant is another kiln series (e.g. "l4=-l 4", or "noise=-s 1024 --noise-threshold {p}@0.2,0.1,0.05":
 one point per spp step), its error measured against the first sampler's reference (every variant
@@ -281,7 +283,11 @@ REF_SEED = 1007  # test renders use each renderer's default seed (kiln 0, Cycles
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
-    ap.add_argument("--scene", default="lucy_env", choices=sorted(SCENES))
+    ap.add_argument("--scene", default="lucy_env",
+                    help="a scene of the set (%s) or of --scene-file" % ", ".join(sorted(SCENES)))
+    ap.add_argument("--scene-file", metavar="JSON",
+                    help="scenes outside the set, {name: scene} in SCENES' form (paths under\n"
+                         "../shared): to measure on scenes the set was not tuned on")
     ap.add_argument("--spp", default="16,64,256")
     ap.add_argument("--ref-spp", type=int, default=1024)
     ap.add_argument("--repeats", type=int, default=2)
@@ -310,7 +316,13 @@ def main():
     os.makedirs(a.out, exist_ok=True)
     spps = [int(v) for v in a.spp.split(",")]
     samplers = a.samplers.split(",")
-    kiln_scene, json_path, s = describe(a.scene, a.out, a.resolution)
+    scenes = SCENES
+    if a.scene_file:
+        with open(a.scene_file) as f:
+            scenes = json.load(f)
+    if a.scene not in scenes:
+        sys.exit("--scene %s: not one of %s" % (a.scene, ", ".join(sorted(scenes))))
+    kiln_scene, json_path, s = describe(a.scene, a.out, a.resolution, scenes)
     base = os.path.join(a.out, a.scene)
 
     # references are reused by a later run only when they were made at the same size and spp

@@ -8,7 +8,8 @@ import sys
 
 def time_at(series, level):
     """Log-log interpolation of (time, error) points to the time at which error reaches `level`;
-    extrapolated along the last two points below the smallest error (marked with '*')."""
+    extrapolated (marked with '*') along the last two points below the smallest error, and along the
+    first two above the largest (a level reached before the first point)."""
     pts = sorted(series)
     for (t0, e0), (t1, e1) in zip(pts, pts[1:]):
         if e0 >= level >= e1 and e0 != e1:
@@ -16,6 +17,10 @@ def time_at(series, level):
             return math.exp(math.log(t0) + f * (math.log(t1) - math.log(t0))), ""
     if len(pts) >= 2 and level < pts[-1][1]:
         (t0, e0), (t1, e1) = pts[-2], pts[-1]
+        f = math.log(level / e0) / math.log(e1 / e0)
+        return math.exp(math.log(t0) + f * (math.log(t1) - math.log(t0))), "*"
+    if len(pts) >= 2 and level > pts[0][1] and pts[0][1] != pts[1][1]:
+        (t0, e0), (t1, e1) = pts[0], pts[1]
         f = math.log(level / e0) / math.log(e1 / e0)
         return math.exp(math.log(t0) + f * (math.log(t1) - math.log(t0))), "*"
     return float("nan"), "?"

@@ -11,18 +11,19 @@ def time_at(series, level):
     extrapolated (marked with '*') along the last two points below the smallest error, and along the
     first two above the largest (a level reached before the first point)."""
     pts = sorted(series)
-    for (t0, e0), (t1, e1) in zip(pts, pts[1:]):
-        if e0 >= level >= e1 and e0 != e1:
-            f = math.log(level / e0) / math.log(e1 / e0)
-            return math.exp(math.log(t0) + f * (math.log(t1) - math.log(t0))), ""
+
+    def along(p, q):  # the time where the log-log line through p and q meets the level
+        (t0, e0), (t1, e1) = p, q
+        f = math.log(level / e0) / math.log(e1 / e0)
+        return math.exp(math.log(t0) + f * (math.log(t1) - math.log(t0)))
+
+    for p, q in zip(pts, pts[1:]):
+        if p[1] >= level >= q[1] and p[1] != q[1]:
+            return along(p, q), ""
     if len(pts) >= 2 and level < pts[-1][1]:
-        (t0, e0), (t1, e1) = pts[-2], pts[-1]
-        f = math.log(level / e0) / math.log(e1 / e0)
-        return math.exp(math.log(t0) + f * (math.log(t1) - math.log(t0))), "*"
+        return along(pts[-2], pts[-1]), "*"
     if len(pts) >= 2 and level > pts[0][1] and pts[0][1] != pts[1][1]:
-        (t0, e0), (t1, e1) = pts[0], pts[1]
-        f = math.log(level / e0) / math.log(e1 / e0)
-        return math.exp(math.log(t0) + f * (math.log(t1) - math.log(t0))), "*"
+        return along(pts[0], pts[1]), "*"
     return float("nan"), "?"
 
 

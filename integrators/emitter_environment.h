@@ -23,6 +23,13 @@ class EnvironmentEmitter {
     bool locate(float u1, float u2, EnvironmentSample& out) const {
         return !env_.pixels.empty() && env_.locate(u1, u2, out);
     }
+    // locate in its two parts (EnvironmentMap::pickRow, locateInRow); false where there is no map.
+    bool pickRow(float u1, float u2, EnvironmentSample& out) const {
+        if (env_.pixels.empty()) return false;
+        env_.pickRow(u1, u2, out);
+        return true;
+    }
+    bool locateInRow(float u1, EnvironmentSample& out) const { return env_.locateInRow(u1, out); }
     bool sampleLocated(const EnvironmentSample& s, LightSample& out) const;
     float pdf(const Vec3& ref, const Vec3& wi, const Vec3& x, const Vec3& n) const;
     Color escaped(const Vec3& dir, bool) const { return env_.lookup(dir); }

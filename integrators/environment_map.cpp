@@ -79,15 +79,23 @@ static float solidAngleDensity(float pdfUV, float sinTheta) {
 }
 
 void EnvironmentMap::prefetch(float u1, float u2) const {
-    float pdfV;
-    size_t iv;
-    rows.sampleContinuous(u2, pdfV, iv);
-    columns.prefetch(iv, u1);
+    EnvironmentSample row;
+    pickRow(u1, u2, row);
+}
+
+void EnvironmentMap::pickRow(float u1, float u2, EnvironmentSample& out) const {
+    out.v = rows.sampleContinuous(u2, out.pdfV, out.iv);
+    columns.prefetch(out.iv, u1);
 }
 
 bool EnvironmentMap::locate(float u1, float u2, EnvironmentSample& out) const {
-    float pdfV, pdfU;
-    out.v = rows.sampleContinuous(u2, pdfV, out.iv);
+    out.v = rows.sampleContinuous(u2, out.pdfV, out.iv);
+    return locateInRow(u1, out);
+}
+
+bool EnvironmentMap::locateInRow(float u1, EnvironmentSample& out) const {
+    float pdfU;
+    const float pdfV = out.pdfV;
     out.u = columns.sampleContinuous(out.iv, u1, pdfU, out.iu);
     float sinTheta, cosTheta, sinPhi, cosPhi;
     theta.sinCos(out.v, sinTheta, cosTheta);

@@ -16,6 +16,7 @@ struct EnvironmentSample {
     Vec3 dir;
     float pdf = 0;          // solid angle
     size_t iu = 0, iv = 0;  // the texel drawn
+    float pdfV = 0;         // the row's density (pickRow)
 };
 
 // A lat-long environment map in memory (scaled, in the working space), looked up bilinearly
@@ -54,6 +55,11 @@ struct EnvironmentMap {
     // asked for from memory; false where it has no density), then its radiance; between them the
     // texels' cache misses can overlap other work.
     bool locate(float u1, float u2, EnvironmentSample& out) const;
+    // locate in two parts: the row (v, iv, pdfV), with the column's first table entry asked for
+    // from memory as prefetch does, then the rest of the point: locate(u1, u2) bit for bit, and a
+    // caller that prefetches early keeps the row instead of drawing it twice.
+    void pickRow(float u1, float u2, EnvironmentSample& out) const;
+    bool locateInRow(float u1, EnvironmentSample& out) const;
     Color radianceAt(const EnvironmentSample& s) const;
     // Solid-angle density of locate() drawing the unit direction dir.
     float pdf(const Vec3& dir) const;

@@ -61,6 +61,15 @@ class LightSet {
         const auto* env = std::get_if<EnvironmentEmitter>(&lights_[i].emitter);
         return env && env->locate(u1, u2, out);
     }
+    // prefetch that keeps what it computed: an environment map's row, true (locateInRow then
+    // finishes the point); false for other lights (prefetch did nothing for them either).
+    bool pickRow(size_t i, float u1, float u2, EnvironmentSample& out) const {
+        const auto* env = std::get_if<EnvironmentEmitter>(&lights_[i].emitter);
+        return env && env->pickRow(u1, u2, out);
+    }
+    bool locateInRow(size_t i, float u1, EnvironmentSample& out) const {
+        return std::get<EnvironmentEmitter>(lights_[i].emitter).locateInRow(u1, out);
+    }
     bool sampleLocated(size_t i, const EnvironmentSample& s, LightSample& out) const {
         out = LightSample{};
         return std::get<EnvironmentEmitter>(lights_[i].emitter).sampleLocated(s, out);

@@ -218,6 +218,8 @@ struct PathIntegrator::DrawnAhead {
     // (asked for from memory); the radiance is read at shading.
     bool locatedAll = false;
     std::array<bool, kLightChunk> located;
+    // Drawn: an environment map's row picked (points[j] holds it until locateAhead finishes it).
+    std::array<bool, kLightChunk> rowPicked;
     std::array<EnvironmentSample, kLightChunk> points;
 };
 
@@ -582,7 +584,8 @@ void PathIntegrator::sampleDirectLight(const Vertex& v, const B& bsdf, const Vec
     }
 }
 
-void PathIntegrator::drawLights(Sampler& sampler, int k0, int m, LightDraw* out) const {
+void PathIntegrator::drawLights(Sampler& sampler, int k0, int m, LightDraw* out,
+                                EnvironmentSample* rows, bool* rowPicked) const {
     for (int j = 0; j < m; ++j) {
         LightDraw& d = out[j];
         d = {size_t(k0 + j), 1.0f, 0.5f, 0.5f};
@@ -595,7 +598,10 @@ void PathIntegrator::drawLights(Sampler& sampler, int k0, int m, LightDraw* out)
         }
         auto [a, b] = sampler.next2D();
         d.u1 = a, d.u2 = b;
-        lights_.prefetch(d.light, d.u1, d.u2);
+        if (rows)
+            rowPicked[j] = lights_.pickRow(d.light, d.u1, d.u2, rows[j]);
+        else
+            lights_.prefetch(d.light, d.u1, d.u2);
     }
 }
 
@@ -613,7 +619,7 @@ void PathIntegrator::drawAhead(std::span<CameraSample> batch, Scratch& w, size_t
     a.after = batch[pi].sampler;
     a.dimension = a.after.dimension();
     a.locatedAll = false;
-    drawLights(a.after, 0, samples, a.draws.data());
+    drawLights(a.after, 0, samples, a.draws.data(), a.points.data(), a.rowPicked.data());
 }
 
 // The environment-light samples drawn ahead for ray k's path located, their texels asked for (their
@@ -624,7 +630,8 @@ void PathIntegrator::locateAhead(std::span<CameraSample> batch, Scratch& w, size
     if (a.dimension != batch[pi].sampler.dimension()) return;  // none drawn for this vertex
     const int samples = rules_.lightSamplesPerVertex(opt_.lightSamples, lights_.size());
     for (size_t j = 0; j < size_t(samples); ++j)
-        a.located[j] = lights_.locate(a.draws[j].light, a.draws[j].u1, a.draws[j].u2, a.points[j]);
+        a.located[j] =
+            a.rowPicked[j] && lights_.locateInRow(a.draws[j].light, a.draws[j].u1, a.points[j]);
     a.locatedAll = true;
 }
 

@@ -110,7 +110,12 @@ class PathIntegrator final : public Integrator {
     struct DrawnAhead;  // path.cpp: a vertex's light samples drawn before it is shaded
     // Draws light samples k0 .. k0 + m - 1 of a vertex (the order a loop of single samples draws
     // them in), each table entry the light will read asked for from memory.
-    void drawLights(Sampler& sampler, int k0, int m, LightDraw* out) const;
+    void drawLights(Sampler& sampler, int k0, int m, LightDraw* out) const {
+        drawLights(sampler, k0, m, out, nullptr, nullptr);
+    }
+    // The same, each environment-map draw's row kept in rows[j] (rowPicked[j]) for locateAhead.
+    void drawLights(Sampler& sampler, int k0, int m, LightDraw* out, EnvironmentSample* rows,
+                    bool* rowPicked) const;
     // The light samples of the vertex the path of ray k will shade, drawn now on a copy of its
     // sampler, so that their tables are in cache when it is shaded (sampleDirectLight takes them
     // if the sampler is still where they start).

@@ -271,8 +271,9 @@ TEST(LightSampling, EscapedRadianceWithDensityIsBothApart) {
     }
 }
 
-// An environment sample taken in two steps (located ahead of shading, its radiance read later) is,
-// bit for bit, the sample taken at once; other lights are not located.
+// An environment sample taken in two steps (located ahead of shading, its radiance read later), or
+// in three (its row kept from the prefetch, then the rest located), is, bit for bit, the sample
+// taken at once; other lights are not located.
 TEST(LightSampling, LocatedEnvironmentSampleIsTheSample) {
     Scene s;
     s.lights.emplace_back();
@@ -281,8 +282,9 @@ TEST(LightSampling, LocatedEnvironmentSampleIsTheSample) {
     s.lights.back().kind = LightKind::Ambient;
     s.lights.back().radiance = Color(0.5f);
     LightSet lights(s);
-    EnvironmentSample point;
+    EnvironmentSample point, inParts;
     EXPECT_FALSE(lights.locate(1, 0.3f, 0.6f, point));
+    EXPECT_FALSE(lights.pickRow(1, 0.3f, 0.6f, inParts));
     for (int k = 0; k < 4000; ++k) {
         Sampler smp(9, uint64_t(k), 0);
         const float u1 = smp.next1D(), u2 = smp.next1D();
@@ -291,13 +293,22 @@ TEST(LightSampling, LocatedEnvironmentSampleIsTheSample) {
         const bool located = lights.locate(0, u1, u2, point);
         const bool b = located && lights.sampleLocated(0, point, twice);
         ASSERT_EQ(a, b) << k;
+        // The row kept from the prefetch, then the rest: the same point.
+        ASSERT_TRUE(lights.pickRow(0, u1, u2, inParts));
+        ASSERT_EQ(lights.locateInRow(0, u1, inParts), located) << k;
         if (!located) continue;
         for (int c = 0; c < 3; ++c) {
             ASSERT_EQ(once.wi[c], twice.wi[c]) << k;
             ASSERT_EQ(once.Li[c], twice.Li[c]) << k;
+            ASSERT_EQ(point.dir[c], inParts.dir[c]) << k;
         }
         ASSERT_EQ(once.pdf, twice.pdf) << k;
         ASSERT_EQ(once.infinite, twice.infinite) << k;
+        ASSERT_EQ(point.pdf, inParts.pdf) << k;
+        ASSERT_EQ(point.u, inParts.u) << k;
+        ASSERT_EQ(point.v, inParts.v) << k;
+        ASSERT_EQ(point.iu, inParts.iu) << k;
+        ASSERT_EQ(point.iv, inParts.iv) << k;
     }
 }
 

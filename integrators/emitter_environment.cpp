@@ -32,13 +32,17 @@ bool EnvironmentEmitter::sampleLocated(const EnvironmentSample& s, LightSample& 
 }
 
 Color EnvironmentEmitter::escaped(const Vec3& dir, float& pdf) const {
+    return escapedAt(dir, latLong(dir), &pdf);
+}
+
+Color EnvironmentEmitter::escapedAt(const Vec3& dir, const LatLong& ll, float* pdf) const {
     if (env_.pixels.empty()) {
-        pdf = uniformSpherePdf();
+        if (pdf) *pdf = uniformSpherePdf();
         return env_.constant;
     }
     float u, v;
-    env_.coordinates(dir, u, v);
-    pdf = env_.pdf(u, v, dir);
+    env_.coordinates(ll, u, v);
+    if (pdf) *pdf = env_.pdf(u, v, dir);
     return env_.lookup(u, v);
 }
 

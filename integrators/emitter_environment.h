@@ -35,6 +35,8 @@ class EnvironmentEmitter {
     Color escaped(const Vec3& dir, bool) const { return env_.lookup(dir); }
     // escaped() and, in pdf, pdf() towards dir: the map coordinates found once for both.
     Color escaped(const Vec3& dir, float& pdf) const;
+    // Both, from dir's coordinates found already (latLong4); pdf may be null.
+    Color escapedAt(const Vec3& dir, const LatLong& ll, float* pdf) const;
     Color emitted(const Vec3&, const Vec3&, const Vec3&) const { return l_.radiance; }
 
   private:

@@ -62,14 +62,17 @@ Vec3 EnvironmentMap::direction(float u, float v) const {
 }
 
 void EnvironmentMap::coordinates(const Vec3& d, float& u, float& v) const {
-    u = 0.5f + std::atan2(d.x, -d.z) / (2 * kPi);
+    coordinates(latLong(d), u, v);
+}
+
+void EnvironmentMap::coordinates(const LatLong& ll, float& u, float& v) const {
+    u = ll.u;
     if (rotation != 0) {
         u += rotation / (2 * kPi);
         u -= std::floor(u);
     }
-    v = std::acos(std::clamp(d.y, -1.0f, 1.0f)) / kPi;
     u = std::clamp(u, 0.0f, 1.0f - 1e-7f);
-    v = std::clamp(v, 0.0f, 1.0f - 1e-7f);
+    v = std::clamp(ll.v, 0.0f, 1.0f - 1e-7f);
 }
 
 // A (u, v) density over the unit square as a solid-angle density: the square maps onto the sphere

@@ -49,6 +49,8 @@ struct EnvironmentMap {
     BilinearTexels bilinearTexels(float u, float v) const;
     Vec3 direction(float u, float v) const;  // (u, v) in [0,1)^2 -> unit direction
     void coordinates(const Vec3& dir, float& u, float& v) const;
+    // The same from dir's coordinates found already (latLong4: rays leaving a batch, four at once).
+    void coordinates(const LatLong& dirLatLong, float& u, float& v) const;
     // Asks memory for the first table entry locate(u1, u2) reads (the row's is in cache).
     void prefetch(float u1, float u2) const;
     // Importance sampling (a map with pixels) in two steps: the point and its density (its texels

@@ -86,6 +86,13 @@ Color LightSet::escaped(size_t i, const Vec3& dir, bool cameraRay) const {
     return lights_[i].visit([&](const auto& e) { return e.escaped(dir, cameraRay); });
 }
 
+Color LightSet::escaped(size_t i, const Vec3& ref, const Vec3& dir, const LatLong& ll,
+                        bool cameraRay, float* pdf) const {
+    if (const auto* env = std::get_if<EnvironmentEmitter>(&lights_[i].emitter))
+        return env->escapedAt(dir, ll, pdf);
+    return pdf ? escaped(i, ref, dir, cameraRay, *pdf) : escaped(i, dir, cameraRay);
+}
+
 Color LightSet::escaped(size_t i, const Vec3& ref, const Vec3& dir, bool cameraRay,
                         float& pdf) const {
     if (const auto* env = std::get_if<EnvironmentEmitter>(&lights_[i].emitter))

@@ -97,6 +97,10 @@ class LightSet {
     // escaped() of a ray from ref, and pdf(i, ref, dir, .) for MIS (an environment map looks its
     // coordinates up once for both).
     Color escaped(size_t i, const Vec3& ref, const Vec3& dir, bool cameraRay, float& pdf) const;
+    // The two escaped() from dir's coordinates found already (latLong4), pdf null for the first:
+    // the same values, for a batch of rays whose coordinates were found four at once.
+    Color escaped(size_t i, const Vec3& ref, const Vec3& dir, const LatLong& ll, bool cameraRay,
+                  float* pdf) const;
     bool allDelta() const;
     // Light leaving an area light or emitting mesh, chosen by power: a point by area, a
     // cosine-weighted direction on a side it emits from. False where the scene has none.

@@ -26,6 +26,7 @@ PathIntegrator::PathIntegrator(const Scene& scene, const Accelerator& accel,
         trace_ = &PathIntegrator::trace<Features<false, true, false, true, true>>;
     for (const Material& m : scene.materials) lambertian_.push_back(specOf(m.kind).lambertian);
     opt_.lightSamples = resolvedLightSamples(options, plan);
+    mapEscapes_ = plan.environmentMap;
     rules_ = Cs184Rules(options, lights_.size(), lights_.allDelta());
     // Without next-event estimation (hemisphere, bsdf) emission found by the path counts in full.
     useNee_ = !rules_.hemisphere && options.sampling != DirectSampling::Bsdf && lights_.size() > 0;
@@ -238,7 +239,9 @@ struct PathIntegrator::Scratch {
     std::vector<Ray> probeRays;
     std::vector<Hit> probeHits;
     std::vector<PendingLight> probes;
-    std::vector<DrawnAhead> ahead;  // per path
+    std::vector<DrawnAhead> ahead;       // per path
+    std::vector<uint32_t> escapes;       // rays that left the scene (locateEscapes)
+    std::vector<LatLong> escapeLatLong;  // per ray: its direction's coordinates, if it left
 };
 
 // A surface vertex of one path, as its stages see it.
@@ -296,6 +299,8 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
             }
         }
         counter.rays += w.rays.size();
+        if constexpr (F::infinite && !F::media)
+            if (mapEscapes_) locateEscapes(w);
         w.next.clear();
         w.nextRays.clear();
         w.pending.clear();
@@ -346,7 +351,8 @@ void PathIntegrator::shadePath(std::span<CameraSample> batch, Scratch& w, size_t
     if constexpr (F::media)
         if (crossMedium<F>(batch, w, j, bounce)) return;
     if (!hit.valid()) {
-        addEscaped<F>(st, rec, ray, bounce);
+        const bool located = F::infinite && !F::media && mapEscapes_;
+        addEscaped<F>(st, rec, ray, bounce, located ? &w.escapeLatLong[j] : nullptr);
         return;
     }
     SurfaceInteraction si = makeInteraction(scene_, ray, hit);
@@ -464,21 +470,45 @@ void PathIntegrator::followTransmission(Scratch& w, uint32_t path, const Hit& hi
 
 // A ray that left the scene: the lights at infinity it sees.
 template <class F>
-void PathIntegrator::addEscaped(const PathState& st, SampleRecord& rec, const Ray& ray,
-                                int bounce) const {
+void PathIntegrator::addEscaped(const PathState& st, SampleRecord& rec, const Ray& ray, int bounce,
+                                const LatLong* dirLatLong) const {
     if constexpr (F::infinite) {
         Vec3 dir = normalize(ray.dir);
         for (size_t i : lights_.infiniteLights()) {
             // The light's density for MIS comes with its radiance where the weight needs it.
             const std::optional<float> fixed = fixedEmissionWeight<F>(st, int(i));
             float pdf = 0;
-            Color Le = fixed ? lights_.escaped(i, dir, bounce == 0)
-                             : lights_.escaped(i, st.prevP, dir, bounce == 0, pdf);
+            const bool camera = bounce == 0;
+            Color Le = dirLatLong ? lights_.escaped(i, st.prevP, dir, *dirLatLong, camera,
+                                                    fixed ? nullptr : &pdf)
+                       : fixed    ? lights_.escaped(i, dir, camera)
+                                  : lights_.escaped(i, st.prevP, dir, camera, pdf);
             if (maxComponent(Le) > 0)
                 addLight<F::splitLight>(
                     rec, bounce, st.beta * Le * (fixed ? *fixed : neeWeight(st, int(i), pdf)),
                     st.firstLobe);
         }
+    }
+}
+
+// Normalised as addEscaped normalises them, so each ray's coordinates are those it would find
+// alone (latLong is lane 0 of latLong4).
+void PathIntegrator::locateEscapes(Scratch& w) const {
+    w.escapes.clear();
+    for (size_t j = 0; j < w.hits.size(); ++j)
+        if (!w.hits[j].valid()) w.escapes.push_back(uint32_t(j));
+    w.escapeLatLong.resize(w.rays.size());
+    const size_t n = w.escapes.size();
+    for (size_t k = 0; k < n; k += 4) {
+        Vec3 unit[4];
+        const Vec3* dirs[4];
+        for (size_t l = 0; l < 4; ++l) {
+            unit[l] = normalize(w.rays[w.escapes[std::min(k + l, n - 1)]].dir);
+            dirs[l] = &unit[l];
+        }
+        LatLong found[4];
+        latLong4(dirs, found);
+        for (size_t l = 0; l < 4 && k + l < n; ++l) w.escapeLatLong[w.escapes[k + l]] = found[l];
     }
 }
 

@@ -82,8 +82,13 @@ class PathIntegrator final : public Integrator {
     // The medium a path is in after its vertex's BSDF sent the next ray through the surface.
     void followTransmission(Scratch& w, uint32_t path, const Hit& hit,
                             const SurfaceInteraction& si) const;
+    // Light from the lights at infinity along a ray that left the scene; its direction's
+    // coordinates found already (locateEscapes) or, null, found here.
     template <class F>
-    void addEscaped(const PathState& st, SampleRecord& rec, const Ray& ray, int bounce) const;
+    void addEscaped(const PathState& st, SampleRecord& rec, const Ray& ray, int bounce,
+                    const LatLong* dirLatLong) const;
+    // The map coordinates of every ray of the batch that left the scene, four at a time (latLong4).
+    void locateEscapes(Scratch& w) const;
     template <class F>
     void addSurfaceEmission(const PathState& st, SampleRecord& rec, const Ray& ray, const Hit& hit,
                             const SurfaceInteraction& si, int bounce) const;
@@ -153,7 +158,9 @@ class PathIntegrator final : public Integrator {
     SceneMedia media_;
     // Next-event estimation: light sampling (mis, light) with lights to sample.
     bool useNee_ = false;
-    bool lightOnlyAtLastVertex_ = false;  // a diffuse last vertex: NEE alone, no continuation
+    bool lightOnlyAtLastVertex_ = false;
+    bool mapEscapes_ = false;  // an environment map lights the scene: rays leaving it look it up //
+                               // a diffuse last vertex: NEE alone, no continuation
     std::shared_ptr<const GuideField> guide_;
     std::vector<uint8_t> lambertian_;  // per material: shaded by the Lambert-only code
 };

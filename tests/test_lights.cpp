@@ -244,9 +244,9 @@ TEST(LightSampling, EnvironmentSamplesIntegrateTheMap) {
     EXPECT_NEAR(mean, exact, 5 * stderr_) << "standard error " << stderr_;
 }
 
-// An escaped ray's radiance and MIS density looked up together (the map coordinates found once)
-// are, bit for bit, the two looked up apart, for the environment map (turned and not) and for an
-// ambient light.
+// An escaped ray's radiance and MIS density looked up together (the map coordinates found once,
+// or found beforehand with a batch's) are, bit for bit, the two looked up apart, for the
+// environment map (turned and not) and for an ambient light.
 TEST(LightSampling, EscapedRadianceWithDensityIsBothApart) {
     for (float rotation : {0.0f, 30.0f}) {
         Scene s;
@@ -266,6 +266,15 @@ TEST(LightSampling, EscapedRadianceWithDensityIsBothApart) {
                 const Color alone = lights.escaped(i, dir, false);
                 for (int c = 0; c < 3; ++c) ASSERT_EQ(both[c], alone[c]) << i << " " << k;
                 ASSERT_EQ(pdf, lights.pdf(i, ref, dir, Vec3(0.0f), Vec3(0.0f))) << i << " " << k;
+                // The same from the direction's coordinates found beforehand (a batch's rays).
+                float pdfAt = -1;
+                const Color at = lights.escaped(i, ref, dir, latLong(dir), false, &pdfAt);
+                const Color aloneAt = lights.escaped(i, ref, dir, latLong(dir), false, nullptr);
+                for (int c = 0; c < 3; ++c) {
+                    ASSERT_EQ(at[c], alone[c]) << i << " " << k;
+                    ASSERT_EQ(aloneAt[c], alone[c]) << i << " " << k;
+                }
+                ASSERT_EQ(pdfAt, pdf) << i << " " << k;
             }
         }
     }

@@ -33,11 +33,15 @@ namespace {
 // paths die off, few enough that the batch stays in cache.
 constexpr size_t kBatchSamples = 256;
 
-// Appends the camera sample of pixel (x, y), sample s, built in place.
+Sampler::PixelKey pixelKey(const RenderSettings& settings, int x, int y) {
+    return Sampler::pixelKey(settings.seed, uint64_t(y) * uint64_t(settings.width) + uint64_t(x));
+}
+
+// Appends the camera sample of pixel (x, y) (its sampler's key given), sample s, built in place.
 void addCameraSample(std::vector<CameraSample>& batch, const CameraModel& camera,
-                     const AovRequest& aovs, const RenderSettings& settings, int x, int y, int s) {
-    Sampler sampler(settings.seed, uint64_t(y) * uint64_t(settings.width) + uint64_t(x),
-                    uint64_t(s), settings.sampler);
+                     const AovRequest& aovs, const RenderSettings& settings, Sampler::PixelKey key,
+                     int x, int y, int s) {
+    Sampler sampler(key, uint64_t(s), settings.sampler);
     float jx = sampler.next1D(), jy = sampler.next1D();
     float lu = 0.5f, lv = 0.5f;
     if (camera.hasLens()) {
@@ -58,7 +62,7 @@ SampleRecord traceSample(const Scene& scene, const Integrator& integrator,
     CameraModel camera(scene.camera, settings.width, settings.height);
     AovRequest all = AovRequest::parse("all", kMaxBounceLayers);
     std::vector<CameraSample> one;
-    addCameraSample(one, camera, all, settings, x, y, sample);
+    addCameraSample(one, camera, all, settings, pixelKey(settings, x, y), x, y, sample);
     integrator.Li(std::span<CameraSample>(one), counter);
     return one[0].record;
 }
@@ -184,8 +188,9 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator,
                 }
                 work += uint64_t(waveEnd - first);
                 if (film.converged(x, y)) continue;
+                const Sampler::PixelKey key = pixelKey(settings, x + ox, y + oy);
                 for (int s = first; s < waveEnd; ++s)
-                    addCameraSample(batch, camera, film.layout().request(), settings, x + ox,
+                    addCameraSample(batch, camera, film.layout().request(), settings, key, x + ox,
                                     y + oy, s);
                 queued.push_back({x, y, first});
                 if (batch.size() >= kBatchSamples) flush();

@@ -28,11 +28,19 @@ struct EnumNames<SamplerKind> {
 
 class Sampler {
   public:
+    // What every sample of one pixel starts from: (seed, pixel) mixed, found once for all of a
+    // pixel's samples (the camera's loop) instead of once per sample.
+    struct PixelKey {
+        uint64_t key;
+    };
+    static PixelKey pixelKey(uint64_t seed, uint64_t pixelIndex) {
+        return {mix64(mix64(seed) ^ pixelIndex)};
+    }
     Sampler(uint64_t seed, uint64_t pixelIndex, uint64_t sampleIndex,
             SamplerKind kind = SamplerKind::Independent)
-        : key_(mix64(mix64(seed) ^ pixelIndex)),
-          reversedSample_(reverseBits32(uint32_t(sampleIndex))),
-          kind_(kind) {
+        : Sampler(pixelKey(seed, pixelIndex), sampleIndex, kind) {}
+    Sampler(PixelKey pixel, uint64_t sampleIndex, SamplerKind kind)
+        : key_(pixel.key), reversedSample_(reverseBits32(uint32_t(sampleIndex))), kind_(kind) {
         if (kind_ == SamplerKind::Independent) key_ = mix64(key_ ^ sampleIndex);
     }
     float next1D() {

@@ -158,9 +158,10 @@ class PathIntegrator final : public Integrator {
     SceneMedia media_;
     // Next-event estimation: light sampling (mis, light) with lights to sample.
     bool useNee_ = false;
-    bool lightOnlyAtLastVertex_ = false;
-    bool mapEscapes_ = false;  // an environment map lights the scene: rays leaving it look it up //
-                               // a diffuse last vertex: NEE alone, no continuation
+    bool lightOnlyAtLastVertex_ = false;  // a diffuse last vertex: NEE alone, no continuation
+    // An environment map lights the scene: rays leaving it look it up (their coordinates found
+    // four at a time, locateEscapes).
+    bool mapEscapes_ = false;
     std::shared_ptr<const GuideField> guide_;
     std::vector<uint8_t> lambertian_;  // per material: shaded by the Lambert-only code
 };

@@ -214,6 +214,7 @@ struct PathIntegrator::DrawnAhead {
     static constexpr uint32_t kNone = ~0u;
     uint32_t dimension = kNone;
     Sampler after{0, 0, 0};  // the sampler past the draws
+    std::optional<Sampler::Split> split;
     std::array<LightDraw, kLightChunk> draws;
     // Environment-light draws located (locateAhead): the point, its density and texel addresses
     // (asked for from memory); the radiance is read at shading.
@@ -593,14 +594,16 @@ void PathIntegrator::sampleDirectLight(const Vertex& v, const B& bsdf, const Vec
     std::array<LightSample, kLightChunk> found;
     std::array<bool, kLightChunk> sampled;
     const DrawnAhead& ahead = w.ahead[v.path];
+    const bool drawnAhead = ahead.dimension == v.sampler.dimension();
+    const std::optional<Sampler::Split> split = drawnAhead ? ahead.split : splitLights(v.sampler);
     for (int k0 = 0; k0 < samples; k0 += kLightChunk) {
         const int m = std::min(kLightChunk, samples - k0);
-        const bool taken = k0 == 0 && ahead.dimension == v.sampler.dimension();
+        const bool taken = k0 == 0 && drawnAhead;
         if (taken) {  // the same numbers, drawn
             std::copy_n(ahead.draws.begin(), m, draws.begin());
             v.sampler = ahead.after;
         } else {
-            drawLights(v.sampler, k0, m, draws.data());
+            drawLights(v.sampler, split, k0, m, draws.data());
         }
         for (size_t j = 0; j < size_t(m); ++j) {
             const LightDraw& d = draws[j];
@@ -614,20 +617,35 @@ void PathIntegrator::sampleDirectLight(const Vertex& v, const B& bsdf, const Vec
     }
 }
 
-void PathIntegrator::drawLights(Sampler& sampler, int k0, int m, LightDraw* out,
-                                EnvironmentSample* rows, bool* rowPicked) const {
+std::optional<Sampler::Split> PathIntegrator::splitLights(Sampler& sampler) const {
+    const int samples = rules_.lightSamplesPerVertex(opt_.lightSamples, lights_.size());
+    if (rules_.eachDeltaLightOnce || samples < 2) return std::nullopt;
+    // A pair for the light's choice (where there is one to make), a pair for the point on it.
+    return sampler.split(lights_.size() > 1 ? 2 : 1, uint32_t(samples));
+}
+
+void PathIntegrator::drawLights(Sampler& sampler, std::optional<Sampler::Split> split, int k0,
+                                int m, LightDraw* out, EnvironmentSample* rows,
+                                bool* rowPicked) const {
+    const bool choose = lights_.size() > 1;
     for (int j = 0; j < m; ++j) {
         LightDraw& d = out[j];
         d = {size_t(k0 + j), 1.0f, 0.5f, 0.5f};
         if (rules_.eachDeltaLightOnce) continue;
-        if (lights_.size() == 1) {  // the one light: no choice to draw
-            sampler.skip1D();
-            d.light = 0, d.pmf = lights_.selectPmf(0);
+        if (!choose) d.light = 0, d.pmf = lights_.selectPmf(0);  // the one light: no choice
+        if (split) {
+            const uint32_t k = uint32_t(k0 + j);
+            if (choose) d.light = lights_.select(sampler.splitDraw(*split, 0, k).u, d.pmf);
+            const Sampler::Point2 p = sampler.splitDraw(*split, choose ? 1 : 0, k);
+            d.u1 = p.u, d.u2 = p.v;
         } else {
-            d.light = lights_.select(sampler.next1D(), d.pmf);
+            if (choose)
+                d.light = lights_.select(sampler.next1D(), d.pmf);
+            else
+                sampler.skip1D();
+            const Sampler::Point2 p = sampler.next2D();
+            d.u1 = p.u, d.u2 = p.v;
         }
-        auto [a, b] = sampler.next2D();
-        d.u1 = a, d.u2 = b;
         if (rows)
             rowPicked[j] = lights_.pickRow(d.light, d.u1, d.u2, rows[j]);
         else
@@ -649,7 +667,8 @@ void PathIntegrator::drawAhead(std::span<CameraSample> batch, Scratch& w, size_t
     a.after = batch[pi].sampler;
     a.dimension = a.after.dimension();
     a.locatedAll = false;
-    drawLights(a.after, 0, samples, a.draws.data(), a.points.data(), a.rowPicked.data());
+    a.split = splitLights(a.after);
+    drawLights(a.after, a.split, 0, samples, a.draws.data(), a.points.data(), a.rowPicked.data());
 }
 
 // The environment-light samples drawn ahead for ray k's path located, their texels asked for (their
@@ -698,8 +717,16 @@ template <class B>
 void PathIntegrator::queueHemisphereProbes(const Vertex& v, const B& bsdf, const Vec3& wo,
                                            Scratch& w) const {
     const float nLight = float(opt_.lightSamples);
+    // More than one probe: split draws of one pair, stratified among themselves (Sampler::split).
+    std::optional<Sampler::Split> split;
+    if (opt_.lightSamples > 1) split = v.sampler.split(1, uint32_t(opt_.lightSamples));
     for (int k = 0; k < opt_.lightSamples; ++k) {
-        Vec3 wi = uniformHemisphere(v.sampler.next1D(), v.sampler.next1D());
+        Sampler::Point2 p;
+        if (split)
+            p = v.sampler.splitDraw(*split, 0, uint32_t(k));
+        else
+            p.u = v.sampler.next1D(), p.v = v.sampler.next1D();
+        Vec3 wi = uniformHemisphere(p.u, p.v);
         if (wo.z < 0) wi.z = -wi.z;
         Vec3 wiWorld = v.frame.toWorld(wi);
         Color f = bsdf.eval(wo, wi) * std::abs(wi.z);

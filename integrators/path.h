@@ -113,14 +113,19 @@ class PathIntegrator final : public Integrator {
     // Light samples a vertex draws at once (their cache misses overlap).
     static constexpr int kLightChunk = 8;
     struct DrawnAhead;  // path.cpp: a vertex's light samples drawn before it is shaded
-    // Draws light samples k0 .. k0 + m - 1 of a vertex (the order a loop of single samples draws
-    // them in), each table entry the light will read asked for from memory.
-    void drawLights(Sampler& sampler, int k0, int m, LightDraw* out) const {
-        drawLights(sampler, k0, m, out, nullptr, nullptr);
+    // A vertex's light samples, more than one, are split draws of the same pairs (Sampler::split:
+    // stratified among themselves); one is drawn from the next dimensions, as any other number.
+    std::optional<Sampler::Split> splitLights(Sampler& sampler) const;
+    // Draws light samples k0 .. k0 + m - 1 of a vertex (split: from the vertex's split pairs;
+    // else in the order a loop of single samples draws them), each table entry the light will
+    // read asked for from memory.
+    void drawLights(Sampler& sampler, std::optional<Sampler::Split> split, int k0, int m,
+                    LightDraw* out) const {
+        drawLights(sampler, split, k0, m, out, nullptr, nullptr);
     }
     // The same, each environment-map draw's row kept in rows[j] (rowPicked[j]) for locateAhead.
-    void drawLights(Sampler& sampler, int k0, int m, LightDraw* out, EnvironmentSample* rows,
-                    bool* rowPicked) const;
+    void drawLights(Sampler& sampler, std::optional<Sampler::Split> split, int k0, int m,
+                    LightDraw* out, EnvironmentSample* rows, bool* rowPicked) const;
     // The light samples of the vertex the path of ray k will shade, drawn now on a copy of its
     // sampler, so that their tables are in cache when it is shaded (sampleDirectLight takes them
     // if the sampler is still where they start).

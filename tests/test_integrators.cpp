@@ -153,8 +153,9 @@ TEST(DirectLighting, HemisphereTakesLSamplesPerShadingPoint) {
 }
 
 // A grey plane (albedo a) under a uniform sky of radiance 1, direct light only: every pixel is a,
-// and one uniform hemisphere probe estimates it as 2 a cos(theta), variance a^2 / 3; -l N divides
-// that by N.
+// and one uniform hemisphere probe estimates it as 2 a cos(theta) = 2 a u1, variance a^2 / 3.
+// Independent draws: -l N divides that by N. Sobol's split draws (Sampler::split) put one of the N
+// probes in each of N strata of u1, each uniform in its stratum: a^2 / (3 N^3).
 TEST(DirectLighting, HemisphereProbeVarianceIsAlbedoSquaredOverThreeL) {
     TriangleMesh plane = test::gridMesh(8, 8);
     for (size_t i = 0; i < plane.positions.size(); i += 3)
@@ -170,17 +171,23 @@ TEST(DirectLighting, HemisphereProbeVarianceIsAlbedoSquaredOverThreeL) {
     s.camera.hFovDeg = s.camera.vFovDeg = 30;
     auto accel = makeEmbreeAccelerator(s);
     const int w = 16, h = 16, spp = 32;
-    for (int l : {1, 16}) {
-        PathOptions opt;
-        opt.maxDepth = 1;
-        opt.sampling = DirectSampling::Hemisphere;
-        opt.lightSamples = l;
-        ImageEstimate e = estimate(test::renderJob(s, *accel, test::jobOptions(w, h, spp, opt)));
-        double samples = double(w) * h * spp, variance = albedo * albedo / 3 / l;
-        EXPECT_NEAR(e.mean, albedo, 5 * std::sqrt(variance / samples)) << "-l " << l;
-        // The sample variance of 8192 samples of 2 a cos(theta) is within 10 % of its value.
-        EXPECT_NEAR(e.stderror * e.stderror * samples, variance, 0.1 * variance) << "-l " << l;
-    }
+    for (SamplerKind kind : {SamplerKind::Independent, SamplerKind::Sobol})
+        for (int l : {1, 16}) {
+            PathOptions opt;
+            opt.maxDepth = 1;
+            opt.sampling = DirectSampling::Hemisphere;
+            opt.lightSamples = l;
+            RenderJobOptions o = test::jobOptions(w, h, spp, opt);
+            o.settings.sampler = kind;
+            ImageEstimate e = estimate(test::renderJob(s, *accel, o));
+            const double samples = double(w) * h * spp,
+                         variance = albedo * albedo / 3 /
+                                    (kind == SamplerKind::Sobol ? double(l) * l * l : double(l));
+            const std::string what = std::string(toString(kind)) + " -l " + std::to_string(l);
+            EXPECT_NEAR(e.mean, albedo, 5 * std::sqrt(variance / samples)) << what;
+            // The sample variance of 8192 samples is within 10 % of its value.
+            EXPECT_NEAR(e.stderror * e.stderror * samples, variance, 0.1 * variance) << what;
+        }
 }
 
 TEST(RussianRoulette, UnbiasedAgainstNoRoulette) {

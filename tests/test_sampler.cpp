@@ -1,7 +1,9 @@
 // The samplers: the independent one unchanged (images stay as they were), the Sobol one uniform in
 // every dimension, a (0,m,2)-net in every pair over any aligned power-of-two block of samples,
 // decorrelated across pairs and pixels, unbiased, and converging faster on smooth integrands.
+#include <bit>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "chi2.h"
@@ -118,6 +120,79 @@ TEST(Sampler, SkippedDimensionsLeaveEveryLaterValueUnchanged) {
                     ASSERT_EQ(b, d);
                 }
             }
+}
+
+// Every elementary interval of area 1 / n (n = 2^m points) holds exactly one point, for all m + 1
+// shapes: the (0,m,2)-net property.
+void expectNet(const std::vector<Sampler::Point2>& pts, const std::string& what) {
+    const uint32_t n = uint32_t(pts.size());
+    const int m = std::countr_zero(n);
+    ASSERT_EQ(n, 1u << m);
+    for (int k = 0; k <= m; ++k) {
+        std::vector<int> cells(n, 0);
+        for (auto [x, y] : pts)
+            ++cells[(uint32_t(y * float(1u << (m - k))) << k) | uint32_t(x * float(1u << k))];
+        for (int c : cells) ASSERT_EQ(c, 1) << what << " shape " << k;
+    }
+}
+
+TEST(Sampler, SplitDrawsAreNetsWithinAVertexAndAcrossAPixel) {
+    // A vertex's count split draws are one aligned block of the pair's sequence: a (0,m,2)-net by
+    // themselves, and with the same vertex's draws of the pixel's other samples one net of
+    // count x samples points. The split reserves its pairs as that many next2D calls would.
+    for (uint32_t count : {2u, 4u, 8u})
+        for (int before : {0, 1, 3}) {
+            constexpr uint32_t kSamples = 16;
+            std::vector<Sampler::Point2> pixel;
+            for (uint32_t i = 0; i < kSamples; ++i) {
+                Sampler s(21, 7, i, SamplerKind::Sobol), plain(21, 7, i, SamplerKind::Sobol);
+                for (int k = 0; k < before; ++k) s.next1D(), plain.next1D();
+                const Sampler::Split split = s.split(2, count);
+                plain.next2D(), plain.next2D();
+                ASSERT_EQ(s.dimension(), plain.dimension());
+                ASSERT_EQ(s.next1D(), plain.next1D());  // later draws as after the two next2D
+                for (uint32_t pairOffset : {0u, 1u}) {
+                    std::vector<Sampler::Point2> vertex;
+                    for (uint32_t k = 0; k < count; ++k)
+                        vertex.push_back(s.splitDraw(split, pairOffset, k));
+                    expectNet(vertex, "vertex of sample " + std::to_string(i) + " count " +
+                                          std::to_string(count));
+                    if (pairOffset == 0) pixel.insert(pixel.end(), vertex.begin(), vertex.end());
+                }
+            }
+            expectNet(pixel, "pixel, count " + std::to_string(count));
+        }
+}
+
+TEST(Sampler, SplitDrawsAreUniformAndIndependentOfEachOther) {
+    // Across pixels (independent scrambles) each draw k of a split is uniform on the square, for
+    // both samplers: chi-square over 8 x 8 cells, and draw k and draw k + 1 of the independent
+    // sampler are uncorrelated (|r| within 5 standard errors).
+    constexpr int kCells = 64, kPixels = 64 * 200;
+    for (SamplerKind kind : {SamplerKind::Sobol, SamplerKind::Independent})
+        for (uint32_t k : {0u, 1u, 3u}) {
+            std::vector<double> counts(kCells, 0.0);
+            double sxy = 0, sx = 0, sy = 0, sxx = 0, syy = 0;
+            for (int p = 0; p < kPixels; ++p) {
+                Sampler s(4, uint64_t(p), 5, kind);
+                s.next1D();
+                const Sampler::Split split = s.split(1, 4);
+                auto [x, y] = s.splitDraw(split, 0, k);
+                ASSERT_TRUE(x >= 0 && x < 1 && y >= 0 && y < 1);
+                counts[size_t(y * 8) * 8 + size_t(x * 8)] += 1;
+                const double a = x, b = s.splitDraw(split, 0, (k + 1) % 4).u;
+                sx += a, sy += b, sxy += a * b, sxx += a * a, syy += b * b;
+            }
+            const double e = double(kPixels) / kCells;
+            double chi2 = 0;
+            for (double c : counts) chi2 += (c - e) * (c - e) / e;
+            EXPECT_GT(test::gammaQ((kCells - 1) / 2.0, chi2 / 2.0), 1e-4 / 6) << "draw " << k;
+            if (kind != SamplerKind::Independent) continue;
+            const double n = kPixels,
+                         r = (sxy / n - sx / n * sy / n) / std::sqrt((sxx / n - sx * sx / (n * n)) *
+                                                                     (syy / n - sy * sy / (n * n)));
+            EXPECT_LT(std::abs(r), 5 / std::sqrt(n)) << "draw " << k;
+        }
 }
 
 TEST(Sampler, SobolEveryDimensionIsUniform) {

@@ -78,6 +78,35 @@ class Sampler {
         float u = next1D();
         return {u, next1D()};
     }
+    // Splitting: `count` draws at one vertex (its light samples) from the same `pairs` pairs, draw
+    // k of sample i at Sobol index i * count + k (Keller's trajectory splitting by dependent
+    // sampling; Cycles' path_branched_rng_2D). A vertex's draws are then one aligned block of
+    // each pair's sequence, stratified among themselves (a (0,m,2)-net for count = 2^m), and a
+    // pixel's draws at its first vertex one sequence of count times its samples; independent
+    // draws stay independent. Reserves the pairs (after next2D's alignment).
+    struct Split {
+        uint32_t pair = 0, count = 1;
+    };
+    Split split(uint32_t pairs, uint32_t count) {
+        if (dimension_ % 2 == 1) ++dimension_;
+        Split s{dimension_ / 2, count};
+        dimension_ += 2 * pairs;
+        pendingValid_ = false;
+        return s;
+    }
+    // Draw k of the split's pair pairOffset.
+    Point2 splitDraw(Split s, uint32_t pairOffset, uint32_t k) const {
+        const uint32_t pair = s.pair + pairOffset;
+        if (kind_ == SamplerKind::Independent) {
+            uint64_t bits = mix64(key_ + 0x9e3779b97f4a7c15ull * (2 * uint64_t(pair) + 1) +
+                                  0xd1b54a32d192ed03ull * k);
+            return {float(bits >> 40) * 0x1.0p-24f, float(bits & 0xffffffu) * 0x1.0p-24f};
+        }
+        // The sample's index times count plus k (modulo 2^32, as the index itself).
+        const uint32_t index = reverseBits32(reversedSample_) * s.count + k;
+        SobolPair p = shuffledScrambledSobol2D(reverseBits32(index), pairSeed(pair));
+        return {toUnit(p.x), toUnit(p.y)};
+    }
     uint32_t dimension() const { return dimension_; }
     SamplerKind kind() const { return kind_; }
 

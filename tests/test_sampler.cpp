@@ -16,17 +16,42 @@ namespace kiln {
 namespace {
 
 // Values of pair `pair` (dimensions 2 pair + 1, 2 pair + 2) for samples [first, first + n).
-std::vector<std::pair<float, float>> pairValues(uint64_t pixel, int pair, uint32_t first,
-                                                uint32_t n) {
-    std::vector<std::pair<float, float>> out;
+std::vector<Sampler::Point2> pairValues(uint64_t pixel, int pair, uint32_t first, uint32_t n) {
+    std::vector<Sampler::Point2> out;
     for (uint32_t i = first; i < first + n; ++i) {
         Sampler s(42, pixel, i, SamplerKind::Sobol);
         for (int d = 0; d < 2 * pair; ++d) s.next1D();
         float x = s.next1D(), y = s.next1D();
-        out.emplace_back(x, y);
+        out.push_back({x, y});
     }
     return out;
 }
+
+// Every elementary interval of area 1 / n (n = 2^m points) holds exactly one point, for all m + 1
+// shapes of 2^k x 2^(m-k) cells: the (0,m,2)-net property.
+void expectNet(const std::vector<Sampler::Point2>& pts, const std::string& what) {
+    const uint32_t n = uint32_t(pts.size());
+    const int m = std::countr_zero(n);
+    ASSERT_EQ(n, 1u << m);
+    for (int k = 0; k <= m; ++k) {
+        std::vector<int> cells(n, 0);
+        for (auto [x, y] : pts)
+            ++cells[(uint32_t(y * float(1u << (m - k))) << k) | uint32_t(x * float(1u << k))];
+        for (int c : cells) ASSERT_EQ(c, 1) << what << " shape " << k;
+    }
+}
+
+// Pearson's r of (x, y) pairs, from running sums.
+struct Correlation {
+    double n = 0, sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
+    void add(double x, double y) {
+        n += 1, sx += x, sy += y, sxx += x * x, syy += y * y, sxy += x * y;
+    }
+    double r() const {
+        const double cov = sxy / n - sx / n * sy / n;
+        return cov / std::sqrt((sxx / n - sx / n * sx / n) * (syy / n - sy / n * sy / n));
+    }
+};
 
 TEST(Sampler, IndependentValuesAreThoseOfEarlierReleases) {
     // The counter-based formula images were rendered with: key from (seed, pixel, sample), value
@@ -51,18 +76,9 @@ TEST(Sampler, SobolPairsAreNetsOverEveryAlignedPowerOfTwoBlock) {
             for (int m = 1; m <= 9; ++m)
                 for (uint32_t block : {0u, 1u, 5u}) {
                     uint32_t n = 1u << m;
-                    auto pts = pairValues(pixel, pair, block * n, n);
-                    for (int k = 0; k <= m; ++k) {
-                        std::vector<int> cells(n, 0);
-                        for (auto [x, y] : pts) {
-                            uint32_t cx = uint32_t(x * float(1u << k)),
-                                     cy = uint32_t(y * float(1u << (m - k)));
-                            ++cells[(cy << k) | cx];
-                        }
-                        for (int c : cells)
-                            ASSERT_EQ(c, 1) << "pixel " << pixel << " pair " << pair << " m " << m
-                                            << " block " << block << " shape " << k;
-                    }
+                    expectNet(pairValues(pixel, pair, block * n, n),
+                              "pixel " + std::to_string(pixel) + " pair " + std::to_string(pair) +
+                                  " m " + std::to_string(m) + " block " + std::to_string(block));
                 }
 }
 
@@ -73,12 +89,11 @@ TEST(Sampler, Next2DIsANetWhateverCameBeforeAndIndependentIsUnchanged) {
     for (int before : {0, 1, 4, 5}) {
         constexpr int m = 6;
         constexpr uint32_t n = 1u << m;
-        std::vector<std::pair<float, float>> pts;
+        std::vector<Sampler::Point2> pts;
         for (uint32_t i = 0; i < n; ++i) {
             Sampler s(11, 99, i, SamplerKind::Sobol);
             for (int k = 0; k < before; ++k) s.next1D();
-            auto [u, v] = s.next2D();
-            pts.emplace_back(u, v);
+            pts.push_back(s.next2D());
             Sampler a(11, 99, i), b(11, 99, i);
             for (int k = 0; k < before; ++k) a.next1D(), b.next1D();
             auto [x, y] = a.next2D();
@@ -86,12 +101,7 @@ TEST(Sampler, Next2DIsANetWhateverCameBeforeAndIndependentIsUnchanged) {
             ASSERT_EQ(x, bx);
             ASSERT_EQ(y, by);
         }
-        for (int k = 0; k <= m; ++k) {
-            std::vector<int> cells(n, 0);
-            for (auto [x, y] : pts)
-                ++cells[(uint32_t(y * float(1u << (m - k))) << k) | uint32_t(x * float(1u << k))];
-            for (int c : cells) ASSERT_EQ(c, 1) << "after " << before << " shape " << k;
-        }
+        expectNet(pts, "after " + std::to_string(before));
     }
 }
 
@@ -120,20 +130,6 @@ TEST(Sampler, SkippedDimensionsLeaveEveryLaterValueUnchanged) {
                     ASSERT_EQ(b, d);
                 }
             }
-}
-
-// Every elementary interval of area 1 / n (n = 2^m points) holds exactly one point, for all m + 1
-// shapes: the (0,m,2)-net property.
-void expectNet(const std::vector<Sampler::Point2>& pts, const std::string& what) {
-    const uint32_t n = uint32_t(pts.size());
-    const int m = std::countr_zero(n);
-    ASSERT_EQ(n, 1u << m);
-    for (int k = 0; k <= m; ++k) {
-        std::vector<int> cells(n, 0);
-        for (auto [x, y] : pts)
-            ++cells[(uint32_t(y * float(1u << (m - k))) << k) | uint32_t(x * float(1u << k))];
-        for (int c : cells) ASSERT_EQ(c, 1) << what << " shape " << k;
-    }
 }
 
 TEST(Sampler, SplitDrawsAreNetsWithinAVertexAndAcrossAPixel) {
@@ -172,7 +168,7 @@ TEST(Sampler, SplitDrawsAreUniformAndIndependentOfEachOther) {
     for (SamplerKind kind : {SamplerKind::Sobol, SamplerKind::Independent})
         for (uint32_t k : {0u, 1u, 3u}) {
             std::vector<double> counts(kCells, 0.0);
-            double sxy = 0, sx = 0, sy = 0, sxx = 0, syy = 0;
+            Correlation c;
             for (int p = 0; p < kPixels; ++p) {
                 Sampler s(4, uint64_t(p), 5, kind);
                 s.next1D();
@@ -180,18 +176,14 @@ TEST(Sampler, SplitDrawsAreUniformAndIndependentOfEachOther) {
                 auto [x, y] = s.splitDraw(split, 0, k);
                 ASSERT_TRUE(x >= 0 && x < 1 && y >= 0 && y < 1);
                 counts[size_t(y * 8) * 8 + size_t(x * 8)] += 1;
-                const double a = x, b = s.splitDraw(split, 0, (k + 1) % 4).u;
-                sx += a, sy += b, sxy += a * b, sxx += a * a, syy += b * b;
+                c.add(x, s.splitDraw(split, 0, (k + 1) % 4).u);
             }
-            const double e = double(kPixels) / kCells;
-            double chi2 = 0;
-            for (double c : counts) chi2 += (c - e) * (c - e) / e;
-            EXPECT_GT(test::gammaQ((kCells - 1) / 2.0, chi2 / 2.0), 1e-4 / 6) << "draw " << k;
-            if (kind != SamplerKind::Independent) continue;
-            const double n = kPixels,
-                         r = (sxy / n - sx / n * sy / n) / std::sqrt((sxx / n - sx * sx / (n * n)) *
-                                                                     (syy / n - sy * sy / (n * n)));
-            EXPECT_LT(std::abs(r), 5 / std::sqrt(n)) << "draw " << k;
+            const test::Chi2Result chi2 =
+                test::chi2FromCounts(counts, std::vector<double>(kCells, double(kPixels) / kCells));
+            EXPECT_GT(chi2.pValue, 1e-4 / 6) << "draw " << k << ": " << chi2.table;
+            if (kind == SamplerKind::Independent) {
+                EXPECT_LT(std::abs(c.r()), 5 / std::sqrt(c.n)) << "draw " << k;
+            }
         }
 }
 
@@ -225,19 +217,16 @@ TEST(Sampler, SobolPairsAndPixelsAreDecorrelated) {
     // within 5 standard errors (1 / sqrt(N)) of zero. Within a pair the net makes r exactly small
     // too; across pairs only the seeds decorrelate.
     constexpr int kPixels = 1024, kSamples = 16, kDims = 8;
-    const double n = double(kPixels) * kSamples;
     for (int d = 1; d < kDims; ++d) {
-        double sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
+        Correlation c;
         for (int p = 0; p < kPixels; ++p)
             for (uint32_t i = 0; i < kSamples; ++i) {
                 Sampler s(3, uint64_t(p), i, SamplerKind::Sobol);
                 double x = s.next1D(), y = 0;
                 for (int k = 1; k <= d; ++k) y = s.next1D();
-                sx += x, sy += y, sxx += x * x, syy += y * y, sxy += x * y;
+                c.add(x, y);
             }
-        double cov = sxy / n - sx / n * sy / n;
-        double r = cov / std::sqrt((sxx / n - sx / n * sx / n) * (syy / n - sy / n * sy / n));
-        EXPECT_LT(std::abs(r), 5.0 / std::sqrt(n)) << "dimension 1 against " << d + 1;
+        EXPECT_LT(std::abs(c.r()), 5.0 / std::sqrt(c.n)) << "dimension 1 against " << d + 1;
     }
 }
 

@@ -35,9 +35,10 @@ struct RenderPlan {
     bool infiniteLights = false;  // environment / ambient: rays leaving the scene carry light
     bool environmentMap = false;  // an image-based environment light
     // Light samples per shading point when -l is not given: more for an environment map, where
-    // one NEE sample per vertex leaves most of the noise (docs/performance.md measured 1.5x less
-    // time to equal error with 4 than with 1 on the peer benchmark's Lucy); 1 elsewhere (4 lost
-    // on the area-lit box).
+    // one NEE sample per vertex leaves most of the noise (docs/performance.md: 1 took 2-3x as long
+    // as 4 to equal error on the peer benchmark's Lucy; over four map-lit scenes the best count
+    // runs from 1 to 8, and 4 stays closest to each one's best); 1 elsewhere (4 lost on the
+    // area-lit box).
     int defaultLightSamples = 1;
     static constexpr int kEnvironmentLightSamples = 4;
     bool emitters = false;  // surfaces with emission

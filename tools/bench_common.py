@@ -9,9 +9,9 @@ import sys
 def time_at(series, level):
     """Log-log interpolation of (time, error) points to the time at which error reaches `level`;
     extrapolated (marked with '*') along the last two points below the smallest error, and along the
-    first two above the largest (a level reached before the first point). An error of 0 (below the
-    reference's own noise: `kiln bench compare --keep-reference-noise` subtracts it) measures nothing
-    and is left out."""
+    first two above the largest (a level reached before the first point). An error of 0 (at or below
+    the reference's own noise, which `kiln bench compare` subtracts unless given
+    --keep-reference-noise) measures nothing and is left out."""
     pts = sorted(p for p in series if p[1] > 0)
     if level <= 0:
         return float("nan"), "?"

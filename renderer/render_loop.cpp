@@ -1,7 +1,5 @@
 #include "renderer/render_loop.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -14,6 +12,7 @@
 #include "renderer/adaptive.h"
 #include "renderer/geometry/camera.h"
 #include "renderer/progress.h"
+#include "renderer/tile_schedule.h"
 
 namespace kiln {
 
@@ -146,7 +145,9 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator,
     };
 
     const int adaptiveStep = settings.adaptiveStep();
+    std::vector<double> tileSeconds(size_t(tilesX) * size_t(tilesY), 0.0);
     auto renderTile = [&](int tileIndex, int waveStart, int waveEnd) {
+        const Clock::time_point tileStart = Clock::now();
         int x0 = (tileIndex % tilesX) * tile, y0 = (tileIndex / tilesX) * tile;
         int x1 = std::min(x0 + tile, fw), y1 = std::min(y0 + tile, fh);
         RayCounter counter;
@@ -199,6 +200,8 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator,
         progress.add(work, counter.rays);
         if (badCount) nonFinite += badCount;
         if (control.tileDone) control.tileDone(doneWork += work, totalWork);
+        tileSeconds[size_t(tileIndex)] =
+            std::chrono::duration<double>(Clock::now() - tileStart).count();
     };
 
     auto snapshot = [&] {
@@ -213,11 +216,9 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator,
         for (int waveEnd : waveEnds(settings)) {
             for (;;) {
                 paused.store(false);
-                tbb::parallel_for(tbb::blocked_range<int>(0, tilesX * tilesY, 1),
-                                  [&](const tbb::blocked_range<int>& r) {
-                                      for (int t = r.begin(); t != r.end(); ++t)
-                                          renderTile(t, waveStart, waveEnd);
-                                  });
+                forEachTileInOrder(costliestFirst(tileSeconds),
+                                   tbb::this_task_arena::max_concurrency(),
+                                   [&](int t) { renderTile(t, waveStart, waveEnd); });
                 if (!paused.load()) break;
                 if (cancelled()) return;
                 if (timed && Clock::now() >= limit) {

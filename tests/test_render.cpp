@@ -1,13 +1,16 @@
 // The render loop, normal shading with both accelerators, and the EXR/PNG output.
 #include <OpenImageIO/imageio.h>
+#include <tbb/task_arena.h>
 
 #include <atomic>
+#include <mutex>
 
 #include "color/image_output.h"
 #include "integrators/normals.h"
 #include "integrators/path.h"
 #include "renderer/accel/recording_accelerator.h"
 #include "renderer/render_loop.h"
+#include "renderer/tile_schedule.h"
 #include "scene/scene_loader.h"
 #include "test_support.h"
 
@@ -65,6 +68,35 @@ TEST(RenderLoop, BitIdenticalWhateverTheThreadsAndTiles) {
     for (int y = 0; y < a.height() && !changed; ++y)
         for (int x = 0; x < a.width() && !changed; ++x) changed = !(a.pixel(x, y) == c.pixel(x, y));
     EXPECT_TRUE(changed);
+}
+
+TEST(TileSchedule, CostliestFirstKeepsTheImageOrderAmongEquals) {
+    EXPECT_EQ(costliestFirst({1.0, 3.0, 0.0, 3.0, 2.0}), (std::vector<int>{1, 3, 4, 0, 2}));
+    EXPECT_EQ(costliestFirst({0.0, 0.0, 0.0}), (std::vector<int>{0, 1, 2}));  // a first wave
+    EXPECT_TRUE(costliestFirst({}).empty());
+}
+
+TEST(TileSchedule, EveryTileOnceAndOneWorkerInOrder) {
+    std::vector<double> seconds(101);
+    for (size_t i = 0; i < seconds.size(); ++i) seconds[i] = double((i * 37) % 11);
+    const std::vector<int> order = costliestFirst(seconds);
+    for (int workers : {1, 2, 4, 7, 300}) {
+        std::vector<std::atomic<int>> visits(order.size());
+        std::vector<int> sequence;
+        std::mutex m;
+        tbb::task_arena arena(4);
+        arena.execute([&] {
+            forEachTileInOrder(order, workers, [&](int t) {
+                ++visits[size_t(t)];
+                std::lock_guard lock(m);
+                sequence.push_back(t);
+            });
+        });
+        for (size_t t = 0; t < visits.size(); ++t) ASSERT_EQ(visits[t].load(), 1) << workers;
+        if (workers == 1) {
+            EXPECT_EQ(sequence, order);
+        }
+    }
 }
 
 // Interrupts the render after a fixed number of camera samples, as SIGINT would.
@@ -138,8 +170,7 @@ TEST(ImageOutput, ExrRoundTripKeepsChannelsValuesAndMetadata) {
     EXPECT_NE(spec.find_attribute("chromaticities"), nullptr);
     std::vector<float> px(size_t(spec.width) * spec.height * spec.nchannels);
     ASSERT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data()));
-    int r = spec.channelindex("R"), b = spec.channelindex("B"),
-        n = spec.channelindex("samples.X");
+    int r = spec.channelindex("R"), b = spec.channelindex("B"), n = spec.channelindex("samples.X");
     EXPECT_FLOAT_EQ(px[(3 * 8 + 5) * spec.nchannels + r], 0.5f);
     EXPECT_FLOAT_EQ(px[(3 * 8 + 5) * spec.nchannels + b], 100.0f);
     EXPECT_FLOAT_EQ(px[(3 * 8 + 5) * spec.nchannels + n], 6.0f);

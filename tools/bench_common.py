@@ -3,6 +3,7 @@ tools/peer/cs184_bench.py): the log-log interpolation to a time at an error leve
 --variant. A leaf module: it imports nothing of tools/, so the benchmarks import it and not each other.
 """
 import math
+import subprocess
 import sys
 
 
@@ -44,3 +45,12 @@ def parse_variant(text, default_points, kiln):
     if "{p}" not in args:
         args += " -s {p}"
     return label, kiln, args, points
+
+
+def run_kiln(command):
+    """Runs a kiln command line (a list) and returns its stderr, where kiln prints its times; exits
+    with the command and the end of its stderr when it fails."""
+    run = subprocess.run(command, capture_output=True, text=True)
+    if run.returncode != 0:
+        sys.exit("failed (%d): %s\n%s" % (run.returncode, " ".join(command), run.stderr[-2000:]))
+    return run.stderr

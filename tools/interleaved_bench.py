@@ -15,17 +15,15 @@ import argparse
 import re
 import shlex
 import statistics
-import subprocess
 import sys
+
+from bench_common import run_kiln
 
 RENDER_TIME = re.compile(r"render ([0-9.]+)s")
 
 
 def render_seconds(command):
-    run = subprocess.run(command, capture_output=True, text=True)
-    if run.returncode != 0:
-        sys.exit("failed (%d): %s\n%s" % (run.returncode, " ".join(command), run.stderr[-2000:]))
-    found = RENDER_TIME.findall(run.stderr)
+    found = RENDER_TIME.findall(run_kiln(command))
     if not found:
         sys.exit("no 'render Xs' in the output of: " + " ".join(command))
     return float(found[-1])

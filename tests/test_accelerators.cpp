@@ -1,9 +1,12 @@
 // Both accelerators: construction edge cases, agreement ray by ray, spheres, instancing,
 // watertightness.
+#include <tbb/global_control.h>
+
 #include <cmath>
 
 #include "renderer/accel/bvh.h"
 #include "renderer/accel/reference_bvh.h"
+#include "renderer/cli/accel_options.h"
 #include "renderer/core/sampler.h"
 #include "renderer/geometry/interaction.h"
 #include "renderer/geometry/shapes.h"
@@ -233,6 +236,29 @@ TEST(EmbreeBatches, PacketsGiveTheSameHitsAsSingleRays) {
         embree->occluded(std::span<const Ray>(shadow), std::span<uint8_t>(occ));
         for (size_t i = 0; i < shadow.size(); ++i)
             EXPECT_EQ(occ[i] != 0, embree->occluded(shadow[i])) << i;
+    }
+}
+
+// A render's -t bounds Embree's build too (Embree holds a TBB global_control while the device
+// lives); without a render to follow, Embree takes every core as before.
+TEST(EmbreeThreads, TheBuildKeepsToTheRendersThreads) {
+    Scene s = loadScene(test::cs184("sky/CBspheres.dae"));
+    auto parallelism = [] {
+        return tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+    };
+    const size_t before = parallelism();
+    ASSERT_GT(before, 1u) << "needs a machine with two cores or more";
+    RenderJobOptions render;
+    render.settings.threads = 1;
+    AcceleratorChoice choice;
+    {
+        std::unique_ptr<Accelerator> accel = choice.build(s, &render);
+        EXPECT_EQ(parallelism(), 1u);
+    }
+    EXPECT_EQ(parallelism(), before);
+    {
+        std::unique_ptr<Accelerator> accel = choice.build(s, nullptr);
+        EXPECT_EQ(parallelism(), before);
     }
 }
 

@@ -310,8 +310,9 @@ TEST(Batch, AFailedFrameDoesNotStopTheFramesAfterIt) {
     EXPECT_FALSE(fs::exists(dir / "out/1.done"));
 }
 
-// kiln render-frames reloads when the load options change (--env-strength here) and reuses the
-// scene when only the camera or the render options do.
+// kiln render-frames reloads when the load options change (--emitters here) or -t does (Embree's
+// build keeps to the threads of the render that made it), and reuses the scene when only the
+// camera or the other render options do.
 TEST(RenderFrames, ReloadsOnlyForOtherLoadOptions) {
     fs::path dir = test::scratchDir();
     const std::string scene = test::cs184("sky/CBspheres_lambertian.dae");
@@ -324,16 +325,17 @@ TEST(RenderFrames, ReloadsOnlyForOtherLoadOptions) {
     std::vector<std::string> args{"render-frames"};
     for (const auto& f :
          {frame("a", {}), frame("b", {"--fov", "40", "-s", "2"}),
-          frame("c", {"--emitters", "camera"}), frame("d", {"--emitters", "camera"})}) {
+          frame("c", {"--emitters", "camera"}), frame("d", {"--emitters", "camera"}),
+          frame("e", {"--emitters", "camera", "-t", "1"})}) {
         if (args.size() > 1) args.push_back("--then");
         args.insert(args.end(), f.begin(), f.end());
     }
     farm::CommandResult r = test::kiln(args);
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    EXPECT_NE(r.output.find("this process: 4 renders, 2 scene loads, 2 accelerator builds"),
+    EXPECT_NE(r.output.find("this process: 5 renders, 3 scene loads, 3 accelerator builds"),
               std::string::npos)
         << r.output;
-    for (const char* name : {"a.done", "b.done", "c.done", "d.done"})
+    for (const char* name : {"a.done", "b.done", "c.done", "d.done", "e.done"})
         EXPECT_TRUE(fs::exists(dir / name)) << name;
     // Without -o there is no marker to write: refused before anything renders.
     farm::CommandResult bad = test::kiln({"render-frames", scene, "-r", "8", "6", "-q"});

@@ -68,7 +68,11 @@ std::unique_ptr<Accelerator> AcceleratorChoice::build(const Scene& scene,
         return makeBruteForceAccelerator(scene);
     }
     if (kind == AcceleratorKind::Reference) return makeReferenceAccelerator(scene, reference);
-    return makeEmbreeAccelerator(scene, embree);
+    EmbreeOptions options = embree;
+    // The build on the render's threads (-t), as its tiles: a farm task given 4 cores of a node
+    // keeps to them from the first moment.
+    if (render && options.threads == 0) options.threads = render->settings.threads;
+    return makeEmbreeAccelerator(scene, options);
 }
 
 }  // namespace kiln

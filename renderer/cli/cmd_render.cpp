@@ -351,11 +351,12 @@ struct LoadedScene {
     std::unique_ptr<Scene> scene;
     Camera camera;  // as loaded, before any render's camera options
     std::unique_ptr<Accelerator> accel;
+    int threads = 0;  // -t of the render that built it: Embree keeps to them while it lives
 
     // Brute force is built for each render: its refusal depends on the render's size and samples.
     bool holds(const std::string& scenePath, const RenderCommand& c) const {
         return accel && scenePath == path && c.load == load && c.accel == choice &&
-               choice.kind != AcceleratorKind::BruteForce;
+               c.job.job.settings.threads == threads && choice.kind != AcceleratorKind::BruteForce;
     }
     void clear() {  // the accelerator before the scene it points into
         accel.reset();
@@ -402,6 +403,7 @@ int renderFrame(const std::vector<std::string>& args, LoadedScene& loaded,
         }());
         loadTime = seconds(t0);
         loaded.path = scenePath, loaded.load = c.load, loaded.choice = c.accel;
+        loaded.threads = c.job.job.settings.threads;
         loaded.camera = loaded.scene->camera;
     }
     Scene& scene = *loaded.scene;

@@ -145,7 +145,10 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator,
     };
 
     const int adaptiveStep = settings.adaptiveStep();
-    std::vector<double> tileSeconds(size_t(tilesX) * size_t(tilesY), 0.0);
+    // Each tile's time in the last whole wave (the next wave's order) and in this one, summed over
+    // its runs when checkpoints pause the wave.
+    std::vector<double> lastWaveSeconds(size_t(tilesX) * size_t(tilesY), 0.0);
+    std::vector<double> waveSeconds(lastWaveSeconds.size(), 0.0);
     auto renderTile = [&](int tileIndex, int waveStart, int waveEnd) {
         const Clock::time_point tileStart = Clock::now();
         int x0 = (tileIndex % tilesX) * tile, y0 = (tileIndex / tilesX) * tile;
@@ -197,11 +200,12 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator,
                 if (batch.size() >= kBatchSamples) flush();
             }
         if (!batch.empty()) flush();
+        // Before the callbacks: the Python module's waits for its caller.
+        waveSeconds[size_t(tileIndex)] +=
+            std::chrono::duration<double>(Clock::now() - tileStart).count();
         progress.add(work, counter.rays);
         if (badCount) nonFinite += badCount;
         if (control.tileDone) control.tileDone(doneWork += work, totalWork);
-        tileSeconds[size_t(tileIndex)] =
-            std::chrono::duration<double>(Clock::now() - tileStart).count();
     };
 
     auto snapshot = [&] {
@@ -214,9 +218,10 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator,
     arena.execute([&] {
         int waveStart = settings.sampleStart;
         for (int waveEnd : waveEnds(settings)) {
+            std::fill(waveSeconds.begin(), waveSeconds.end(), 0.0);
             for (;;) {
                 paused.store(false);
-                forEachTileInOrder(costliestFirst(tileSeconds),
+                forEachTileInOrder(costliestFirst(lastWaveSeconds),
                                    tbb::this_task_arena::max_concurrency(),
                                    [&](int t) { renderTile(t, waveStart, waveEnd); });
                 if (!paused.load()) break;
@@ -231,6 +236,7 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator,
                 if (control.checkpoint) control.checkpoint(film, stats);
                 nextCheckpoint = after(Clock::now(), control.checkpointEverySeconds);
             }
+            lastWaveSeconds.swap(waveSeconds);
             waveStart = waveEnd;
         }
     });

@@ -22,11 +22,19 @@ std::vector<int> costliestFirst(const std::vector<double>& lastWaveSeconds) {
 void forEachTileInOrder(const std::vector<int>& order, int workers,
                         const std::function<void(int)>& fn) {
     std::atomic<size_t> next{0};
+    std::atomic<bool> failed{false};  // a tile threw: the others take no more tiles
     // One task per worker (simple_partitioner with grain 1 splits down to single indices).
     tbb::parallel_for(
         tbb::blocked_range<int>(0, std::max(1, workers), 1),
         [&](const tbb::blocked_range<int>&) {
-            for (size_t i = next++; i < order.size(); i = next++) fn(order[i]);
+            for (size_t i = next++; i < order.size() && !failed; i = next++) {
+                try {
+                    fn(order[i]);
+                } catch (...) {
+                    failed = true;
+                    throw;
+                }
+            }
         },
         tbb::simple_partitioner());
 }

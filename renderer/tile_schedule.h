@@ -15,6 +15,7 @@ std::vector<int> costliestFirst(const std::vector<double>& lastWaveSeconds);
 // Calls fn(tile) once for every tile of `order` on `workers` threads of the current task arena,
 // each worker taking the next tile from one counter, so tiles start in that order (a parallel_for
 // over the indices splits them in halves and starts a costly tile whenever a thread reaches it).
+// An exception from fn stops the others taking tiles and reaches the caller.
 void forEachTileInOrder(const std::vector<int>& order, int workers,
                         const std::function<void(int)>& fn);
 

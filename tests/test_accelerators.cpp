@@ -1,6 +1,7 @@
 // Both accelerators: construction edge cases, agreement ray by ray, spheres, instancing,
 // watertightness.
 #include <tbb/global_control.h>
+#include <tbb/info.h>
 
 #include <cmath>
 
@@ -239,8 +240,8 @@ TEST(EmbreeBatches, PacketsGiveTheSameHitsAsSingleRays) {
     }
 }
 
-// A render's -t bounds Embree's build too (Embree holds a TBB global_control while the device
-// lives); without a render to follow, Embree takes every core as before.
+// A render's -t bounds Embree's build too: Embree holds the count as a TBB global_control while
+// the device lives; without a count (tests, crosscheck) it takes every core as before.
 TEST(EmbreeThreads, TheBuildKeepsToTheRendersThreads) {
     Scene s = loadScene(test::cs184("sky/CBspheres.dae"));
     auto parallelism = [] {
@@ -248,16 +249,18 @@ TEST(EmbreeThreads, TheBuildKeepsToTheRendersThreads) {
     };
     const size_t before = parallelism();
     ASSERT_GT(before, 1u) << "needs a machine with two cores or more";
-    RenderJobOptions render;
-    render.settings.threads = 1;
-    AcceleratorChoice choice;
+    const AcceleratorChoice all;
+    EXPECT_EQ(all.withThreads(0), all);
+    EXPECT_EQ(all.withThreads(1).embree.threads, 1);
+    EXPECT_EQ(all.withThreads(1 << 20).embree.threads,
+              tbb::info::default_concurrency());  // at most the cores
     {
-        std::unique_ptr<Accelerator> accel = choice.build(s, &render);
+        std::unique_ptr<Accelerator> accel = all.withThreads(1).build(s);
         EXPECT_EQ(parallelism(), 1u);
     }
     EXPECT_EQ(parallelism(), before);
     {
-        std::unique_ptr<Accelerator> accel = choice.build(s, nullptr);
+        std::unique_ptr<Accelerator> accel = all.build(s);
         EXPECT_EQ(parallelism(), before);
     }
 }

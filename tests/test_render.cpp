@@ -3,7 +3,11 @@
 #include <tbb/task_arena.h>
 
 #include <atomic>
+#include <chrono>
 #include <mutex>
+#include <numeric>
+#include <stdexcept>
+#include <thread>
 
 #include "color/image_output.h"
 #include "integrators/normals.h"
@@ -96,6 +100,28 @@ TEST(TileSchedule, EveryTileOnceAndOneWorkerInOrder) {
         if (workers == 1) {
             EXPECT_EQ(sequence, order);
         }
+    }
+}
+
+TEST(TileSchedule, AThrowingTileReachesTheCallerAndStopsTheRest) {
+    std::vector<int> order(50);
+    std::iota(order.begin(), order.end(), 0);
+    for (int workers : {1, 4}) {
+        std::atomic<int> started{0};
+        tbb::task_arena arena(4);
+        auto run = [&] {
+            arena.execute([&] {
+                forEachTileInOrder(order, workers, [&](int t) {
+                    ++started;
+                    if (t == 10) throw std::runtime_error("tile 10");
+                    // A tile takes far longer than the throw: the others stop within a tile.
+                    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+                });
+            });
+        };
+        EXPECT_THROW(run(), std::runtime_error) << workers;
+        // Tiles 0-10, and a tile or two more for each other worker (without the stop, all 50).
+        EXPECT_LE(started.load(), 11 + 2 * (workers - 1)) << workers;
     }
 }
 

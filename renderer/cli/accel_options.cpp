@@ -1,6 +1,7 @@
 #include "renderer/cli/accel_options.h"
 
 #include <fmt/format.h>
+#include <tbb/info.h>
 
 #include <algorithm>
 #include <atomic>
@@ -55,6 +56,12 @@ double bruteForceSeconds(const Scene& scene, const RenderJobOptions& render) {
     return rays * double(bruteForcePrimitiveCount(scene)) * kBruteForceNsPerTest * 1e-9 / threads;
 }
 
+AcceleratorChoice AcceleratorChoice::withThreads(int threads) const {
+    AcceleratorChoice c = *this;
+    c.embree.threads = threads > 0 ? std::min(threads, tbb::info::default_concurrency()) : 0;
+    return c;
+}
+
 std::unique_ptr<Accelerator> AcceleratorChoice::build(const Scene& scene,
                                                       const RenderJobOptions* render) const {
     ++buildCounter();
@@ -68,11 +75,7 @@ std::unique_ptr<Accelerator> AcceleratorChoice::build(const Scene& scene,
         return makeBruteForceAccelerator(scene);
     }
     if (kind == AcceleratorKind::Reference) return makeReferenceAccelerator(scene, reference);
-    EmbreeOptions options = embree;
-    // The build on the render's threads (-t), as its tiles: a farm task given 4 cores of a node
-    // keeps to them from the first moment.
-    if (render && options.threads == 0) options.threads = render->settings.threads;
-    return makeEmbreeAccelerator(scene, options);
+    return makeEmbreeAccelerator(scene, embree);
 }
 
 }  // namespace kiln

@@ -28,6 +28,10 @@ struct AcceleratorChoice {
     // kBruteForceLimitSeconds is refused (UsageError naming the estimate) before any work.
     std::unique_ptr<Accelerator> build(const Scene& scene,
                                        const RenderJobOptions* render = nullptr) const;
+    // This choice with Embree's build kept to a render's -t (0: every core), at most the cores
+    // there are. Embree holds the count as a TBB global_control, for the whole process, while the
+    // accelerator lives.
+    AcceleratorChoice withThreads(int threads) const;
 
     bool operator==(const AcceleratorChoice&) const = default;
 };

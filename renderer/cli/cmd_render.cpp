@@ -342,8 +342,10 @@ RenderJobOptions checkedJobOptions(const RenderCommand& c) {
 }
 
 // The scene and accelerator of the last render of this process, kept for the next render that
-// loads the same file with the same load and accelerator options (kiln render-frames): only its
-// camera differs, which each render sets afresh from the camera as loaded.
+// loads the same file with the same load options (kiln render-frames): only its camera differs,
+// which each render sets afresh from the camera as loaded. The accelerator is kept too when the
+// accelerator options and -t (Embree's build keeps to the threads of the render that made it) are
+// the same.
 struct LoadedScene {
     std::string path;
     LoadOptions load;
@@ -351,12 +353,14 @@ struct LoadedScene {
     std::unique_ptr<Scene> scene;
     Camera camera;  // as loaded, before any render's camera options
     std::unique_ptr<Accelerator> accel;
-    int threads = 0;  // -t of the render that built it: Embree keeps to them while it lives
 
+    bool holdsScene(const std::string& scenePath, const RenderCommand& c) const {
+        return scene && scenePath == path && c.load == load;
+    }
     // Brute force is built for each render: its refusal depends on the render's size and samples.
-    bool holds(const std::string& scenePath, const RenderCommand& c) const {
-        return accel && scenePath == path && c.load == load && c.accel == choice &&
-               c.job.job.settings.threads == threads && choice.kind != AcceleratorKind::BruteForce;
+    bool holdsAccelerator(const std::string& scenePath, const RenderCommand& c) const {
+        return accel && holdsScene(scenePath, c) && c.accel == choice &&
+               choice.kind != AcceleratorKind::BruteForce;
     }
     void clear() {  // the accelerator before the scene it points into
         accel.reset();
@@ -392,9 +396,13 @@ int renderFrame(const std::vector<std::string>& args, LoadedScene& loaded,
     checkOutputWritable(c, out);
     checkOutputsFit(c, jobOptions, out);
 
-    const bool reused = loaded.holds(scenePath, c);
+    // Embree's build on the render's threads too: a farm task given 4 cores of a node keeps to
+    // them from the first moment.
+    c.accel = c.accel.withThreads(c.job.job.settings.threads);
+    const bool sceneReused = loaded.holdsScene(scenePath, c);
+    const bool reused = loaded.holdsAccelerator(scenePath, c);
     double loadTime = 0, buildTime = 0;
-    if (!reused) {
+    if (!sceneReused) {
         loaded.clear();
         auto t0 = std::chrono::steady_clock::now();
         loaded.scene = std::make_unique<Scene>([&] {
@@ -402,26 +410,29 @@ int renderFrame(const std::vector<std::string>& args, LoadedScene& loaded,
             return loadScene(scenePath, c.load);
         }());
         loadTime = seconds(t0);
-        loaded.path = scenePath, loaded.load = c.load, loaded.choice = c.accel;
-        loaded.threads = c.job.job.settings.threads;
+        loaded.path = scenePath, loaded.load = c.load;
         loaded.camera = loaded.scene->camera;
+        for (const std::string& w : loaded.scene->warnings) logWarning("{}: {}", scenePath, w);
     }
     Scene& scene = *loaded.scene;
     scene.camera = loaded.camera;
     applyCameraOptions(scene, c);
     if (!reused) {
-        for (const std::string& w : scene.warnings) logWarning("{}: {}", scenePath, w);
+        loaded.accel.reset();  // its memory, and its hold on the threads, before the next build
         auto t1 = std::chrono::steady_clock::now();
         loaded.accel = [&] {
             StageProgress stage("build");
             return c.accel.build(scene, &jobOptions);
         }();
         buildTime = seconds(t1);
+        loaded.choice = c.accel;
     }
     if (++rendersInProcess() > 1)
         logInfo("this process: {} renders, {} scene loads, {} accelerator builds{}",
                 rendersInProcess(), sceneLoadCount(), acceleratorBuildCount(),
-                reused ? " (this render reuses the scene and accelerator of the one before)" : "");
+                reused        ? " (this render reuses the scene and accelerator of the one before)"
+                : sceneReused ? " (this render reuses the scene of the one before)"
+                              : "");
     RenderJob job = [&] {
         StageProgress stage("plan");
         return RenderJob(scene, *loaded.accel, jobOptions);

@@ -9,7 +9,8 @@ namespace kiln {
 
 // Tile indices, the costliest of the last wave first (longest processing time first: a greedy
 // schedule whose idle tail is about one cheap tile, not one costly one; an environment-lit mesh's
-// tiles differ in cost tenfold). Ties, and a first wave with no times, keep the image's order.
+// background tiles cost a ray a sample, its statue's a whole path). Ties, and a first wave with no
+// times, keep the image's order.
 std::vector<int> costliestFirst(const std::vector<double>& lastWaveSeconds);
 
 // Calls fn(tile) once for every tile of `order` on `workers` threads of the current task arena,

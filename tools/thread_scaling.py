@@ -29,7 +29,9 @@ TIMES = re.compile(r"build ([0-9.]+)s, render ([0-9.]+)s")
 
 def exr_pixel_bytes(path):
     """The bytes from an EXR's first chunk on: the pixels, without the header and offset table
-    (whose offsets move with the header's length)."""
+    (whose offsets move with the header's length). Read here rather than through
+    tools/images_identical.sh (idiff): the lent many-core machines this runs on have no
+    OpenImageIO tools, only kiln and its carried libraries."""
     data = open(path, "rb").read()
     pos = 8  # magic number and version field
     while data[pos] != 0:  # attributes: name\0 type\0 int32 size, value

@@ -749,7 +749,7 @@ void PathIntegrator::continuePath(const Vertex& v, const B& bsdf, const Vec3& wo
         uc = v.sampler.next1D();
     else
         v.sampler.skip1D();
-    auto [u1, u2] = v.sampler.next2D();
+    auto [u1, u2] = v.sampler.nextBounce2D();
     if (!bsdf.sample(wo, uc, u1, u2, bs)) return;
     if (bs.pdf <= 0 || maxComponent(bs.f) <= 0) return;
     // With -H, what a non-delta bounce's ray finds at the last depth the probes counted.

@@ -1,6 +1,7 @@
 // The samplers: the independent one unchanged (images stay as they were), the Sobol one uniform in
 // every dimension, a (0,m,2)-net in every pair over any aligned power-of-two block of samples,
 // decorrelated across pairs and pixels, unbiased, and converging faster on smooth integrands.
+#include <array>
 #include <bit>
 #include <cmath>
 #include <string>
@@ -27,17 +28,18 @@ std::vector<Sampler::Point2> pairValues(uint64_t pixel, int pair, uint32_t first
     return out;
 }
 
-// Every elementary interval of area 1 / n (n = 2^m points) holds exactly one point, for all m + 1
-// shapes of 2^k x 2^(m-k) cells: the (0,m,2)-net property.
-void expectNet(const std::vector<Sampler::Point2>& pts, const std::string& what) {
+// Every elementary interval of area 2^t / n (n = 2^m points) holds exactly 2^t points, for all
+// m - t + 1 shapes of 2^k x 2^(m-t-k) cells: the (t,m,2)-net property.
+void expectNet(const std::vector<Sampler::Point2>& pts, const std::string& what, int t = 0) {
     const uint32_t n = uint32_t(pts.size());
-    const int m = std::countr_zero(n);
+    const int m = std::countr_zero(n), cellBits = m - t;
     ASSERT_EQ(n, 1u << m);
-    for (int k = 0; k <= m; ++k) {
-        std::vector<int> cells(n, 0);
+    for (int k = 0; k <= cellBits; ++k) {
+        std::vector<int> cells(size_t(1) << cellBits, 0);
         for (auto [x, y] : pts)
-            ++cells[(uint32_t(y * float(1u << (m - k))) << k) | uint32_t(x * float(1u << k))];
-        for (int c : cells) ASSERT_EQ(c, 1) << what << " shape " << k;
+            ++cells[(uint32_t(y * float(1u << (cellBits - k))) << k) |
+                    uint32_t(x * float(1u << k))];
+        for (int c : cells) ASSERT_EQ(c, 1 << t) << what << " shape " << k;
     }
 }
 
@@ -228,6 +230,109 @@ TEST(Sampler, SobolPairsAndPixelsAreDecorrelated) {
             }
         EXPECT_LT(std::abs(c.r()), 5.0 / std::sqrt(c.n)) << "dimension 1 against " << d + 1;
     }
+}
+
+TEST(Sampler, SobolDirectionsAreJoeAndKuos) {
+    // Dimensions 2 and 3 (degrees 2 and 3) from Joe and Kuo's new-joe-kuo-6.21201, whose first
+    // generator columns Burley's and pbrt-v4's Sobol tables list.
+    const uint32_t dim2[] = {0x80000000u, 0xc0000000u, 0x60000000u, 0x90000000u,
+                             0xe8000000u, 0x5c000000u, 0x8e000000u, 0xc5000000u};
+    const uint32_t dim3[] = {0x80000000u, 0xc0000000u, 0x20000000u, 0x50000000u,
+                             0xf8000000u, 0x74000000u, 0xa2000000u, 0x93000000u};
+    for (int bit = 0; bit < 8; ++bit) {
+        EXPECT_EQ(sobolDirection(2, bit), dim2[bit]) << "bit " << bit;
+        EXPECT_EQ(sobolDirection(3, bit), dim3[bit]) << "bit " << bit;
+        EXPECT_EQ(
+            sobolDirection1(bit),
+            bit == 0 ? 0x80000000u : sobolDirection1(bit - 1) ^ (sobolDirection1(bit - 1) >> 1));
+    }
+}
+
+// The bounce samples of four path vertices for samples [first, first + n) of a pixel, drawn
+// between the numbers a path draws there (a light's choice and point, the lobe choice, the
+// roulette); independent2D: next2D instead of nextBounce2D.
+std::vector<std::array<Sampler::Point2, 4>> bounceValues(uint64_t pixel, uint32_t first, uint32_t n,
+                                                         bool independent2D = false) {
+    std::vector<std::array<Sampler::Point2, 4>> out;
+    for (uint32_t i = first; i < first + n; ++i) {
+        Sampler s(42, pixel, i, SamplerKind::Sobol);
+        s.next2D(), s.skip2D();  // the pixel position, the lens
+        std::array<Sampler::Point2, 4> b;
+        for (auto& v : b) {
+            s.skip1D(), s.next2D(), s.skip1D();  // the light's choice and point, the lobe
+            v = independent2D ? s.next2D() : s.nextBounce2D();
+            s.next1D();  // the roulette
+        }
+        out.push_back(b);
+    }
+    return out;
+}
+
+// Whether every one of the 16 boxes [0, 1/2) or [1/2, 1) along each of four coordinates holds
+// exactly n / 16 of the points (a, b) joined.
+bool fillsEvery4DBox(const std::vector<std::array<Sampler::Point2, 4>>& v, int a, int b) {
+    std::vector<size_t> boxes(16, 0);
+    for (const auto& p : v)
+        ++boxes[size_t(p[a].u >= 0.5f) | size_t(p[a].v >= 0.5f) << 1 | size_t(p[b].u >= 0.5f) << 2 |
+                size_t(p[b].v >= 0.5f) << 3];
+    for (size_t c : boxes)
+        if (c != v.size() / 16) return false;
+    return true;
+}
+
+TEST(Sampler, TwoVerticesBounceDirectionsAreOne4DNet) {
+    // Bounces 1 and 2 (and 3 and 4) are the halves of one 4D Sobol point: over any aligned block of
+    // 2^m >= 16 samples each of the 16 half-boxes of [0,1)^4 holds 2^m / 16. The first half is a
+    // (0,m,2)-net, the second (Sobol dimensions 2 and 3) a (1,m,2)-net. Two next2D pairs, shuffled
+    // apart, are no 4D net: the check fails on them.
+    int pairsFailing = 0;
+    for (uint64_t pixel : {0ull, 31ull, 7777ull})
+        for (int m = 4; m <= 9; ++m)
+            for (uint32_t block : {0u, 3u}) {
+                const uint32_t n = 1u << m;
+                const auto v = bounceValues(pixel, block * n, n);
+                const std::string what = "pixel " + std::to_string(pixel) + " m " +
+                                         std::to_string(m) + " block " + std::to_string(block);
+                EXPECT_TRUE(fillsEvery4DBox(v, 0, 1)) << what;
+                EXPECT_TRUE(fillsEvery4DBox(v, 2, 3)) << what;
+                for (int k = 0; k < 4; ++k) {
+                    std::vector<Sampler::Point2> half;
+                    for (const auto& p : v) half.push_back(p[size_t(k)]);
+                    expectNet(half, what + " bounce " + std::to_string(k + 1), k % 2);
+                }
+                pairsFailing += !fillsEvery4DBox(bounceValues(pixel, block * n, n, true), 0, 1);
+            }
+    EXPECT_GT(pairsFailing, 0);
+}
+
+TEST(Sampler, BounceSamplesAreUniformAndIndependentOfEachOther) {
+    // One sample per pixel across many pixels: each coordinate of bounces 1-3 is uniform
+    // (chi-square over 64 bins), and the first bounce's u is uncorrelated with every other
+    // coordinate (|r| within 5 standard errors), within its 4D point and beyond it.
+    constexpr int kBins = 64, kPixels = 64 * 200;
+    std::vector<std::vector<double>> counts(6, std::vector<double>(kBins, 0.0));
+    std::vector<Correlation> corr(5);
+    for (int p = 0; p < kPixels; ++p) {
+        const auto v = bounceValues(uint64_t(p), 5, 1)[0];
+        const float c[6] = {v[0].u, v[0].v, v[1].u, v[1].v, v[2].u, v[2].v};
+        for (int k = 0; k < 6; ++k) {
+            ASSERT_GE(c[k], 0.0f);
+            ASSERT_LT(c[k], 1.0f);
+            counts[size_t(k)][size_t(c[k] * kBins)] += 1;
+            if (k > 0) corr[size_t(k - 1)].add(c[0], c[k]);
+        }
+    }
+    const double expected = double(kPixels) / kBins;
+    for (int k = 0; k < 6; ++k) {
+        double chi2 = 0;
+        for (double c : counts[size_t(k)]) chi2 += (c - expected) * (c - expected) / expected;
+        // Significance 1e-4 after a Bonferroni factor for the 6 histograms.
+        EXPECT_GT(test::gammaQ((kBins - 1) / 2.0, chi2 / 2.0), 1e-4 / 6)
+            << "coordinate " << k << " chi2 " << chi2;
+    }
+    for (int k = 0; k < 5; ++k)
+        EXPECT_LT(std::abs(corr[size_t(k)].r()), 5.0 / std::sqrt(corr[size_t(k)].n))
+            << "coordinate 0 against " << k + 1;
 }
 
 // f(x, y) = exp(x) sin(pi y) on [0,1]^2, integral (e - 1) 2 / pi.

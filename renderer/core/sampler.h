@@ -78,6 +78,23 @@ class Sampler {
         float u = next1D();
         return {u, next1D()};
     }
+    // The 2D sample of a path's bounce direction. sobol: the bounces of vertices 1 and 2 of a path
+    // (3 and 4, ...) are the two halves of one 4D Sobol point, dimensions 0-1 and 2-3 at one
+    // shuffled index, so a pixel's samples stratify their directions jointly (the two-bounce
+    // paths of an interior: 9 % less error at equal samples, docs/performance.md); independent:
+    // next2D. Each half takes the next pair, as next2D would.
+    Point2 nextBounce2D() {
+        if (kind_ != SamplerKind::Sobol) return next2D();
+        if (dimension_ % 2 == 1) ++dimension_;
+        const uint32_t pair = dimension_ / 2;
+        dimension_ += 2;
+        pendingValid_ = false;
+        if (!bounceHalfOpen_) bounceIndexSeed_ = pairSeed(pair) ^ 0x5bd1e995u;
+        SobolPair p = shuffledScrambledSobol4DHalf(reversedSample_, bounceIndexSeed_,
+                                                   pairSeed(pair), bounceHalfOpen_);
+        bounceHalfOpen_ = !bounceHalfOpen_;
+        return {toUnit(p.x), toUnit(p.y)};
+    }
     // Splitting: `count` draws at one vertex (its light samples) from the same `pairs` pairs, draw
     // k of sample i at Sobol index i * count + k (Keller's trajectory splitting by dependent
     // sampling; Cycles' path_branched_rng_2D). A vertex's draws are then one aligned block of
@@ -121,6 +138,8 @@ class Sampler {
     uint32_t dimension_ = 0;
     uint32_t pendingY_ = 0;
     bool pendingValid_ = false;
+    bool bounceHalfOpen_ = false;   // nextBounce2D drew a 4D point's first half, not its second
+    uint32_t bounceIndexSeed_ = 0;  // that point's index shuffle
     SamplerKind kind_;
 };
 

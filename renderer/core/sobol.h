@@ -28,36 +28,59 @@ constexpr uint32_t laineKarrasPermutation(uint32_t x, uint32_t seed) {
     return x;
 }
 
-// The second Sobol dimension's generator matrix: direction v_k for index bit k (v_0 = 2^31,
-// v_k = v_{k-1} ^ v_{k-1} >> 1).
-constexpr uint32_t sobolDirection1(int bit) {
-    uint32_t v = 0x80000000u;
-    for (int k = 0; k < bit; ++k) v ^= v >> 1;
-    return v;
+// Directions of Sobol dimensions 1-3 (Joe and Kuo's new-joe-kuo-6.21201: degree s, coefficients
+// a, initial m): direction v_k for index bit k. Dimension 0 is the van der Corput sequence.
+struct SobolPolynomial {
+    int s;
+    uint32_t a, m[3];
+};
+inline constexpr SobolPolynomial kSobolPolynomials[3] = {
+    {1, 0, {1, 0, 0}}, {2, 1, {1, 3, 0}}, {3, 1, {1, 3, 1}}};
+constexpr uint32_t sobolDirection(int dim, int bit) {
+    const SobolPolynomial& p = kSobolPolynomials[dim - 1];
+    uint32_t v[32] = {};
+    for (int k = 0; k <= bit; ++k) {
+        if (k < p.s) {
+            v[k] = p.m[k] << (31 - k);
+            continue;
+        }
+        uint32_t x = v[k - p.s] ^ (v[k - p.s] >> p.s);
+        for (int j = 1; j < p.s; ++j)
+            if ((p.a >> (p.s - 1 - j)) & 1u) x ^= v[k - j];
+        v[k] = x;
+    }
+    return v[bit];
 }
+// The second dimension's: v_0 = 2^31, v_k = v_{k-1} ^ v_{k-1} >> 1.
+constexpr uint32_t sobolDirection1(int bit) { return sobolDirection(1, bit); }
 
-// The matrix applied to each byte of an index, tabulated with its result bit-reversed (the form
-// the scramble takes): the product is linear over GF(2), so it is the xor of four lookups (instead
-// of a loop over up to 32 index bits, which was the sampler's largest cost).
+// The matrices of dimensions 1-3 applied to each byte of an index, tabulated with the result
+// bit-reversed (the form the scramble takes): the product is linear over GF(2), so it is the xor
+// of four lookups (instead of a loop over up to 32 index bits, which was the sampler's largest
+// cost).
 struct SobolByteTables {
-    uint32_t t[4][256];
+    uint32_t t[3][4][256];
     constexpr SobolByteTables() : t{} {
-        for (int byte = 0; byte < 4; ++byte)
-            for (uint32_t b = 0; b < 256; ++b) {
-                uint32_t v = 0;
-                for (int j = 0; j < 8; ++j)
-                    if (b >> j & 1u) v ^= sobolDirection1(8 * byte + j);
-                t[byte][b] = reverseBits32(v);
-            }
+        for (int dim = 1; dim <= 3; ++dim)
+            for (int byte = 0; byte < 4; ++byte)
+                for (uint32_t b = 0; b < 256; ++b) {
+                    uint32_t v = 0;
+                    for (int j = 0; j < 8; ++j)
+                        if (b >> j & 1u) v ^= sobolDirection(dim, 8 * byte + j);
+                    t[dim - 1][byte][b] = reverseBits32(v);
+                }
     }
 };
-inline constexpr SobolByteTables kSobolDimension1Tables{};
+inline constexpr SobolByteTables kSobolTables{};
 
-// reverseBits32 of the second Sobol dimension at `index`.
-constexpr uint32_t sobolDimension1Reversed(uint32_t index) {
-    const auto& t = kSobolDimension1Tables.t;
+// reverseBits32 of Sobol dimension dim (1-3) at `index`.
+constexpr uint32_t sobolDimensionReversed(int dim, uint32_t index) {
+    const auto& t = kSobolTables.t[dim - 1];
     return t[0][index & 0xffu] ^ t[1][(index >> 8) & 0xffu] ^ t[2][(index >> 16) & 0xffu] ^
            t[3][index >> 24];
+}
+constexpr uint32_t sobolDimension1Reversed(uint32_t index) {
+    return sobolDimensionReversed(1, index);
 }
 
 // A 32-bit hash (lowbias32) for deriving the per-pair and per-coordinate seeds.
@@ -84,6 +107,18 @@ constexpr SobolPair shuffledScrambledSobol2D(uint32_t reversedIndex, uint32_t se
     // bits back first, so the two reversals cancel. The second's table is stored reversed.
     return {reverseBits32(laineKarrasPermutation(index, sx)),
             reverseBits32(laineKarrasPermutation(sobolDimension1Reversed(index), sy))};
+}
+
+// Half `upper` of 4D point `index`: dimensions 0-1 (upper false) or 2-3, the index shuffled by
+// indexSeed (shared by both halves: they are one 4D net), the coordinates scrambled by coordSeed.
+constexpr SobolPair shuffledScrambledSobol4DHalf(uint32_t reversedIndex, uint32_t indexSeed,
+                                                 uint32_t coordSeed, bool upper) {
+    uint32_t index = reverseBits32(laineKarrasPermutation(reversedIndex, indexSeed));
+    uint32_t sx = hash32(coordSeed ^ 0xa511e9b3u), sy = hash32(coordSeed ^ 0x63d83595u);
+    uint32_t x = upper ? sobolDimensionReversed(2, index) : index;
+    uint32_t y = sobolDimensionReversed(upper ? 3 : 1, index);
+    return {reverseBits32(laineKarrasPermutation(x, sx)),
+            reverseBits32(laineKarrasPermutation(y, sy))};
 }
 
 }  // namespace kiln

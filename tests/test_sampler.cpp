@@ -242,9 +242,9 @@ TEST(Sampler, SobolDirectionsAreJoeAndKuos) {
     for (int bit = 0; bit < 8; ++bit) {
         EXPECT_EQ(sobolDirection(2, bit), dim2[bit]) << "bit " << bit;
         EXPECT_EQ(sobolDirection(3, bit), dim3[bit]) << "bit " << bit;
-        EXPECT_EQ(
-            sobolDirection1(bit),
-            bit == 0 ? 0x80000000u : sobolDirection1(bit - 1) ^ (sobolDirection1(bit - 1) >> 1));
+        // Dimension 1: v_0 = 2^31, v_k = v_{k-1} ^ v_{k-1} >> 1.
+        const uint32_t before = bit == 0 ? 0 : sobolDirection(1, bit - 1);
+        EXPECT_EQ(sobolDirection(1, bit), bit == 0 ? 0x80000000u : before ^ (before >> 1));
     }
 }
 

@@ -85,13 +85,10 @@ class Sampler {
     // next2D. Each half takes the next pair, as next2D would.
     Point2 nextBounce2D() {
         if (kind_ != SamplerKind::Sobol) return next2D();
-        if (dimension_ % 2 == 1) ++dimension_;
-        const uint32_t pair = dimension_ / 2;
-        dimension_ += 2;
-        pendingValid_ = false;
-        if (!bounceHalfOpen_) bounceIndexSeed_ = pairSeed(pair) ^ 0x5bd1e995u;
-        SobolPair p = shuffledScrambledSobol4DHalf(reversedSample_, bounceIndexSeed_,
-                                                   pairSeed(pair), bounceHalfOpen_);
+        const uint32_t seed = pairSeed(takePairs(1));
+        if (!bounceHalfOpen_) bounceIndexSeed_ = seed ^ 0x5bd1e995u;
+        SobolPair p =
+            shuffledScrambledSobol4DHalf(reversedSample_, bounceIndexSeed_, seed, bounceHalfOpen_);
         bounceHalfOpen_ = !bounceHalfOpen_;
         return {toUnit(p.x), toUnit(p.y)};
     }
@@ -104,13 +101,7 @@ class Sampler {
     struct Split {
         uint32_t pair = 0, count = 1;
     };
-    Split split(uint32_t pairs, uint32_t count) {
-        if (dimension_ % 2 == 1) ++dimension_;
-        Split s{dimension_ / 2, count};
-        dimension_ += 2 * pairs;
-        pendingValid_ = false;
-        return s;
-    }
+    Split split(uint32_t pairs, uint32_t count) { return {takePairs(pairs), count}; }
     // Draw k of the split's pair pairOffset.
     Point2 splitDraw(Split s, uint32_t pairOffset, uint32_t k) const {
         const uint32_t pair = s.pair + pairOffset;
@@ -128,6 +119,15 @@ class Sampler {
     SamplerKind kind() const { return kind_; }
 
   private:
+    // Reserves the next `pairs` whole pairs (after an odd dimension's leftover) for draws that do
+    // not go through next1D; returns the first.
+    uint32_t takePairs(uint32_t pairs) {
+        if (dimension_ % 2 == 1) ++dimension_;
+        const uint32_t first = dimension_ / 2;
+        dimension_ += 2 * pairs;
+        pendingValid_ = false;
+        return first;
+    }
     // 24 bits, as the independent sampler, so a value is never rounded up to 1.
     static float toUnit(uint32_t fixed) { return float(fixed >> 8) * 0x1.0p-24f; }
     uint32_t pairSeed(uint32_t pair) const {

@@ -51,8 +51,6 @@ constexpr uint32_t sobolDirection(int dim, int bit) {
     }
     return v[bit];
 }
-// The second dimension's: v_0 = 2^31, v_k = v_{k-1} ^ v_{k-1} >> 1.
-constexpr uint32_t sobolDirection1(int bit) { return sobolDirection(1, bit); }
 
 // The matrices of dimensions 1-3 applied to each byte of an index, tabulated with the result
 // bit-reversed (the form the scramble takes): the product is linear over GF(2), so it is the xor
@@ -79,9 +77,6 @@ constexpr uint32_t sobolDimensionReversed(int dim, uint32_t index) {
     return t[0][index & 0xffu] ^ t[1][(index >> 8) & 0xffu] ^ t[2][(index >> 16) & 0xffu] ^
            t[3][index >> 24];
 }
-constexpr uint32_t sobolDimension1Reversed(uint32_t index) {
-    return sobolDimensionReversed(1, index);
-}
 
 // A 32-bit hash (lowbias32) for deriving the per-pair and per-coordinate seeds.
 constexpr uint32_t hash32(uint32_t x) {
@@ -97,28 +92,27 @@ struct SobolPair {
     uint32_t x, y;  // fixed point, [0, 2^32) for [0, 1)
 };
 
-// Sample `index` of the pair with this seed, given reversedIndex = reverseBits32(index) (a
-// sampler reverses its sample index once, not once per pair).
-constexpr SobolPair shuffledScrambledSobol2D(uint32_t reversedIndex, uint32_t seed) {
-    // An Owen scramble of the index (the hash on its reversed bits, reversed back) shuffles it.
-    uint32_t index = reverseBits32(laineKarrasPermutation(reversedIndex, seed));
-    uint32_t sx = hash32(seed ^ 0xa511e9b3u), sy = hash32(seed ^ 0x63d83595u);
-    // The first dimension is the bit-reversed index (van der Corput); its scramble reverses the
-    // bits back first, so the two reversals cancel. The second's table is stored reversed.
-    return {reverseBits32(laineKarrasPermutation(index, sx)),
-            reverseBits32(laineKarrasPermutation(sobolDimension1Reversed(index), sy))};
-}
-
-// Half `upper` of 4D point `index`: dimensions 0-1 (upper false) or 2-3, the index shuffled by
-// indexSeed (shared by both halves: they are one 4D net), the coordinates scrambled by coordSeed.
+// Half `upper` of 4D point `index` (given reversedIndex = reverseBits32(index): a sampler reverses
+// its sample index once, not once per pair): dimensions 0-1 (upper false) or 2-3, the index
+// shuffled by indexSeed (shared by both halves: they are one 4D net), the coordinates scrambled by
+// coordSeed.
 constexpr SobolPair shuffledScrambledSobol4DHalf(uint32_t reversedIndex, uint32_t indexSeed,
                                                  uint32_t coordSeed, bool upper) {
+    // An Owen scramble of the index (the hash on its reversed bits, reversed back) shuffles it.
     uint32_t index = reverseBits32(laineKarrasPermutation(reversedIndex, indexSeed));
     uint32_t sx = hash32(coordSeed ^ 0xa511e9b3u), sy = hash32(coordSeed ^ 0x63d83595u);
+    // Dimension 0 is the bit-reversed index (van der Corput); its scramble reverses the bits back
+    // first, so the two reversals cancel. The other dimensions' tables are stored reversed.
     uint32_t x = upper ? sobolDimensionReversed(2, index) : index;
     uint32_t y = sobolDimensionReversed(upper ? 3 : 1, index);
     return {reverseBits32(laineKarrasPermutation(x, sx)),
             reverseBits32(laineKarrasPermutation(y, sy))};
+}
+
+// Sample `index` of the pair with this seed: a 4D point's first half whose index shuffle and
+// scrambles share the one seed.
+constexpr SobolPair shuffledScrambledSobol2D(uint32_t reversedIndex, uint32_t seed) {
+    return shuffledScrambledSobol4DHalf(reversedIndex, seed, seed, false);
 }
 
 }  // namespace kiln

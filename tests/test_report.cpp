@@ -53,7 +53,7 @@ SmallReport runSmallReport() {
         SmallReport s;
         s.dir = test::scratchDir() / "report";
         int status = kiln("report cs184 " + test::cs184("sky/CBspheres_lambertian.dae") + " -o " +
-                          s.dir.string() + " --budget 12 -t 2 --bvh-scenes " +
+                          s.dir.string() + " --budget 12 -t 1 --bvh-scenes " +
                           test::cs184("meshedit/cow.dae"));
         EXPECT_EQ(status, 0);
         s.page = readText(s.dir / "index.html");
@@ -145,7 +145,7 @@ void checkNoExperimentIsDegenerate(const SmallReport& r) {
             << t["command"];
 }
 
-// One run (a tiny budget keeps it short) checked four ways.
+// One run (a tiny budget keeps it short) checked five ways.
 TEST(Report, Cs184WriteUpFollowsTheCourseWithTrueCaptionsAndNoDegenerateExperiment) {
     SmallReport r = runSmallReport();
     ASSERT_FALSE(r.page.empty());
@@ -165,6 +165,11 @@ TEST(Report, Cs184WriteUpFollowsTheCourseWithTrueCaptionsAndNoDegenerateExperime
     {
         SCOPED_TRACE("degenerate experiments");
         checkNoExperimentIsDegenerate(r);
+    }
+    {
+        SCOPED_TRACE("threads");  // -t 1 bounds Embree's build too, as it does a render's
+        EXPECT_EQ(r.json["threads"], 1);
+        EXPECT_EQ(r.json["embree_build_threads"], 1);
     }
 }
 

@@ -4,6 +4,7 @@
 // filled with what this run measured (cs184_prose.h), as HTML or Markdown with its images beside
 // it, plus report.json with every command and measurement.
 #include <fmt/format.h>
+#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <cctype>
@@ -96,6 +97,10 @@ class Cs184Report {
         return ShotRunner(s.scene, *s.embree, s.path, o_.dir, o_.threads, o_.view);
     }
     double secondsLeft() const { return o_.budget - secondsSince(o_.start); }
+    // Embree's build kept to -t as a render's is (it would otherwise take every core).
+    std::unique_ptr<Accelerator> buildEmbree(const Scene& scene) const {
+        return makeEmbreeAccelerator(scene, AcceleratorChoice{}.withThreads(o_.threads).embree);
+    }
     // Kept back from the sweep's top images, the last ones: the page, the JSON, and the error of
     // their own time estimate (a busier machine makes them slower than the last render said).
     double topReserve() const { return 1.0 + 0.03 * o_.budget; }
@@ -122,6 +127,7 @@ class Cs184Report {
     Size size_{0, 0};
     double needMain_ = 0;  // the budget the main size needs, estimated at the start
     std::string loadStart_;
+    size_t embreeThreads_ = 0;  // TBB's bound while the accelerators were built
     std::vector<TimingRow> timings_;
     std::vector<std::string> missingMeshes_;
     std::vector<ShotResult> probes_;
@@ -176,7 +182,7 @@ void Cs184Report::timeMesh(const std::string& path) {
     }
     Scene scene = loadScene(path);
     auto built = Clock::now();
-    auto embree = makeEmbreeAccelerator(scene);
+    auto embree = buildEmbree(scene);
     const double embreeBuild = secondsSince(built);
     ShotRunner r(scene, *embree, path, o_.dir, o_.threads, o_.view);
     std::string stem = imageStem(path, 0);
@@ -330,7 +336,10 @@ void Cs184Report::run() {
         s.scene = loadScene(path);
         scenes_.push_back(std::move(s));
     }
-    for (SceneReport& s : scenes_) s.embree = makeEmbreeAccelerator(s.scene);
+    for (SceneReport& s : scenes_) s.embree = buildEmbree(s.scene);
+    // What Embree's builds were kept to, read back while the accelerators hold it (report.json).
+    embreeThreads_ =
+        tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
     timeBvh();
     for (size_t s = 0; s < scenes_.size(); ++s) probe(s);
     const double reserve = 1.0 + 0.01 * o_.budget;  // the page, the JSON, the last refit's error
@@ -504,6 +513,8 @@ void Cs184Report::writeJson() const {
                 {"height", size_.height},
                 {"budget_for_480x360", needMain_},
                 {"timing_floor_seconds", kTimingFloorSeconds},
+                {"threads", o_.threads},
+                {"embree_build_threads", embreeThreads_},
                 {"shots", shots},
                 {"timings", timings}};
     writeFileAtomically((fs::path(o_.dir) / "report.json").string(), jsonText(doc) + "\n");

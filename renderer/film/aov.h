@@ -109,6 +109,15 @@ struct UnsetColours {
 struct SampleRecord {
     Color L{0.0f};
     Color emission{0.0f}, direct{0.0f}, indirect{0.0f};
+    Color albedo{0.0f};
+    Vec3 normal{0.0f}, position{0.0f};
+    bool hit = false;                              // the camera ray hit a surface (alpha coverage)
+    bool hitEmitter = false;                       // ... and that surface emits light
+    float depth = kInfinity, cameraZ = kInfinity;  // first hit: along the ray, along the view axis
+    float primId = -1, objectId = -1;
+    uint32_t cryptoObject = 0, cryptoMaterial = 0;  // Cryptomatte id float bits; 0: none
+    // Last: what every sample writes stays in as few cache lines as it can (a render's batch of
+    // records streams through the cache), these only where AOVs split the light.
     UnsetColours<kLobeCount> lobes[2];  // [0 direct / 1 indirect][Lobe]
     UnsetColours<kMaxBounceLayers> bounces;
     void reset(const AovRequest& aovs) {
@@ -117,13 +126,6 @@ struct SampleRecord {
             for (size_t l = 0; l < kLobeCount; ++l) d[l] = Color(0.0f);
         for (int b = 0; b < aovs.bounceLayers; ++b) bounces[size_t(b)] = Color(0.0f);
     }
-    Color albedo{0.0f};
-    Vec3 normal{0.0f}, position{0.0f};
-    bool hit = false;                              // the camera ray hit a surface (alpha coverage)
-    bool hitEmitter = false;                       // ... and that surface emits light
-    float depth = kInfinity, cameraZ = kInfinity;  // first hit: along the ray, along the view axis
-    float primId = -1, objectId = -1;
-    uint32_t cryptoObject = 0, cryptoMaterial = 0;  // Cryptomatte id float bits; 0: none
 };
 
 // One EXR channel fed from a SampleRecord field.

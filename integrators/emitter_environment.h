@@ -11,7 +11,8 @@ namespace kiln {
 class EnvironmentEmitter {
   public:
     static bool handles(LightKind k) { return k == LightKind::Environment; }
-    EnvironmentEmitter(const Light& l, const Scene&) : l_(l), env_(loadEnvironment(l)) {}
+    EnvironmentEmitter(const Light& l, const Scene&, const LightSetOptions& o)
+        : l_(l), env_(loadEnvironment(l, o.misWithBsdf)) {}
 
     float power(float r) const;
     bool sample(const Vec3& ref, float u1, float u2, LightSample& out) const;
@@ -38,6 +39,7 @@ class EnvironmentEmitter {
     // Both, from dir's coordinates found already (latLong4); pdf may be null.
     Color escapedAt(const Vec3& dir, const LatLong& ll, float* pdf) const;
     Color emitted(const Vec3&, const Vec3&, const Vec3&) const { return l_.radiance; }
+    bool compensated() const { return env_.compensated; }
 
   private:
     const Light& l_;

@@ -34,6 +34,9 @@ struct EnvironmentMap {
     float scale = 1;
     float rotation = 0;     // radians about +Y (right-handed: counterclockwise seen from above)
     bool bilinear = false;  // between texel centres (the loader's maps); else nearest texel
+    // Sampled by the light above a share of the map's mean (MIS compensation): only for renders
+    // that weigh every map sample against BSDF sampling by MIS.
+    bool compensated = false;
     // sin, cos of theta = v pi and of phi = (u - 0.5) 2 pi - rotation.
     AngleTable theta{0.0, 3.14159265358979323846, 128};
     AngleTable phi{-3.14159265358979323846, 2 * 3.14159265358979323846, 256};
@@ -70,7 +73,7 @@ struct EnvironmentMap {
 };
 
 // The light's map in memory: scaled, non-finite and negative texels zeroed, with its sampling
-// tables (a uniform environment when the light has no image).
-EnvironmentMap loadEnvironment(const Light& l);
+// tables (a uniform environment when the light has no image), MIS-compensated if asked.
+EnvironmentMap loadEnvironment(const Light& l, bool misCompensated = false);
 
 }  // namespace kiln

@@ -15,6 +15,13 @@ struct EmissionSample {
     bool hittable = false;  // rays can hit the light (LightSet::hittable)
 };
 
+// How the scene's lights are prepared for the integrator that samples them.
+struct LightSetOptions {
+    // Every light sample is weighed by MIS against BSDF sampling that reaches every direction a
+    // BSDF reflects light into: an environment map may then be sampled MIS-compensated.
+    bool misWithBsdf = false;
+};
+
 struct LightSample {
     Color Li;       // radiance arriving at the reference point (before visibility)
     Vec3 wi;        // unit direction towards the light

@@ -23,7 +23,7 @@ bool hasUnsampledEmitter(const Scene& scene, const std::vector<int>& meshLight) 
 
 }  // namespace
 
-LightSet::LightSet(const Scene& scene) {
+LightSet::LightSet(const Scene& scene, const LightSetOptions& options) {
     std::vector<bool> proto = scene.prototypeMask();
     meshLight_.assign(scene.meshes.size(), -1);
     Bounds3 b = scene.storedBounds();
@@ -34,7 +34,7 @@ LightSet::LightSet(const Scene& scene) {
         if (kind.surface && (l.kind == LightKind::MeshEmitter || l.hasMesh) && !proto[l.mesh])
             meshLight_[l.mesh] = int(lights_.size());
         if (kind.infinite) infinite_.push_back(lights_.size());
-        lights_.push_back({&l, kind.hittable(l), RegisteredEmitters::make(l, scene)});
+        lights_.push_back({&l, kind.hittable(l), RegisteredEmitters::make(l, scene, options)});
     }
     everyEmitterSampled_ = !hasUnsampledEmitter(scene, meshLight_);
     std::vector<float> powers, emitterPowers;
@@ -50,6 +50,14 @@ LightSet::LightSet(const Scene& scene) {
 }
 
 bool LightSet::hittable(size_t i) const { return lights_[i].hittable; }
+
+bool LightSet::anyCompensated() const {
+    for (const Entry& e : lights_)
+        if (const auto* env = std::get_if<EnvironmentEmitter>(&e.emitter);
+            env && env->compensated())
+            return true;
+    return false;
+}
 
 bool LightSet::allDelta() const {
     for (const Entry& e : lights_)

@@ -4,6 +4,7 @@
 
 #include <optional>
 #include <stdexcept>
+#include <type_traits>
 #include <variant>
 #include <vector>
 
@@ -22,13 +23,22 @@ template <class... Classes>
 struct EmitterClasses {
     using Variant = std::variant<Classes...>;
     // The class whose handles() takes the light's kind (the first that does).
-    static Variant make(const Light& l, const Scene& scene) {
+    static Variant make(const Light& l, const Scene& scene, const LightSetOptions& o) {
         std::optional<Variant> v;
-        (void)((Classes::handles(l.kind) ? (v.emplace(std::in_place_type<Classes>, l, scene), true)
-                                         : false) ||
+        (void)((Classes::handles(l.kind) ? (emplace<Classes>(v, l, scene, o), true) : false) ||
                ...);
         if (!v) throw std::logic_error("lights: no emitter class for a light kind");
         return std::move(*v);
+    }
+    // The options go to the classes whose constructors take them.
+    template <class C>
+    static void emplace(std::optional<Variant>& v, const Light& l, const Scene& scene,
+                        const LightSetOptions& o) {
+        if constexpr (std::is_constructible_v<C, const Light&, const Scene&,
+                                              const LightSetOptions&>)
+            v.emplace(std::in_place_type<C>, l, scene, o);
+        else
+            v.emplace(std::in_place_type<C>, l, scene);
     }
     // How many classes take the kind (exactly one: tests/test_material_kinds.cpp).
     static int handlerCount(LightKind k) { return (int(Classes::handles(k)) + ...); }
@@ -40,7 +50,7 @@ using RegisteredEmitters = EmitterClasses<SurfaceEmitter, PointEmitter, Directio
 
 class LightSet {
   public:
-    explicit LightSet(const Scene& scene);
+    explicit LightSet(const Scene& scene, const LightSetOptions& options = {});
     size_t size() const { return lights_.size(); }
     const Light& light(size_t i) const { return *lights_[i].light; }
 
@@ -109,6 +119,9 @@ class LightSet {
     // Every emitting surface is a light NEE samples (no emissive sphere, instance or unbound mesh):
     // light sampling alone then accounts for all the light a vertex receives.
     bool everyEmitterSampled() const { return everyEmitterSampled_; }
+    // An environment map is sampled MIS-compensated: light sampling alone would miss the light
+    // below its cut.
+    bool anyCompensated() const;
 
   private:
     struct Entry {

@@ -19,7 +19,7 @@ PathIntegrator::PathIntegrator(const Scene& scene, const Accelerator& accel,
     : Integrator(scene, accel, plan.aovs, options.pixelSpread),
       trace_(pathFor(plan)),
       opt_(options),
-      lights_(scene),
+      lights_(scene, {.misWithBsdf = options.sampling == DirectSampling::Mis}),
       media_(scene) {
     // An integrator built without analysis (the general plan) still sees a scene's media.
     if (plan.general && (sceneHasMedia(scene) || sceneHasSubsurface(scene)))
@@ -31,9 +31,10 @@ PathIntegrator::PathIntegrator(const Scene& scene, const Accelerator& accel,
     // Without next-event estimation (hemisphere, bsdf) emission found by the path counts in full.
     useNee_ = !rules_.hemisphere && options.sampling != DirectSampling::Bsdf && lights_.size() > 0;
     // Only where light sampling sees every emitter and MIS would otherwise weigh what the last
-    // continuation finds (not with -H probes or BSDF-only direct light).
+    // continuation finds (not with -H probes or BSDF-only direct light), and sees all of its light
+    // (not a compensated map's, whose light below the cut only BSDF sampling finds).
     lightOnlyAtLastVertex_ =
-        lights_.size() > 0 && lights_.everyEmitterSampled() &&
+        lights_.size() > 0 && lights_.everyEmitterSampled() && !lights_.anyCompensated() &&
         (options.sampling == DirectSampling::Mis || options.sampling == DirectSampling::Light);
 }
 

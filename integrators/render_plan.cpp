@@ -145,6 +145,11 @@ RenderPlan planFor(const Scene& scene, const Accelerator& accel, const AovReques
                     p.defaultLightSamples > 1 ? "s" : ""),
         p.environmentMap ? "an environment map lights the scene: measured faster to equal error"
                          : "no environment map");
+    if (p.environmentMap)
+        say("environment map sampled by its light above half its mean where MIS weighs light "
+            "against BSDF samples (-d mis, the default)",
+            "MIS compensation: BSDF sampling finds the even part of the sky, map samples go to "
+            "the bright part it rarely finds");
     say(p.spheres ? "sphere geometry registered" : "no sphere geometry registered",
         p.spheres ? std::to_string(scene.spheres.size()) + " analytic spheres"
                   : "no analytic spheres");

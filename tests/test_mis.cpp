@@ -87,7 +87,10 @@ TEST(Mis, LightBsdfAndMisAgreeOnADiffuseEnvironmentLitMesh) {
     // Where the BSDF and the map's pdf overlap most (a diffuse surface): the weights matter most.
     LoadOptions load;
     load.environmentMap = test::shared("envmaps/courtyard.exr");
-    expectStrategiesAgree(loadScene(test::cs184("sky/bunny_unlit.dae"), load), 2, 64);
+    // 512 samples: MIS takes its map samples from the compensated map (the light above half its
+    // mean, lights.h), whose dark ground only BSDF sampling finds; a last vertex that took that
+    // map's samples alone would lose 8 % of the light of the first bounce, 3 standard errors at 64.
+    expectStrategiesAgree(loadScene(test::cs184("sky/bunny_unlit.dae"), load), 2, 512);
 }
 
 TEST(Mis, LightBsdfAndMisAgreeAtEveryBounceAmongGlossySpheresInABox) {

@@ -12,13 +12,13 @@ float rowSinTheta(int y, int h) { return std::sin(kPi * (float(y) + 0.5f) / floa
 // multiple importance sampling", ACM TOG 38(6)): where BSDF sampling covers every direction and
 // MIS weighs the two, the map's samples are better spent on the light standing above its mean
 // (the sun, windows), which BSDF sampling rarely finds, than on the even sky it finds anyway. Each
-// texel's importance less kCompensation times the solid-angle mean, floored at 0; unchanged where
-// that leaves nothing (an even map). A fraction rather than the whole mean because a vertex draws
-// several map samples to one BSDF sample (measured: env-lit Lucy under four maps,
-// docs/performance.md).
+// texel's importance less kCompensation times the solid-angle mean, floored at 0 (an even map
+// stays even). A fraction rather than the whole mean because a vertex draws several map samples
+// to one BSDF sample (measured: env-lit Lucy under four maps, docs/performance.md).
 constexpr double kCompensation = 0.5;
 
-void compensate(std::vector<float>& importance, int w, int h) {
+// True where a lit texel was cut to 0: light sampling alone would then miss its light.
+bool compensate(std::vector<float>& importance, int w, int h) {
     double sum = 0, solidAngle = 0;
     for (int y = 0; y < h; ++y) {
         const double sinTheta = rowSinTheta(y, h);
@@ -26,24 +26,23 @@ void compensate(std::vector<float>& importance, int w, int h) {
         solidAngle += sinTheta * w;
     }
     const float cut = float(kCompensation * sum / solidAngle);
-    std::vector<float> above(importance.size());
-    bool any = false;
-    for (size_t i = 0; i < above.size(); ++i) {
-        above[i] = std::max(0.0f, importance[i] - cut);
-        any |= above[i] > 0;
+    bool cutAway = false;
+    for (float& weight : importance) {
+        cutAway |= weight > 0 && weight <= cut;
+        weight = std::max(0.0f, weight - cut);
     }
-    if (any) importance = std::move(above);
+    return cutAway;
 }
 
 // Importance of each texel for sampling. A bilinear lookup blends a texel with its neighbours (up
 // to one texel away), so each weight is the largest of its 3 x 3 neighbourhood (longitude wraps):
 // every direction the lookup lights has a nonzero pdf, as light-only sampling needs (compensated:
 // every direction the compensated texels light).
-std::vector<float> samplingWeights(const EnvironmentMap& env) {
+std::vector<float> samplingWeights(EnvironmentMap& env, bool misCompensated) {
     const int w = env.width, h = env.height;
     std::vector<float> own(env.pixels.size()), weight(env.pixels.size());
     for (size_t i = 0; i < own.size(); ++i) own[i] = maxComponent(env.pixels[i]);
-    if (env.compensated) compensate(own, w, h);
+    if (misCompensated) env.compensated = compensate(own, w, h);
     for (int y = 0; y < h; ++y) {
         const float sinTheta = rowSinTheta(y, h);
         for (int x = 0; x < w; ++x) {
@@ -61,7 +60,6 @@ std::vector<float> samplingWeights(const EnvironmentMap& env) {
 
 EnvironmentMap loadEnvironment(const Light& l, bool misCompensated) {
     EnvironmentMap env;
-    env.compensated = misCompensated;
     env.scale = l.environmentScale;
     env.rotation = l.environmentRotationDeg * kPi / 180.0f;
     env.phi =
@@ -79,7 +77,8 @@ EnvironmentMap loadEnvironment(const Light& l, bool misCompensated) {
         if (!isFinite(c)) c = Color(0.0f);
         env.pixels[i] = max(c, Color(0.0f));
     }
-    env.columns = Distribution1DRows(samplingWeights(env), size_t(env.width), size_t(env.height));
+    env.columns = Distribution1DRows(samplingWeights(env, misCompensated), size_t(env.width),
+                                     size_t(env.height));
     std::vector<float> rowSums(size_t(env.height));
     for (size_t y = 0; y < rowSums.size(); ++y) rowSums[y] = env.columns.integral(y);
     env.rows = Distribution1D(rowSums);

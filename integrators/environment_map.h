@@ -34,8 +34,9 @@ struct EnvironmentMap {
     float scale = 1;
     float rotation = 0;     // radians about +Y (right-handed: counterclockwise seen from above)
     bool bilinear = false;  // between texel centres (the loader's maps); else nearest texel
-    // Sampled by the light above a share of the map's mean (MIS compensation): only for renders
-    // that weigh every map sample against BSDF sampling by MIS.
+    // Sampled by the light above a share of the map's mean (MIS compensation, only for renders
+    // that weigh every map sample against BSDF sampling by MIS), and some lit texels cut to 0:
+    // light sampling alone would miss their light.
     bool compensated = false;
     // sin, cos of theta = v pi and of phi = (u - 0.5) 2 pi - rotation.
     AngleTable theta{0.0, 3.14159265358979323846, 128};

@@ -223,7 +223,7 @@ TEST(LightSampling, CompensatedEnvironmentMapImportance) {
 }
 
 // Compensation moves the map's density from the even sky to the light above the cut (the sun's
-// texels and the bilinear lookup's reach around them), and leaves an even map as it was.
+// texels and the bilinear lookup's reach around them), and leaves an even map's density as it was.
 TEST(LightSampling, CompensationSamplesOnlyTheLightAboveTheCut) {
     Scene s;
     s.lights.emplace_back();
@@ -247,6 +247,17 @@ TEST(LightSampling, CompensationSamplesOnlyTheLightAboveTheCut) {
     LightSet evenPlain(even), evenCompensated(even, {.misWithBsdf = true});
     for (const Vec3& d : {sun, sky, texel(0, 0)})
         EXPECT_EQ(pdf(evenCompensated, d), pdf(evenPlain, d));
+
+    // Only a map with lit texels cut to 0 counts as compensated (the path tracer then keeps MIS
+    // at its last vertex): not an even map, nor a uniform environment without an image.
+    EXPECT_TRUE(compensated.anyCompensated());
+    EXPECT_FALSE(plain.anyCompensated());
+    EXPECT_FALSE(evenCompensated.anyCompensated());
+    Scene uniform;
+    uniform.lights.emplace_back();
+    uniform.lights.back().kind = LightKind::Environment;
+    uniform.lights.back().radiance = Color(1.0f);
+    EXPECT_FALSE(LightSet(uniform, {.misWithBsdf = true}).anyCompensated());
 }
 
 // Light sampling is unbiased for the map rays see: the mean of Li / pdf over draws is the integral

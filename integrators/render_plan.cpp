@@ -147,7 +147,7 @@ RenderPlan planFor(const Scene& scene, const Accelerator& accel, const AovReques
                          : "no environment map");
     if (p.environmentMap)
         say("environment map sampled by its light above half its mean where MIS weighs light "
-            "against BSDF samples (-d mis, the default)",
+            "against BSDF samples (--sampling mis, the default)",
             "MIS compensation: BSDF sampling finds the even part of the sky, map samples go to "
             "the bright part it rarely finds");
     say(p.spheres ? "sphere geometry registered" : "no sphere geometry registered",

@@ -34,15 +34,13 @@ bool compensate(std::vector<float>& importance, int w, int h) {
     return cutAway;
 }
 
-// Importance of each texel for sampling. A bilinear lookup blends a texel with its neighbours (up
-// to one texel away), so each weight is the largest of its 3 x 3 neighbourhood (longitude wraps):
-// every direction the lookup lights has a nonzero pdf, as light-only sampling needs (compensated:
-// every direction the compensated texels light).
-std::vector<float> samplingWeights(EnvironmentMap& env, bool misCompensated) {
+// Sampling weight of each texel from its importance (own). A bilinear lookup blends a texel with
+// its neighbours (up to one texel away), so each weight is the largest of its 3 x 3 neighbourhood
+// (longitude wraps): every direction the lookup lights has a nonzero pdf, as light-only sampling
+// needs (compensated: every direction the compensated texels light).
+std::vector<float> samplingWeights(const EnvironmentMap& env, const std::vector<float>& own) {
     const int w = env.width, h = env.height;
-    std::vector<float> own(env.pixels.size()), weight(env.pixels.size());
-    for (size_t i = 0; i < own.size(); ++i) own[i] = maxComponent(env.pixels[i]);
-    if (misCompensated) env.compensated = compensate(own, w, h);
+    std::vector<float> weight(env.pixels.size());
     for (int y = 0; y < h; ++y) {
         const float sinTheta = rowSinTheta(y, h);
         for (int x = 0; x < w; ++x) {
@@ -77,8 +75,11 @@ EnvironmentMap loadEnvironment(const Light& l, bool misCompensated) {
         if (!isFinite(c)) c = Color(0.0f);
         env.pixels[i] = max(c, Color(0.0f));
     }
-    env.columns = Distribution1DRows(samplingWeights(env, misCompensated), size_t(env.width),
-                                     size_t(env.height));
+    std::vector<float> importance(env.pixels.size());
+    for (size_t i = 0; i < importance.size(); ++i) importance[i] = maxComponent(env.pixels[i]);
+    if (misCompensated) env.compensated = compensate(importance, env.width, env.height);
+    env.columns =
+        Distribution1DRows(samplingWeights(env, importance), size_t(env.width), size_t(env.height));
     std::vector<float> rowSums(size_t(env.height));
     for (size_t y = 0; y < rowSums.size(); ++y) rowSums[y] = env.columns.integral(y);
     env.rows = Distribution1D(rowSums);

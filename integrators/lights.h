@@ -119,8 +119,8 @@ class LightSet {
     // Every emitting surface is a light NEE samples (no emissive sphere, instance or unbound mesh):
     // light sampling alone then accounts for all the light a vertex receives.
     bool everyEmitterSampled() const { return everyEmitterSampled_; }
-    // An environment map is sampled MIS-compensated: light sampling alone would miss the light
-    // below its cut.
+    // An environment map is sampled MIS-compensated with lit texels cut to 0: light sampling
+    // alone would miss their light.
     bool anyCompensated() const;
 
   private:

@@ -88,8 +88,9 @@ TEST(Mis, LightBsdfAndMisAgreeOnADiffuseEnvironmentLitMesh) {
     LoadOptions load;
     load.environmentMap = test::shared("envmaps/courtyard.exr");
     // 512 samples: MIS takes its map samples from the compensated map (the light above half its
-    // mean, lights.h), whose dark ground only BSDF sampling finds; a last vertex that took that
-    // map's samples alone would lose 8 % of the light of the first bounce, 3 standard errors at 64.
+    // mean, environment_map.cpp), whose dark ground only BSDF sampling finds; a last vertex that
+    // took that map's samples alone would lose 8 % of the light of the first bounce, 3 standard
+    // errors at 64.
     expectStrategiesAgree(loadScene(test::cs184("sky/bunny_unlit.dae"), load), 2, 512);
 }
 

@@ -62,11 +62,6 @@ inline RelMse relMseOf(const std::vector<Color>& image, const std::vector<Color>
     return meanOf(relErrors(image, reference));
 }
 
-// The denoised error lies below the raw one by more than three standard errors of the two means.
-inline bool clearlyLower(const RelMse& denoised, const RelMse& raw) {
-    return denoised.mean + 3 * std::hypot(denoised.standardError, raw.standardError) < raw.mean;
-}
-
 // How much lower image's relMSE is than other's against the same reference, pixel by pixel (a
 // paired comparison: the two errors of a pixel share its reference and its noise).
 inline RelMse relMseDrop(const std::vector<Color>& image, const std::vector<Color>& other,

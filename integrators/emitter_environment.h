@@ -38,6 +38,13 @@ class EnvironmentEmitter {
     Color escaped(const Vec3& dir, float& pdf) const;
     // Both, from dir's coordinates found already (latLong4); pdf may be null.
     Color escapedAt(const Vec3& dir, const LatLong& ll, float* pdf) const;
+    // Asks memory for what escapedAt(., ll, .) reads.
+    void prefetchEscape(const LatLong& ll) const {
+        if (env_.pixels.empty()) return;
+        float u, v;
+        env_.coordinates(ll, u, v);
+        env_.prefetchLookup(u, v);
+    }
     Color emitted(const Vec3&, const Vec3&, const Vec3&) const { return l_.radiance; }
     bool compensated() const { return env_.compensated; }
 

@@ -155,6 +155,20 @@ Color EnvironmentMap::radianceAt(const EnvironmentSample& s) const {
     return bilinear ? bilinearLookup(s.u, s.v) : pixels[s.iv * size_t(width) + s.iu];
 }
 
+void EnvironmentMap::prefetchLookup(float u, float v) const {
+    const size_t iu = std::min(size_t(u * float(width)), size_t(width) - 1),
+                 iv = std::min(size_t(v * float(height)), size_t(height) - 1);
+    columns.prefetchDensity(iv, iu);
+    if (!bilinear) {
+        __builtin_prefetch(&pixels[iv * size_t(width) + iu]);
+        return;
+    }
+    const BilinearTexels t = bilinearTexels(u, v);
+    for (int y : {t.y0, t.y1})
+        for (int x : {t.x0, t.x1})
+            __builtin_prefetch(&pixels[size_t(y) * size_t(width) + size_t(x)]);
+}
+
 float EnvironmentMap::pdf(const Vec3& dir) const {
     float u, v;
     coordinates(dir, u, v);

@@ -67,6 +67,9 @@ struct EnvironmentMap {
     void pickRow(float u1, float u2, EnvironmentSample& out) const;
     bool locateInRow(float u1, EnvironmentSample& out) const;
     Color radianceAt(const EnvironmentSample& s) const;
+    // Asks memory for what lookup(u, v) and pdf(u, v, .) read: a batch's escaped rays, whose
+    // texels and table entries are misses on a map larger than the cache, overlap them.
+    void prefetchLookup(float u, float v) const;
     // Solid-angle density of locate() drawing the unit direction dir.
     float pdf(const Vec3& dir) const;
     // The same at dir's own coordinates (u, v), as coordinates() gives them.

@@ -111,6 +111,12 @@ class LightSet {
     // the same values, for a batch of rays whose coordinates were found four at once.
     Color escaped(size_t i, const Vec3& ref, const Vec3& dir, const LatLong& ll, bool cameraRay,
                   float* pdf) const;
+    // Asks memory for what escaped(i, ., ., ll, ., .) reads (an environment map's texels and
+    // table entries); nothing for other lights.
+    void prefetchEscape(size_t i, const LatLong& ll) const {
+        if (const auto* env = std::get_if<EnvironmentEmitter>(&lights_[i].emitter))
+            env->prefetchEscape(ll);
+    }
     bool allDelta() const;
     // Light leaving an area light or emitting mesh, chosen by power: a point by area, a
     // cosine-weighted direction on a side it emits from. False where the scene has none.

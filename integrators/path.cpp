@@ -241,9 +241,11 @@ struct PathIntegrator::Scratch {
     std::vector<Ray> probeRays;
     std::vector<Hit> probeHits;
     std::vector<PendingLight> probes;
-    std::vector<DrawnAhead> ahead;       // per path
-    std::vector<uint32_t> escapes;       // rays that left the scene (locateEscapes)
-    std::vector<LatLong> escapeLatLong;  // per ray: its direction's coordinates, if it left
+    std::vector<DrawnAhead> ahead;  // per path
+    std::vector<uint32_t> escapes;  // rays that left the scene (locateEscapes)
+    // Per ray that left: its unit direction and that direction's coordinates, found once for
+    // the lookup and the weight (addEscaped).
+    std::vector<EscapedDirection> escaped;
 };
 
 // A surface vertex of one path, as its stages see it.
@@ -354,7 +356,7 @@ void PathIntegrator::shadePath(std::span<CameraSample> batch, Scratch& w, size_t
         if (crossMedium<F>(batch, w, j, bounce)) return;
     if (!hit.valid()) {
         const bool located = F::infinite && !F::media && mapEscapes_;
-        addEscaped<F>(st, rec, ray, bounce, located ? &w.escapeLatLong[j] : nullptr);
+        addEscaped<F>(st, rec, ray, bounce, located ? &w.escaped[j] : nullptr);
         return;
     }
     SurfaceInteraction si = makeInteraction(scene_, ray, hit);
@@ -473,9 +475,10 @@ void PathIntegrator::followTransmission(Scratch& w, uint32_t path, const Hit& hi
 // A ray that left the scene: the lights at infinity it sees.
 template <class F>
 void PathIntegrator::addEscaped(const PathState& st, SampleRecord& rec, const Ray& ray, int bounce,
-                                const LatLong* dirLatLong) const {
+                                const EscapedDirection* located) const {
     if constexpr (F::infinite) {
-        Vec3 dir = normalize(ray.dir);
+        const Vec3 dir = located ? located->dir : normalize(ray.dir);
+        const LatLong* dirLatLong = located ? &located->at : nullptr;
         for (size_t i : lights_.infiniteLights()) {
             // The light's density for MIS comes with its radiance where the weight needs it.
             const std::optional<float> fixed = fixedEmissionWeight<F>(st, int(i));
@@ -499,7 +502,7 @@ void PathIntegrator::locateEscapes(Scratch& w) const {
     w.escapes.clear();
     for (size_t j = 0; j < w.hits.size(); ++j)
         if (!w.hits[j].valid()) w.escapes.push_back(uint32_t(j));
-    w.escapeLatLong.resize(w.rays.size());
+    w.escaped.resize(w.rays.size());
     const size_t n = w.escapes.size();
     for (size_t k = 0; k < n; k += 4) {
         Vec3 unit[4];
@@ -510,7 +513,10 @@ void PathIntegrator::locateEscapes(Scratch& w) const {
         }
         LatLong found[4];
         latLong4(dirs, found);
-        for (size_t l = 0; l < 4 && k + l < n; ++l) w.escapeLatLong[w.escapes[k + l]] = found[l];
+        for (size_t l = 0; l < 4 && k + l < n; ++l) {
+            w.escaped[w.escapes[k + l]] = {unit[l], found[l]};
+            for (size_t i : lights_.infiniteLights()) lights_.prefetchEscape(i, found[l]);
+        }
     }
 }
 

@@ -64,6 +64,11 @@ class PathIntegrator final : public Integrator {
     struct PathState;  // path.cpp: what a path carries between vertices
     struct Scratch;    // path.cpp: a batch's queues
     struct Vertex;     // path.cpp: one path's surface vertex being shaded
+    // A ray that left the scene: its unit direction and that direction's map coordinates.
+    struct EscapedDirection {
+        Vec3 dir;
+        LatLong at;
+    };
 
     static TraceFn pathFor(const RenderPlan& plan);
     // The wavefront over a batch, a bounce at a time, in named stages (path.cpp).
@@ -86,7 +91,7 @@ class PathIntegrator final : public Integrator {
     // coordinates found already (locateEscapes) or, null, found here.
     template <class F>
     void addEscaped(const PathState& st, SampleRecord& rec, const Ray& ray, int bounce,
-                    const LatLong* dirLatLong) const;
+                    const EscapedDirection* located) const;
     // The map coordinates of every ray of the batch that left the scene, four at a time (latLong4).
     void locateEscapes(Scratch& w) const;
     template <class F>

@@ -64,10 +64,14 @@ Ray CameraModel::generateRay(float px, float py, float lensU, float lensV) const
     float y = (1.0f - py * yScale_) * tanY_;
     if (cam_.orthographic())  // parallel rays; clip planes are distances from the camera plane
         return Ray{cam_.position + right_ * x + up_ * y, cam_.nearClip, forward_, cam_.farClip};
-    Vec3 dir = normalize(right_ * x + up_ * y + forward_);
+    const Vec3 towards = right_ * x + up_ * y + forward_;
+    const float len = length(towards);
+    Vec3 dir = towards / len;
     Ray ray{cam_.position, 0.0f, dir, kInfinity};
-    // Clip planes are distances along the view axis, as in the course program.
-    float invCos = 1.0f / dot(dir, forward_);
+    // Clip planes are distances along the view axis, as in the course program: 1 / cos of the
+    // ray's angle to it is len, since towards is 1 along the unit forward_ (right_ and up_ are
+    // perpendicular to it), which saves a division after the square root.
+    float invCos = len;
     ray.tMin = cam_.nearClip * invCos;
     ray.tMax = cam_.farClip * invCos;
     if (cam_.apertureRadius > 0) {

@@ -60,23 +60,29 @@ SurfaceInteraction surfacePoint(const Vec3& p, const Vec3& pError, const Vec3& n
     return si;
 }
 
-SurfaceInteraction makeInteraction(const Scene& scene, const Ray& ray, const Hit& hit) {
+namespace {
+
+SurfaceInteraction sphereInteraction(const Scene& scene, const Ray& ray, const Hit& hit) {
+    const Sphere& s = scene.spheres[hit.prim];
     SurfaceInteraction si;
     si.t = hit.t;
     si.shape = hit.shape, si.prim = hit.prim, si.instance = hit.instance;
-    if (hit.shape == kSphereShape) {
-        const Sphere& s = scene.spheres[hit.prim];
-        Vec3 p = ray.origin + ray.dir * hit.t;
-        Vec3 n = normalize(p - s.center);
-        // Reproject onto the surface: the error is then a few ulps of the sphere's extent (pbrt).
-        si.p = s.center + n * s.radius;
-        si.pError = gamma(5) * (abs(s.center) + abs(n * s.radius));
-        si.ng = si.ns = n;
-        si.material = s.material;
-        faceForward(si, ray.dir);
-        setSpawnOrigins(si);
-        return si;
-    }
+    Vec3 p = ray.origin + ray.dir * hit.t;
+    Vec3 n = normalize(p - s.center);
+    // Reproject onto the surface: the error is then a few ulps of the sphere's extent (pbrt).
+    si.p = s.center + n * s.radius;
+    si.pError = gamma(5) * (abs(s.center) + abs(n * s.radius));
+    si.ng = si.ns = n;
+    si.material = s.material;
+    faceForward(si, ray.dir);
+    setSpawnOrigins(si);
+    return si;
+}
+
+}  // namespace
+
+SurfaceInteraction makeInteraction(const Scene& scene, const Ray& ray, const Hit& hit) {
+    if (hit.shape == kSphereShape) return sphereInteraction(scene, ray, hit);
     const TriangleMesh& mesh = scene.meshes[hit.shape];
     const uint32_t* idx = &mesh.indices[3 * hit.prim];
     Vec3 p0 = mesh.vertex(idx[0]), p1 = mesh.vertex(idx[1]), p2 = mesh.vertex(idx[2]);
@@ -111,13 +117,25 @@ SurfaceInteraction makeInteraction(const Scene& scene, const Ray& ray, const Hit
         ng = transformNormal(inv, ng);
         ns = transformNormal(inv, ns);
     }
-    si.p = p;
-    si.pError = err;
-    si.ng = normalize(ng);
-    if (!isFinite(si.ng)) si.ng = -normalize(ray.dir);  // zero-area triangle: face the ray
-    si.ns = mesh.normals.empty() ? si.ng : normalize(ns);
-    if (!isFinite(si.ns)) si.ns = si.ng;
-    si.material = mesh.materialOf(hit.prim);
+    Vec3 unitNg = normalize(ng);
+    if (!isFinite(unitNg)) unitNg = -normalize(ray.dir);  // zero-area triangle: face the ray
+    Vec3 unitNs = mesh.normals.empty() ? unitNg : normalize(ns);
+    if (!isFinite(unitNs)) unitNs = unitNg;
+    // Every field given here, once: a default-constructed interaction was zeroed in memory first
+    // (a string store on every hit) and then overwritten.
+    SurfaceInteraction si{.p = p,
+                          .pError = err,
+                          .ng = unitNg,
+                          .ns = unitNs,
+                          .nsStored = unitNs,
+                          .originFront = p,
+                          .originBack = p,
+                          .t = hit.t,
+                          .material = mesh.materialOf(hit.prim),
+                          .shape = hit.shape,
+                          .prim = hit.prim,
+                          .instance = hit.instance,
+                          .frontFace = true};
     faceForward(si, ray.dir);
     setSpawnOrigins(si);
     return si;

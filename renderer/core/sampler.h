@@ -86,9 +86,9 @@ class Sampler {
     Point2 nextBounce2D() {
         if (kind_ != SamplerKind::Sobol) return next2D();
         const uint32_t seed = pairSeed(takePairs(1));
-        if (!bounceHalfOpen_) bounceIndexSeed_ = seed ^ 0x5bd1e995u;
-        SobolPair p =
-            shuffledScrambledSobol4DHalf(reversedSample_, bounceIndexSeed_, seed, bounceHalfOpen_);
+        if (!bounceHalfOpen_)
+            bounceIndex_ = shuffledSobolIndex(reversedSample_, seed ^ 0x5bd1e995u);
+        SobolPair p = scrambledSobol4DHalf(bounceIndex_, seed, bounceHalfOpen_);
         bounceHalfOpen_ = !bounceHalfOpen_;
         return {toUnit(p.x), toUnit(p.y)};
     }
@@ -138,8 +138,8 @@ class Sampler {
     uint32_t dimension_ = 0;
     uint32_t pendingY_ = 0;
     bool pendingValid_ = false;
-    bool bounceHalfOpen_ = false;   // nextBounce2D drew a 4D point's first half, not its second
-    uint32_t bounceIndexSeed_ = 0;  // that point's index shuffle
+    bool bounceHalfOpen_ = false;  // nextBounce2D drew a 4D point's first half, not its second
+    uint32_t bounceIndex_ = 0;     // that point's shuffled index (shuffledSobolIndex)
     SamplerKind kind_;
 };
 

@@ -92,14 +92,14 @@ struct SobolPair {
     uint32_t x, y;  // fixed point, [0, 2^32) for [0, 1)
 };
 
-// Half `upper` of 4D point `index` (given reversedIndex = reverseBits32(index): a sampler reverses
-// its sample index once, not once per pair): dimensions 0-1 (upper false) or 2-3, the index
-// shuffled by indexSeed (shared by both halves: they are one 4D net), the coordinates scrambled by
-// coordSeed.
-constexpr SobolPair shuffledScrambledSobol4DHalf(uint32_t reversedIndex, uint32_t indexSeed,
-                                                 uint32_t coordSeed, bool upper) {
-    // An Owen scramble of the index (the hash on its reversed bits, reversed back) shuffles it.
-    uint32_t index = reverseBits32(laineKarrasPermutation(reversedIndex, indexSeed));
+// The index shuffle alone: an Owen scramble of the index (the hash on its reversed bits, reversed
+// back). Both halves of a 4D point share it, so a sampler drawing them finds it once.
+constexpr uint32_t shuffledSobolIndex(uint32_t reversedIndex, uint32_t indexSeed) {
+    return reverseBits32(laineKarrasPermutation(reversedIndex, indexSeed));
+}
+
+// The half of the point at a shuffled index (shuffledSobolIndex).
+constexpr SobolPair scrambledSobol4DHalf(uint32_t index, uint32_t coordSeed, bool upper) {
     uint32_t sx = hash32(coordSeed ^ 0xa511e9b3u), sy = hash32(coordSeed ^ 0x63d83595u);
     // Dimension 0 is the bit-reversed index (van der Corput); its scramble reverses the bits back
     // first, so the two reversals cancel. The other dimensions' tables are stored reversed.
@@ -107,6 +107,15 @@ constexpr SobolPair shuffledScrambledSobol4DHalf(uint32_t reversedIndex, uint32_
     uint32_t y = sobolDimensionReversed(upper ? 3 : 1, index);
     return {reverseBits32(laineKarrasPermutation(x, sx)),
             reverseBits32(laineKarrasPermutation(y, sy))};
+}
+
+// Half `upper` of 4D point `index` (given reversedIndex = reverseBits32(index): a sampler reverses
+// its sample index once, not once per pair): dimensions 0-1 (upper false) or 2-3, the index
+// shuffled by indexSeed (shared by both halves: they are one 4D net), the coordinates scrambled by
+// coordSeed.
+constexpr SobolPair shuffledScrambledSobol4DHalf(uint32_t reversedIndex, uint32_t indexSeed,
+                                                 uint32_t coordSeed, bool upper) {
+    return scrambledSobol4DHalf(shuffledSobolIndex(reversedIndex, indexSeed), coordSeed, upper);
 }
 
 // Sample `index` of the pair with this seed: a 4D point's first half whose index shuffle and

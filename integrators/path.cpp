@@ -496,8 +496,8 @@ void PathIntegrator::addEscaped(const PathState& st, SampleRecord& rec, const Ra
     }
 }
 
-// Normalised as addEscaped normalises them, so each ray's coordinates are those it would find
-// alone (latLong is lane 0 of latLong4).
+// Each ray's unit direction (addEscaped takes it from here) and its coordinates, those it would
+// find alone (latLong is lane 0 of latLong4); its map texels and density entry asked for.
 void PathIntegrator::locateEscapes(Scratch& w) const {
     w.escapes.clear();
     for (size_t j = 0; j < w.hits.size(); ++j)

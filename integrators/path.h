@@ -87,12 +87,13 @@ class PathIntegrator final : public Integrator {
     // The medium a path is in after its vertex's BSDF sent the next ray through the surface.
     void followTransmission(Scratch& w, uint32_t path, const Hit& hit,
                             const SurfaceInteraction& si) const;
-    // Light from the lights at infinity along a ray that left the scene; its direction's
-    // coordinates found already (locateEscapes) or, null, found here.
+    // Light from the lights at infinity along a ray that left the scene; its unit direction and
+    // that direction's coordinates found already (locateEscapes) or, null, found here.
     template <class F>
     void addEscaped(const PathState& st, SampleRecord& rec, const Ray& ray, int bounce,
                     const EscapedDirection* located) const;
-    // The map coordinates of every ray of the batch that left the scene, four at a time (latLong4).
+    // The unit direction and map coordinates of every ray of the batch that left the scene, four
+    // at a time (latLong4), and what their lookups will read asked for from memory.
     void locateEscapes(Scratch& w) const;
     template <class F>
     void addSurfaceEmission(const PathState& st, SampleRecord& rec, const Ray& ray, const Hit& hit,

@@ -69,16 +69,17 @@ Ray CameraModel::generateRay(float px, float py, float lensU, float lensV) const
     Vec3 dir = towards / len;
     Ray ray{cam_.position, 0.0f, dir, kInfinity};
     // Clip planes are distances along the view axis, as in the course program: 1 / cos of the
-    // ray's angle to it is len, since towards is 1 along the unit forward_ (right_ and up_ are
-    // perpendicular to it), which saves a division after the square root.
-    float invCos = len;
-    ray.tMin = cam_.nearClip * invCos;
-    ray.tMax = cam_.farClip * invCos;
+    // ray's angle to it is len up to rounding, since towards is 1 along the unit forward_ (right_
+    // and up_ are perpendicular to it). That saves a division after the square root; the clip
+    // distances move by ulps (at the default near plane, 1e-3, by about 1e-10).
+    ray.tMin = cam_.nearClip * len;
+    ray.tMax = cam_.farClip * len;
     if (cam_.apertureRadius > 0) {
         // Thin lens: concentric disk sample, aim at the point on the plane of focus.
         float dx, dy;
         concentricDisk(lensU, lensV, dx, dy);
         Vec3 lens = (right_ * dx + up_ * dy) * cam_.apertureRadius;
+        const float invCos = 1.0f / dot(dir, forward_);  // as before: thin-lens images unchanged
         Vec3 focus = cam_.position + dir * (cam_.focalDistance * invCos);
         ray.origin = cam_.position + lens;
         Vec3 d = normalize(focus - ray.origin);

@@ -241,6 +241,19 @@ def load_average():
     return " ".join("%.1f" % v for v in os.getloadavg())
 
 
+def cpu_model():
+    """The CPU the run took its times on: the ratio to Cycles moves with it (docs/performance.md,
+    2026-11-28: the same binaries read glossy_env 0.44 on an AMD EPYC and 0.52 on the machine before)."""
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return "unknown"
+
+
 def rel_mse(kiln, test, ref):
     out = subprocess.run([kiln, "bench", "compare", test, ref, "--keep-reference-noise"],
                          capture_output=True, text=True, check=True).stdout
@@ -341,7 +354,8 @@ def main():
     if not os.path.exists(refs["cycles"]):
         run_cycles(a.blender, json_path, a.ref_spp, a.threads, refs["cycles"], REF_SEED)
     means = check_references(refs, base)
-    loads = ["load average %s at the start" % load_average()]
+    loads = ["CPU %s, %d cores; load average %s at the start" % (cpu_model(), os.cpu_count() or 0,
+                                                                 load_average())]
     print(loads[-1], flush=True)
     if a.check:
         return

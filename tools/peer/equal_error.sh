@@ -28,6 +28,7 @@ if [ "${CS184:-1}" != 0 ]; then
 fi
 {
   echo "# Equal-error benchmark, $start to $(date -u '+%H:%M') UTC (load average at the start: $load_start; at the end: $(cut -d' ' -f1-3 /proc/loadavg))"
+  echo; echo "CPU: $(grep -m1 '^model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//'), $(nproc) cores (the ratios move with the machine)"
   for scene in $scenes; do
     echo; echo "## $scene"; echo; cat "$out/$scene.md"
   done

@@ -107,6 +107,9 @@ void EnvironmentMap::coordinates(const LatLong& ll, float& u, float& v) const {
     v = std::clamp(ll.v, 0.0f, 1.0f - 1e-7f);
 }
 
+// The texel a coordinate in [0, 1) falls in, along an axis of n texels.
+static size_t texelOf(float t, int n) { return std::min(size_t(t * float(n)), size_t(n) - 1); }
+
 // A (u, v) density over the unit square as a solid-angle density: the square maps onto the sphere
 // with d(omega) = 2 pi^2 sin(theta) du dv.
 static float solidAngleDensity(float pdfUV, float sinTheta) {
@@ -138,27 +141,11 @@ bool EnvironmentMap::locateInRow(float u1, EnvironmentSample& out) const {
     out.dir = {sinTheta * sinPhi, cosTheta, -sinTheta * cosPhi};
     out.pdf = solidAngleDensity(pdfV * pdfU, sinTheta);
     if (out.pdf <= 0) return false;
-    if (!bilinear) {
-        __builtin_prefetch(&pixels[out.iv * size_t(width) + out.iu]);
-        return true;
-    }
-    const BilinearTexels t = bilinearTexels(out.u, out.v);
-    for (int y : {t.y0, t.y1})
-        for (int x : {t.x0, t.x1})
-            __builtin_prefetch(&pixels[size_t(y) * size_t(width) + size_t(x)]);
+    prefetchTexels(out.u, out.v, out.iu, out.iv);
     return true;
 }
 
-// The radiance where the sample landed, from the (u, v) it was drawn at: no coordinates recovered
-// from the direction.
-Color EnvironmentMap::radianceAt(const EnvironmentSample& s) const {
-    return bilinear ? bilinearLookup(s.u, s.v) : pixels[s.iv * size_t(width) + s.iu];
-}
-
-void EnvironmentMap::prefetchLookup(float u, float v) const {
-    const size_t iu = std::min(size_t(u * float(width)), size_t(width) - 1),
-                 iv = std::min(size_t(v * float(height)), size_t(height) - 1);
-    columns.prefetchDensity(iv, iu);
+void EnvironmentMap::prefetchTexels(float u, float v, size_t iu, size_t iv) const {
     if (!bilinear) {
         __builtin_prefetch(&pixels[iv * size_t(width) + iu]);
         return;
@@ -169,6 +156,18 @@ void EnvironmentMap::prefetchLookup(float u, float v) const {
             __builtin_prefetch(&pixels[size_t(y) * size_t(width) + size_t(x)]);
 }
 
+// The radiance where the sample landed, from the (u, v) it was drawn at: no coordinates recovered
+// from the direction.
+Color EnvironmentMap::radianceAt(const EnvironmentSample& s) const {
+    return bilinear ? bilinearLookup(s.u, s.v) : pixels[s.iv * size_t(width) + s.iu];
+}
+
+void EnvironmentMap::prefetchLookup(float u, float v) const {
+    const size_t iu = texelOf(u, width), iv = texelOf(v, height);
+    columns.prefetchDensity(iv, iu);
+    prefetchTexels(u, v, iu, iv);
+}
+
 float EnvironmentMap::pdf(const Vec3& dir) const {
     float u, v;
     coordinates(dir, u, v);
@@ -176,8 +175,7 @@ float EnvironmentMap::pdf(const Vec3& dir) const {
 }
 
 float EnvironmentMap::pdf(float u, float v, const Vec3& dir) const {
-    const size_t iu = std::min(size_t(u * float(width)), size_t(width) - 1),
-                 iv = std::min(size_t(v * float(height)), size_t(height) - 1);
+    const size_t iu = texelOf(u, width), iv = texelOf(v, height);
     const float pdfUV = rows.density(iv) * columns.density(iv, iu);
     return solidAngleDensity(pdfUV, std::sqrt(dir.x * dir.x + dir.z * dir.z));
 }

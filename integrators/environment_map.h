@@ -70,6 +70,8 @@ struct EnvironmentMap {
     // Asks memory for what lookup(u, v) and pdf(u, v, .) read: a batch's escaped rays, whose
     // texels and table entries are misses on a map larger than the cache, overlap them.
     void prefetchLookup(float u, float v) const;
+    // Asks memory for the texels lookup(u, v) reads, texel (iu, iv) holding (u, v).
+    void prefetchTexels(float u, float v, size_t iu, size_t iv) const;
     // Solid-angle density of locate() drawing the unit direction dir.
     float pdf(const Vec3& dir) const;
     // The same at dir's own coordinates (u, v), as coordinates() gives them.

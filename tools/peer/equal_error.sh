@@ -13,10 +13,14 @@ out=${1:-out/equal-error}
 shift || true
 mkdir -p "$out"
 scenes=${SCENES:-lucy_env glossy_env room_uplight box_bunny box_metal}
+# Two repeats unless the extra arguments name their own (given once, so each table's command line
+# reads as it ran).
+repeats=(--repeats 2)
+for arg in "$@"; do [ "$arg" = --repeats ] && repeats=(); done
 start=$(date -u '+%Y-%m-%d %H:%M')
 load_start=$(cut -d' ' -f1-3 /proc/loadavg)
 for scene in $scenes; do
-  tools/peer_bench.py --scene "$scene" --spp 16,64,256 --ref-spp 1024 --repeats 2 --samplers sobol \
+  tools/peer_bench.py --scene "$scene" --spp 16,64,256 --ref-spp 1024 "${repeats[@]}" --samplers sobol \
     --out "$out" "$@"
 done
 # The course program may not build here (tools/peer/build_cs184.sh needs X11 headers): the Cycles

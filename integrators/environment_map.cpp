@@ -189,9 +189,7 @@ Color EnvironmentMap::lookup(const Vec3& dir) const {
 
 Color EnvironmentMap::lookup(float u, float v) const {
     if (bilinear) return bilinearLookup(u, v);
-    int x = std::min(width - 1, int(u * float(width))),
-        y = std::min(height - 1, int(v * float(height)));
-    return pixels[size_t(y) * width + x];
+    return pixels[texelOf(v, height) * size_t(width) + texelOf(u, width)];
 }
 // Between texel centres of the in-memory map (the one importance sampling reads): u wraps, v
 // clamps. The same filter as a TextureSystem bilinear lookup on the finest level, at a small

@@ -16,7 +16,7 @@ scenes=${SCENES:-lucy_env glossy_env room_uplight box_bunny box_metal}
 # Two repeats unless the extra arguments name their own (given once, so each table's command line
 # reads as it ran).
 repeats=(--repeats 2)
-for arg in "$@"; do [ "$arg" = --repeats ] && repeats=(); done
+for arg in "$@"; do case $arg in --repeats | --repeats=*) repeats=() ;; esac; done
 start=$(date -u '+%Y-%m-%d %H:%M')
 load_start=$(cut -d' ' -f1-3 /proc/loadavg)
 for scene in $scenes; do

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <zlib.h>
 
+#include <atomic>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -201,7 +202,29 @@ std::string CheckpointInfo::regionText() const {
            std::to_string(fullHeight);
 }
 
+namespace {
+
+std::atomic<uint64_t>& checksumCounter() {
+    static std::atomic<uint64_t> count{0};
+    return count;
+}
+
+}  // namespace
+
+uint64_t sceneChecksumCount() { return checksumCounter().load(); }
+
+SceneFileIdentity sceneFileIdentity(const std::string& scenePath, const LoadOptions& load) {
+    ++checksumCounter();
+    return {fileIdentity(scenePath),
+            load.environmentMap.empty() ? "none" : fileIdentity(load.environmentMap)};
+}
+
 Fingerprint checkpointFingerprint(const RenderJob& job, const std::string& scenePath,
+                                  const LoadOptions& load) {
+    return checkpointFingerprint(job, sceneFileIdentity(scenePath, load), load);
+}
+
+Fingerprint checkpointFingerprint(const RenderJob& job, const SceneFileIdentity& files,
                                   const LoadOptions& load) {
     const RenderJobOptions& o = job.options();
     const PathOptions& p = o.path;
@@ -209,9 +232,8 @@ Fingerprint checkpointFingerprint(const RenderJob& job, const std::string& scene
     const Camera& c = job.scene().camera;
     Fingerprint f{
         {"kiln_version", KILN_VERSION},
-        {"scene", fileIdentity(scenePath)},
-        {"environment_map",
-         load.environmentMap.empty() ? "none" : fileIdentity(load.environmentMap)},
+        {"scene", files.scene},
+        {"environment_map", files.environmentMap},
         {"environment_scale", number(load.environmentScale)},
         {"environment_rotation", number(load.environmentRotationDeg)},
         {"material_override", load.materialOverride.empty() ? "none" : load.materialOverride},

@@ -35,8 +35,21 @@ struct CheckpointInfo {
     std::string regionText() const;  // "WxH+X+Y of FWxFH"
 };
 
-// The scene file's (and --env map's) name, size and CRC-32, the camera as framed, every option that
-// changes a sample's value, and the kiln version. Not: spp, threads, tile size, region.
+// The scene file's (and --env map's) name, size and CRC-32: reading them is the fingerprint's one
+// cost that grows with the scene (25 ms for a 20 MB mesh), so a process that renders one loaded
+// scene many times (kiln render-frames) reads them once per load and keeps them with the scene.
+struct SceneFileIdentity {
+    std::string scene, environmentMap;
+};
+SceneFileIdentity sceneFileIdentity(const std::string& scenePath, const LoadOptions& load);
+// How many times this process has read them (kiln render-frames reports it beside its loads).
+uint64_t sceneChecksumCount();
+
+// The scene's files (as above), the camera as framed, every option that changes a sample's value,
+// and the kiln version. Not: spp, threads, tile size, region.
+Fingerprint checkpointFingerprint(const RenderJob& job, const SceneFileIdentity& files,
+                                  const LoadOptions& load);
+// The same, the files read now.
 Fingerprint checkpointFingerprint(const RenderJob& job, const std::string& scenePath,
                                   const LoadOptions& load);
 

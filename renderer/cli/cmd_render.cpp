@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 
 #include "color/atomic_file.h"
 #include "color/image_module.h"
@@ -105,7 +106,8 @@ Json renderResult(const RenderCommand& c, const Scene& scene,
         {"process",  // more than one render when kiln render-frames ran it
          {{"renders", rendersInProcess()},
           {"scene_loads", sceneLoadCount()},
-          {"accelerator_builds", acceleratorBuildCount()}}},
+          {"accelerator_builds", acceleratorBuildCount()},
+          {"scene_checksums", sceneChecksumCount()}}},
         {"time_limit_reached", stats.timeLimitReached},
         {"ocio_config", c.colourConfig},
         {"display", c.display},
@@ -267,16 +269,17 @@ int writeCheckpointAfterImages(RenderCommand& c, const LongRenderOptions& lo, Lo
     return 0;
 }
 
+// fingerprint: the checkpoint's (empty without checkpoints).
 int renderLong(RenderCommand& c, const RenderJob& job, const Accelerator& accel,
-               const std::string& scenePath, const OutputPaths& out, double loadTime,
-               double buildTime) {
+               const std::string& scenePath, Fingerprint fingerprint, const OutputPaths& out,
+               double loadTime, double buildTime) {
     LongRenderOptions lo;
     lo.checkpointPath = c.checkpoints() ? out.checkpoint : "";
     lo.checkpointEverySeconds = c.checkpointEvery;
     lo.timeLimitSeconds = c.timeLimit;
     lo.start = c.started;  // the limit counts from kiln's start: the queue slot's time
     lo.resume = c.resume;
-    if (c.checkpoints()) lo.fingerprint = checkpointFingerprint(job, scenePath, c.load);
+    lo.fingerprint = std::move(fingerprint);
     lo.metadata = [&](const RenderStats& stats, const Film& film) {
         return renderMetadata(job, c, scenePath, stats, film);
     };
@@ -353,6 +356,9 @@ struct LoadedScene {
     std::unique_ptr<Scene> scene;
     Camera camera;  // as loaded, before any render's camera options
     std::unique_ptr<Accelerator> accel;
+    // The scene's files as a checkpoint fingerprint names them, read at the first render with
+    // checkpoints: every render of this load shares them (the data rendered is this load's).
+    std::optional<SceneFileIdentity> files;
 
     bool holdsScene(const std::string& scenePath, const RenderCommand& c) const {
         return scene && scenePath == path && c.load == load;
@@ -365,6 +371,11 @@ struct LoadedScene {
     void clear() {  // the accelerator before the scene it points into
         accel.reset();
         scene.reset();
+        files.reset();
+    }
+    const SceneFileIdentity& fileIdentity() {
+        if (!files) files = sceneFileIdentity(path, load);
+        return *files;
     }
 };
 
@@ -427,12 +438,16 @@ int renderFrame(const std::vector<std::string>& args, LoadedScene& loaded,
         buildTime = seconds(t1);
         loaded.choice = c.accel;
     }
+    // Read here, once per load, so the line below counts this render's read.
+    const SceneFileIdentity* files = c.checkpoints() ? &loaded.fileIdentity() : nullptr;
     if (++rendersInProcess() > 1)
-        logInfo("this process: {} renders, {} scene loads, {} accelerator builds{}",
-                rendersInProcess(), sceneLoadCount(), acceleratorBuildCount(),
-                reused        ? " (this render reuses the scene and accelerator of the one before)"
-                : sceneReused ? " (this render reuses the scene of the one before)"
-                              : "");
+        logInfo(
+            "this process: {} renders, {} scene loads, {} accelerator builds, {} scene "
+            "checksums{}",
+            rendersInProcess(), sceneLoadCount(), acceleratorBuildCount(), sceneChecksumCount(),
+            reused        ? " (this render reuses the scene and accelerator of the one before)"
+            : sceneReused ? " (this render reuses the scene of the one before)"
+                          : "");
     RenderJob job = [&] {
         StageProgress stage("plan");
         return RenderJob(scene, *loaded.accel, jobOptions);
@@ -446,7 +461,10 @@ int renderFrame(const std::vector<std::string>& args, LoadedScene& loaded,
     }
 
     addSceneToOutputs(c, scene, jobOptions);
-    return renderLong(c, job, *loaded.accel, scenePath, out, loadTime, buildTime);
+    Fingerprint fingerprint;
+    if (files) fingerprint = checkpointFingerprint(job, *files, c.load);
+    return renderLong(c, job, *loaded.accel, scenePath, std::move(fingerprint), out, loadTime,
+                      buildTime);
 }
 
 constexpr const char* kRenderFramesUsage =

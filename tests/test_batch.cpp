@@ -313,6 +313,43 @@ TEST(Batch, AFailedFrameDoesNotStopTheFramesAfterIt) {
     EXPECT_FALSE(fs::exists(dir / "out/1.done"));
 }
 
+// The checkpoint fingerprint's checksum of the scene file is read once per load: a reload (other
+// load options) reads it again, and a frame resumes a checkpoint a lone kiln render wrote (the
+// fingerprint is the same either way).
+TEST(RenderFrames, ChecksumsTheSceneOncePerLoadAndResumesALoneRendersCheckpoint) {
+    fs::path dir = test::scratchDir();
+    const std::string scene = test::cs184("sky/CBspheres_lambertian.dae");
+    auto frame = [&](const std::string& name, const std::string& spp,
+                     std::vector<std::string> extra) {
+        std::vector<std::string> args{scene,      "-r",
+                                      "8",        "6",
+                                      "-s",       spp,
+                                      "-o",       (dir / name).string(),
+                                      "--resume", "--checkpoint-every",
+                                      "60"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        return args;
+    };
+    std::vector<std::string> alone{"render"};
+    for (const std::string& a : frame("a", "1", {"-q"})) alone.push_back(a);
+    ASSERT_EQ(test::kiln(alone).exitCode, 0);
+    std::vector<std::string> args{"render-frames"};
+    for (const auto& f : {frame("a", "2", {}), frame("b", "1", {"--fov", "40"}),
+                          frame("c", "1", {"--emitters", "camera"}),
+                          frame("d", "1", {"--emitters", "camera", "--fov", "40"})}) {
+        if (args.size() > 1) args.push_back("--then");
+        args.insert(args.end(), f.begin(), f.end());
+    }
+    farm::CommandResult r = test::kiln(args);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("resuming " + (dir / "a.ckpt").string()), std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("this process: 4 renders, 2 scene loads, 2 accelerator builds, 2 scene "
+                            "checksums (this render reuses the scene and accelerator"),
+              std::string::npos)
+        << r.output;
+}
+
 // kiln render-frames reloads when the load options change (--emitters here), rebuilds only the
 // accelerator when -t does (Embree's build keeps to the threads of the render that made it), and
 // reuses both when only the camera or the other render options do.

@@ -269,7 +269,7 @@ int writeCheckpointAfterImages(RenderCommand& c, const LongRenderOptions& lo, Lo
     return 0;
 }
 
-// fingerprint: the checkpoint's (empty without checkpoints).
+// fingerprint: the checkpoint fingerprint (empty without checkpoints).
 int renderLong(RenderCommand& c, const RenderJob& job, const Accelerator& accel,
                const std::string& scenePath, Fingerprint fingerprint, const OutputPaths& out,
                double loadTime, double buildTime) {
@@ -438,8 +438,11 @@ int renderFrame(const std::vector<std::string>& args, LoadedScene& loaded,
         buildTime = seconds(t1);
         loaded.choice = c.accel;
     }
-    // Read here, once per load, so the line below counts this render's read.
-    const SceneFileIdentity* files = c.checkpoints() ? &loaded.fileIdentity() : nullptr;
+    // Read here, once per load, so the line below counts this render's read (not for a debug
+    // sample, which writes no checkpoint).
+    const bool debugSample = c.debugX >= 0 || c.debugSample >= 0;
+    const SceneFileIdentity* files =
+        c.checkpoints() && !debugSample ? &loaded.fileIdentity() : nullptr;
     if (++rendersInProcess() > 1)
         logInfo(
             "this process: {} renders, {} scene loads, {} accelerator builds, {} scene "
@@ -453,7 +456,7 @@ int renderFrame(const std::vector<std::string>& args, LoadedScene& loaded,
         return RenderJob(scene, *loaded.accel, jobOptions);
     }();
     warnHemisphereBlind(job, scenePath);
-    if (c.debugX >= 0 || c.debugSample >= 0) return printDebugSample(job, c);
+    if (debugSample) return printDebugSample(job, c);
     // What the camera will see decides the black-image warning (a few thousand samples).
     if (std::optional<std::string> black = blackImageWarning(probeFrame(job), c.exposure)) {
         logWarning("{}: {}", scenePath, *black);

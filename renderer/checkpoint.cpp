@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <zlib.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdio>
 #include <cstring>
@@ -213,15 +214,48 @@ std::atomic<uint64_t>& checksumCounter() {
 
 uint64_t sceneChecksumCount() { return checksumCounter().load(); }
 
-SceneFileIdentity sceneFileIdentity(const std::string& scenePath, const LoadOptions& load) {
+namespace {
+
+// The files besides the scene file and the --env map, each once (as canonical paths), sorted.
+std::vector<std::filesystem::path> otherInputs(const std::string& scenePath,
+                                               const LoadOptions& load, const Scene& scene) {
+    namespace fs = std::filesystem;
+    auto canonical = [](const std::string& p) {
+        std::error_code ec;
+        fs::path c = fs::weakly_canonical(p, ec);
+        return ec ? fs::path(p) : c;
+    };
+    std::vector<fs::path> files;
+    for (const std::string& f : scene.inputFiles) files.push_back(canonical(f));
+    for (const TextureSource& t : scene.textureSources)
+        if (!t.bytes) files.push_back(canonical(t.name));
+    if (!load.materialOverride.empty()) files.push_back(canonical(load.materialOverride));
+    std::sort(files.begin(), files.end());
+    files.erase(std::unique(files.begin(), files.end()), files.end());
+    for (const std::string& known : {scenePath, load.environmentMap})
+        if (!known.empty()) std::erase(files, canonical(known));
+    return files;
+}
+
+}  // namespace
+
+SceneFileIdentity sceneFileIdentity(const std::string& scenePath, const LoadOptions& load,
+                                    const Scene& scene) {
     ++checksumCounter();
-    return {fileIdentity(scenePath),
-            load.environmentMap.empty() ? "none" : fileIdentity(load.environmentMap)};
+    SceneFileIdentity id{fileIdentity(scenePath),
+                         load.environmentMap.empty() ? "none" : fileIdentity(load.environmentMap),
+                         ""};
+    // A texture the loader could not open renders without it: absent is its identity.
+    for (const std::filesystem::path& f : otherInputs(scenePath, load, scene))
+        id.inputs += (id.inputs.empty() ? "" : "; ") + (std::filesystem::is_regular_file(f)
+                                                            ? fileIdentity(f.string())
+                                                            : f.filename().string() + " (absent)");
+    return id;
 }
 
 Fingerprint checkpointFingerprint(const RenderJob& job, const std::string& scenePath,
                                   const LoadOptions& load) {
-    return checkpointFingerprint(job, sceneFileIdentity(scenePath, load), load);
+    return checkpointFingerprint(job, sceneFileIdentity(scenePath, load, job.scene()), load);
 }
 
 Fingerprint checkpointFingerprint(const RenderJob& job, const SceneFileIdentity& files,
@@ -265,8 +299,33 @@ Fingerprint checkpointFingerprint(const RenderJob& job, const SceneFileIdentity&
         {"film_scale", "2^" + std::to_string(job.filmScaleExponent())},
         {"adaptive", s.adaptiveText()},
     };
+    // Only where there are such files: a checkpoint of a one-file scene keeps its fingerprint.
+    if (!files.inputs.empty()) f.emplace_back("scene_inputs", files.inputs);
     return f;
 }
+
+namespace {
+
+// The first of the scene's other files that differs, not the whole list (a scene may read many).
+std::string inputsDifference(const std::string& saved, const std::string& here,
+                             const std::string& savedName) {
+    auto split = [](const std::string& list) {
+        std::vector<std::string> items;
+        for (size_t b = 0, e; b <= list.size(); b = e + 2) {
+            e = std::min(list.find("; ", b), list.size());
+            items.push_back(list.substr(b, e - b));
+        }
+        return items;
+    };
+    std::vector<std::string> a = split(saved), b = split(here);
+    for (size_t i = 0; i < std::max(a.size(), b.size()); ++i) {
+        std::string was = i < a.size() ? a[i] : "none", is = i < b.size() ? b[i] : "none";
+        if (was != is) return "scene_inputs: '" + was + "' in " + savedName + ", '" + is + "' here";
+    }
+    return "";
+}
+
+}  // namespace
 
 std::string fingerprintDifference(const Fingerprint& saved, const Fingerprint& here,
                                   const std::string& savedName) {
@@ -274,8 +333,10 @@ std::string fingerprintDifference(const Fingerprint& saved, const Fingerprint& h
     for (const auto& [key, value] : here) {
         auto it = theirs.find(key);
         std::string was = it == theirs.end() ? "absent" : it->second;
-        if (was != value)
-            return key + " is '" + was + "' in " + savedName + ", '" + value + "' here";
+        if (was == value) continue;
+        if (key == "scene_inputs" && it != theirs.end())
+            return inputsDifference(was, value, savedName);
+        return key + " is '" + was + "' in " + savedName + ", '" + value + "' here";
     }
     if (saved.size() != here.size()) return savedName + " has other fingerprint fields";
     return "";

@@ -35,13 +35,18 @@ struct CheckpointInfo {
     std::string regionText() const;  // "WxH+X+Y of FWxFH"
 };
 
-// The scene file's (and --env map's) name, size and CRC-32: reading them is the fingerprint's one
-// cost that grows with the scene (25 ms for a 20 MB mesh), so a process that renders one loaded
-// scene many times (kiln render-frames) reads them once per load and keeps them with the scene.
+// The scene file's (and --env map's) name, size and CRC-32, and those of every other file the
+// loaded scene was read from (Scene::inputFiles, file textures, the --material-override file): a
+// resume after an edit of an
+// included mesh or a texture is refused, not blended. Reading them is the fingerprint's one cost
+// that grows with the scene (25 ms for a 20 MB mesh), so a process that renders one loaded scene
+// many times (kiln render-frames) reads them once per load and keeps them with the scene.
 struct SceneFileIdentity {
     std::string scene, environmentMap;
+    std::string inputs;  // "" for a scene read from its one file
 };
-SceneFileIdentity sceneFileIdentity(const std::string& scenePath, const LoadOptions& load);
+SceneFileIdentity sceneFileIdentity(const std::string& scenePath, const LoadOptions& load,
+                                    const Scene& scene);
 // How many times this process has read them (kiln render-frames reports it beside its loads).
 uint64_t sceneChecksumCount();
 

@@ -517,6 +517,8 @@ void readPart(const std::string& path, pugi::xml_node n,
         // Name the .kiln that asked for the file: the user edits that one.
         throw SceneError(path, "<" + tag + " file=\"" + file + "\">: " + e.what());
     }
+    scene.inputFiles.push_back(part.sourcePath);
+    scene.inputFiles.insert(scene.inputFiles.end(), part.inputFiles.begin(), part.inputFiles.end());
     applyOverride(path, n, materials, scene, part);
     const int interior = interiorMedium(path, n, media);
     if (tag == "instances") {

@@ -1,5 +1,6 @@
 // Checkpoints and resume: the film saved exactly, a render killed at any moment and resumed equals
 // the uninterrupted one bit for bit, refinement, refusals, and a full disk during a checkpoint.
+#include <fmt/format.h>
 #include <sys/mount.h>
 
 #include <nlohmann/json.hpp>
@@ -74,7 +75,8 @@ TEST(Checkpoint, RefineSixteenToSixtyFourEqualsSixtyFour) {
     SmallRender r;
     auto dir = test::scratchDir();
     for (int adaptive : {0, 4}) {
-        std::string ckpt = (dir / ("r" + std::to_string(adaptive) + ".ckpt")).string();
+        // (Not "r" + std::to_string(...): GCC 12's -Wrestrict misfires on it here.)
+        std::string ckpt = (dir / fmt::format("r{}.ckpt", adaptive)).string();
         r.run(r.options(16, adaptive), ckpt, false);
         LongRenderResult refined = r.run(r.options(64, adaptive), ckpt, true);
         EXPECT_TRUE(refined.resumed);
@@ -263,6 +265,62 @@ TEST(Checkpoint, ResumeWithoutACheckpointStartsAndAForeignOneIsAOneLineExit2) {
         std::string refusal = test::readText(err);
         EXPECT_EQ(std::count(refusal.begin(), refusal.end(), '\n'), 1) << refusal;
     }
+}
+
+// A .kiln scene's other files (a mesh it places, the .mtl Assimp reads beside that OBJ, a texture,
+// the --material-override file) are part of the fingerprint: a resume after an edit of one is
+// refused, naming it, not blended into the film.
+TEST(Checkpoint, AResumeAfterAnEditOfAFileTheSceneReadsIsRefusedNamingIt) {
+    auto dir = test::scratchDir();
+    const fs::path mtl = dir / "part.mtl", obj = dir / "part.obj", kiln = dir / "scene.kiln";
+    auto write = [](const fs::path& p, const std::string& text) { std::ofstream(p) << text; };
+    write(mtl, "newmtl red\nKd 0.8 0.2 0.2\n");
+    const std::string quad =
+        "mtllib part.mtl\nv -0.5 0.1 -0.5\nv 0.5 0.1 -0.5\nv 0.5 0.1 0.5\nv -0.5 0.1 0.5\n"
+        "usemtl red\nf 1 2 3 4\n";
+    write(obj, quad);
+    fs::copy_file(test::repo("scenes/assets/checker.png"), dir / "tex.png");
+    write(kiln, "<kiln-scene><include file=\"" + test::spheres() +
+                    "\"/><mesh file=\"part.obj\"/><material name=\"t\" kind=\"principled\" "
+                    "base-color-texture=\"tex.png\"/><mesh file=\"part.obj\" material=\"t\" "
+                    "translate=\"0 0.2 0\"/></kiln-scene>\n");
+    const fs::path override = dir / "override.kiln";
+    write(override, "<kiln-scene><material name=\"o\" albedo=\"0.5 0.5 0.5\"/></kiln-scene>\n");
+    std::string out = (dir / "k").string(), err = (dir / "err.txt").string();
+    std::vector<std::string> args{"render", kiln.string(), "-r",      "16", "12", "-s",      "2",
+                                  "-q",     "--log-level", "warning", "-o", out,  "--resume"};
+    ASSERT_EQ(test::runKilnProcess(args, -1, 0, err), 0) << test::readText(err);
+    auto refusedNaming = [&](const std::string& file) {
+        EXPECT_EQ(test::runKilnProcess(args, -1, 0, err), 2) << file;
+        std::string text = test::readText(err);
+        EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1) << text;
+        EXPECT_NE(text.find("scene_inputs"), std::string::npos) << text;
+        EXPECT_NE(text.find(file), std::string::npos) << text;
+    };
+    write(mtl, "newmtl red\nKd 0.2 0.8 0.2\n");
+    refusedNaming("part.mtl");
+    write(mtl, "newmtl red\nKd 0.8 0.2 0.2\n");  // as it was: the checkpoint resumes again
+    EXPECT_EQ(test::runKilnProcess(args, -1, 0, err), 0) << test::readText(err);
+    write(obj, quad + "v 0 0 0\n");
+    refusedNaming("part.obj");
+    write(obj, quad);
+    fs::copy_file(test::repo("scenes/assets/maps_half_white.png"), dir / "tex.png",
+                  fs::copy_options::overwrite_existing);
+    refusedNaming("tex.png");
+    // The same render with a material override file: its own checkpoint.
+    *std::find(args.begin(), args.end(), out) = out + "-override";
+    args.insert(args.end(), {"--material-override", override.string()});
+    ASSERT_EQ(test::runKilnProcess(args, -1, 0, err), 0) << test::readText(err);
+    write(override, "<kiln-scene><material name=\"o\" albedo=\"0.9 0.5 0.5\"/></kiln-scene>\n");
+    refusedNaming("override.kiln");
+}
+
+// A scene read from its one file keeps the fingerprint it had before other files were named.
+TEST(Checkpoint, AOneFileScenesFingerprintNamesNoOtherInputs) {
+    SmallRender r;
+    RenderJob job(r.scene, *r.accel, r.options(1));
+    for (const auto& [key, value] : checkpointFingerprint(job, test::spheres(), {}))
+        EXPECT_NE(key, "scene_inputs") << value;
 }
 
 // A small tmpfs for the duration of a test (root only: CI runs as root), unmounted however the

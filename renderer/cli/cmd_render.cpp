@@ -374,7 +374,7 @@ struct LoadedScene {
         files.reset();
     }
     const SceneFileIdentity& fileIdentity() {
-        if (!files) files = sceneFileIdentity(path, load);
+        if (!files) files = sceneFileIdentity(path, load, *scene);
         return *files;
     }
 };

@@ -216,7 +216,7 @@ uint64_t sceneChecksumCount() { return checksumCounter().load(); }
 
 namespace {
 
-// The files besides the scene file and the --env map, each once (as canonical paths), sorted.
+// The files besides the scene file and the --env map, each once (as canonical paths).
 std::vector<std::filesystem::path> otherInputs(const std::string& scenePath,
                                                const LoadOptions& load, const Scene& scene) {
     namespace fs = std::filesystem;
@@ -229,7 +229,6 @@ std::vector<std::filesystem::path> otherInputs(const std::string& scenePath,
     for (const std::string& f : scene.inputFiles) files.push_back(canonical(f));
     for (const TextureSource& t : scene.textureSources)
         if (!t.bytes) files.push_back(canonical(t.name));
-    if (!load.materialOverride.empty()) files.push_back(canonical(load.materialOverride));
     std::sort(files.begin(), files.end());
     files.erase(std::unique(files.begin(), files.end()), files.end());
     for (const std::string& known : {scenePath, load.environmentMap})
@@ -245,11 +244,14 @@ SceneFileIdentity sceneFileIdentity(const std::string& scenePath, const LoadOpti
     SceneFileIdentity id{fileIdentity(scenePath),
                          load.environmentMap.empty() ? "none" : fileIdentity(load.environmentMap),
                          ""};
-    // A texture the loader could not open renders without it: absent is its identity.
+    // A texture the loader could not open renders without it: absent is its identity. Sorted by
+    // identity, not path: a farm node that mounts the files elsewhere lists them in the same order.
+    std::vector<std::string> inputs;
     for (const std::filesystem::path& f : otherInputs(scenePath, load, scene))
-        id.inputs += (id.inputs.empty() ? "" : "; ") + (std::filesystem::is_regular_file(f)
-                                                            ? fileIdentity(f.string())
-                                                            : f.filename().string() + " (absent)");
+        inputs.push_back(std::filesystem::is_regular_file(f) ? fileIdentity(f.string())
+                                                             : f.filename().string() + " (absent)");
+    std::sort(inputs.begin(), inputs.end());
+    for (const std::string& i : inputs) id.inputs += (id.inputs.empty() ? "" : "; ") + i;
     return id;
 }
 

@@ -517,9 +517,9 @@ void readPart(const std::string& path, pugi::xml_node n,
         // Name the .kiln that asked for the file: the user edits that one.
         throw SceneError(path, "<" + tag + " file=\"" + file + "\">: " + e.what());
     }
+    applyOverride(path, n, materials, scene, part);  // (a spec's file joins part.inputFiles)
     scene.inputFiles.push_back(part.sourcePath);
     scene.inputFiles.insert(scene.inputFiles.end(), part.inputFiles.begin(), part.inputFiles.end());
-    applyOverride(path, n, materials, scene, part);
     const int interior = interiorMedium(path, n, media);
     if (tag == "instances") {
         Mat4 fit = placement(path, n, meshBounds(part));

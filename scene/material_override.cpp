@@ -45,7 +45,8 @@ Material materialFromFile(const std::string& path, const std::string& name,
 
 }  // namespace
 
-Material parseMaterialOverride(const std::string& spec, std::vector<TextureSource>* textures) {
+Material parseMaterialOverride(const std::string& spec, std::vector<TextureSource>* textures,
+                               std::string* file) {
     Material m;
     m.name = "override";
     if (spec == kDiffuseOverride) {  // applied per material by overrideMaterials(scene, spec)
@@ -62,7 +63,7 @@ Material parseMaterialOverride(const std::string& spec, std::vector<TextureSourc
             throw SceneError(spec, "lambertian albedo must be G or R,G,B in [0, 1]");
         return m;
     }
-    std::string path = spec, name;
+    std::string path = spec, name;  // FILE, or FILE:NAME
     if (!std::filesystem::exists(path)) {
         size_t colon = spec.rfind(':');
         if (colon != std::string::npos) path = spec.substr(0, colon), name = spec.substr(colon + 1);
@@ -74,6 +75,7 @@ Material parseMaterialOverride(const std::string& spec, std::vector<TextureSourc
             "or a .kiln file with a <material> (FILE or FILE:NAME)");
     if (lowerExtension(path) != ".kiln")
         throw SceneError(path, "a material override file must be a .kiln scene with <material>");
+    if (file) *file = path;
     return materialFromFile(path, name, textures);
 }
 
@@ -104,8 +106,12 @@ void overrideMaterials(Scene& scene, const Material& m,
 void overrideMaterials(Scene& scene, const std::string& spec) {
     if (spec != kDiffuseOverride) {
         std::vector<TextureSource> textures;
-        Material m = parseMaterialOverride(spec, &textures);
-        return overrideMaterials(scene, m, textures);
+        std::string file;
+        Material m = parseMaterialOverride(spec, &textures, &file);
+        overrideMaterials(scene, m, textures);
+        // A material from a file: the scene was read from it too (the checkpoint fingerprint).
+        if (!file.empty()) scene.inputFiles.push_back(file);
+        return;
     }
     // Each surface keeps its base colour, textures, vertex colours and maps; only its reflection
     // becomes Lambert (a diffuse-only look, and exact Lambert shading for tests).

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 
 #include "color/atomic_file.h"
 
@@ -216,24 +217,34 @@ uint64_t sceneChecksumCount() { return checksumCounter().load(); }
 
 namespace {
 
-// The files besides the scene file and the --env map, each once (as canonical paths).
-std::vector<std::filesystem::path> otherInputs(const std::string& scenePath,
-                                               const LoadOptions& load, const Scene& scene) {
+// The files besides the scene file and the --env map, each once (the same canonical path), as
+// opened: named by the link a scene names, not its target (a farm node may hold a copy there).
+std::vector<std::string> otherInputs(const std::string& scenePath, const LoadOptions& load,
+                                     const Scene& scene) {
     namespace fs = std::filesystem;
     auto canonical = [](const std::string& p) {
         std::error_code ec;
         fs::path c = fs::weakly_canonical(p, ec);
         return ec ? fs::path(p) : c;
     };
-    std::vector<fs::path> files;
-    for (const std::string& f : scene.inputFiles) files.push_back(canonical(f));
+    std::vector<std::string> opened = scene.inputFiles;
     for (const TextureSource& t : scene.textureSources)
-        if (!t.bytes) files.push_back(canonical(t.name));
-    std::sort(files.begin(), files.end());
-    files.erase(std::unique(files.begin(), files.end()), files.end());
+        if (!t.bytes) opened.push_back(t.name);
+    std::set<fs::path> seen;
     for (const std::string& known : {scenePath, load.environmentMap})
-        if (!known.empty()) std::erase(files, canonical(known));
+        if (!known.empty()) seen.insert(canonical(known));
+    std::vector<std::string> files;
+    for (const std::string& f : opened)
+        if (seen.insert(canonical(f)).second) files.push_back(f);
     return files;
+}
+
+// A file the loader could not open renders without it: that is its identity, not an error.
+std::string inputIdentity(const std::string& path) {
+    const std::string name = std::filesystem::path(path).filename().string();
+    if (!std::filesystem::is_regular_file(path)) return name + " (absent)";
+    if (!std::ifstream(path, std::ios::binary)) return name + " (unreadable)";
+    return fileIdentity(path);
 }
 
 }  // namespace
@@ -244,12 +255,11 @@ SceneFileIdentity sceneFileIdentity(const std::string& scenePath, const LoadOpti
     SceneFileIdentity id{fileIdentity(scenePath),
                          load.environmentMap.empty() ? "none" : fileIdentity(load.environmentMap),
                          ""};
-    // A texture the loader could not open renders without it: absent is its identity. Sorted by
-    // identity, not path: a farm node that mounts the files elsewhere lists them in the same order.
+    // Sorted by identity, not path: a farm node that mounts the files elsewhere lists them in the
+    // same order.
     std::vector<std::string> inputs;
-    for (const std::filesystem::path& f : otherInputs(scenePath, load, scene))
-        inputs.push_back(std::filesystem::is_regular_file(f) ? fileIdentity(f.string())
-                                                             : f.filename().string() + " (absent)");
+    for (const std::string& f : otherInputs(scenePath, load, scene))
+        inputs.push_back(inputIdentity(f));
     std::sort(inputs.begin(), inputs.end());
     for (const std::string& i : inputs) id.inputs += (id.inputs.empty() ? "" : "; ") + i;
     return id;

@@ -33,10 +33,14 @@ bool parseAlbedo(const std::string& text, Color& albedo) {
 // The material named `name` (or the first) of a .kiln file, read with every check a scene gets,
 // and the file's texture sources its texture ids index.
 Material materialFromFile(const std::string& path, const std::string& name,
-                          std::vector<TextureSource>* textures) {
+                          std::vector<TextureSource>* textures, std::vector<std::string>* files) {
     Scene holder;
     readKilnScene(path, holder);
     if (textures) *textures = holder.textureSources;
+    if (files) {
+        files->push_back(path);
+        files->insert(files->end(), holder.inputFiles.begin(), holder.inputFiles.end());
+    }
     for (const Material& m : holder.materials)
         if (name.empty() || m.name == name) return m;
     throw SceneError(path, name.empty() ? "has no <material> for --material-override"
@@ -46,7 +50,7 @@ Material materialFromFile(const std::string& path, const std::string& name,
 }  // namespace
 
 Material parseMaterialOverride(const std::string& spec, std::vector<TextureSource>* textures,
-                               std::string* file) {
+                               std::vector<std::string>* files) {
     Material m;
     m.name = "override";
     if (spec == kDiffuseOverride) {  // applied per material by overrideMaterials(scene, spec)
@@ -75,8 +79,7 @@ Material parseMaterialOverride(const std::string& spec, std::vector<TextureSourc
             "or a .kiln file with a <material> (FILE or FILE:NAME)");
     if (lowerExtension(path) != ".kiln")
         throw SceneError(path, "a material override file must be a .kiln scene with <material>");
-    if (file) *file = path;
-    return materialFromFile(path, name, textures);
+    return materialFromFile(path, name, textures, files);
 }
 
 namespace {
@@ -106,12 +109,9 @@ void overrideMaterials(Scene& scene, const Material& m,
 void overrideMaterials(Scene& scene, const std::string& spec) {
     if (spec != kDiffuseOverride) {
         std::vector<TextureSource> textures;
-        std::string file;
-        Material m = parseMaterialOverride(spec, &textures, &file);
-        overrideMaterials(scene, m, textures);
-        // A material from a file: the scene was read from it too (the checkpoint fingerprint).
-        if (!file.empty()) scene.inputFiles.push_back(file);
-        return;
+        // A material from a file: the scene was read from it (and what it reads) too.
+        Material m = parseMaterialOverride(spec, &textures, &scene.inputFiles);
+        return overrideMaterials(scene, m, textures);
     }
     // Each surface keeps its base colour, textures, vertex colours and maps; only its reflection
     // becomes Lambert (a diffuse-only look, and exact Lambert shading for tests).

@@ -38,11 +38,11 @@ struct EnumNames<LoadOptions::CameraRule> {
 // "lambertian:G" or
 // "lambertian:R,G,B", or a .kiln file with a <material> (FILE, or FILE:NAME for one of several).
 // Throws SceneError naming the spec or file. `textures` (if given) receives a file's texture
-// sources, which the material's texture ids index; `file` (if given) the file's path when the
-// material came from one.
+// sources, which the material's texture ids index; `files` (if given) gains the file and the files
+// it read when the material came from one.
 Material parseMaterialOverride(const std::string& spec,
                                std::vector<TextureSource>* textures = nullptr,
-                               std::string* file = nullptr);
+                               std::vector<std::string>* files = nullptr);
 
 // Replaces every material of the scene that does not emit by `m` (emitters keep lighting it); m's
 // texture ids index `textures`, which join the scene's sources.

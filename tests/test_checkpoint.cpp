@@ -313,6 +313,15 @@ TEST(Checkpoint, AResumeAfterAnEditOfAFileTheSceneReadsIsRefusedNamingIt) {
     ASSERT_EQ(test::runKilnProcess(args, -1, 0, err), 0) << test::readText(err);
     write(override, "<kiln-scene><material name=\"o\" albedo=\"0.9 0.5 0.5\"/></kiln-scene>\n");
     refusedNaming("override.kiln");
+    // An override material from a file the override file includes: that file's .mtl counts too.
+    write(dir / "ov.mtl", "newmtl blue\nKd 0.2 0.2 0.8\n");
+    write(dir / "ov.obj", "mtllib ov.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl blue\nf 1 2 3\n");
+    write(dir / "lib.kiln", "<kiln-scene><include file=\"ov.obj\"/></kiln-scene>\n");
+    args.back() = (dir / "lib.kiln").string() + ":blue";
+    *std::find(args.begin(), args.end(), out + "-override") = out + "-lib";
+    ASSERT_EQ(test::runKilnProcess(args, -1, 0, err), 0) << test::readText(err);
+    write(dir / "ov.mtl", "newmtl blue\nKd 0.2 0.8 0.8\n");
+    refusedNaming("ov.mtl");
 }
 
 // A scene read from its one file keeps the fingerprint it had before other files were named.

@@ -36,8 +36,7 @@ struct CheckpointInfo {
 };
 
 // The scene file's (and --env map's) name, size and CRC-32, and those of every other file the
-// loaded scene was read from (Scene::inputFiles, file textures, the --material-override file): a
-// resume after an edit of an
+// loaded scene was read from (Scene::inputFiles, file textures): a resume after an edit of an
 // included mesh or a texture is refused, not blended. Reading them is the fingerprint's one cost
 // that grows with the scene (25 ms for a 20 MB mesh), so a process that renders one loaded scene
 // many times (kiln render-frames) reads them once per load and keeps them with the scene.

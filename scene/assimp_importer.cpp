@@ -24,22 +24,19 @@
 namespace kiln {
 namespace {
 
-// Assimp's file access, noting every file it opens beside the scene file (an OBJ's .mtl, a glTF's
-// .bin, COLLADA external references): the checkpoint fingerprint checksums them with the scene.
+// Assimp's file access, noting every file it opens (an OBJ's .mtl, a glTF's .bin, COLLADA external
+// references, the scene file itself): the checkpoint fingerprint checksums them with the scene,
+// and drops repeats and the scene file there (by canonical path, which spellings here would miss).
 class RecordingIOSystem : public Assimp::DefaultIOSystem {
   public:
-    RecordingIOSystem(std::string scenePath, std::vector<std::string>& opened)
-        : scenePath_(std::move(scenePath)), opened_(opened) {}
+    explicit RecordingIOSystem(std::vector<std::string>& opened) : opened_(opened) {}
     Assimp::IOStream* Open(const char* file, const char* mode) override {
         Assimp::IOStream* stream = DefaultIOSystem::Open(file, mode);
-        if (stream && file != scenePath_ &&
-            std::find(opened_.begin(), opened_.end(), file) == opened_.end())
-            opened_.push_back(file);
+        if (stream) opened_.push_back(file);
         return stream;
     }
 
   private:
-    std::string scenePath_;
     std::vector<std::string>& opened_;
 };
 
@@ -530,7 +527,7 @@ void skipEmptyMeshes(const std::string& path, aiScene* as, Scene& scene) {
 void importWithAssimp(const std::string& path, const ColladaExtras* extras, Scene& scene) {
     AssimpLog log;
     Assimp::Importer importer;
-    importer.SetIOHandler(new RecordingIOSystem(path, scene.inputFiles));  // the importer owns it
+    importer.SetIOHandler(new RecordingIOSystem(scene.inputFiles));  // the importer owns it
     importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
     importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
                                 aiPrimitiveType_POINT | aiPrimitiveType_LINE);

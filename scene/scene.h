@@ -194,8 +194,9 @@ struct Instance {
 
 struct Scene {
     std::string sourcePath;
-    // Every other file the scene was read from, as opened: a .kiln's parts, what an importer read
-    // beside its file (.mtl, .bin, external references). Textures are in textureSources.
+    // The files the scene was read from, as opened (repeats and sourcePath itself may appear): a
+    // .kiln's parts, what an importer read (.mtl, .bin, external references), a material override
+    // file. Textures are in textureSources.
     std::vector<std::string> inputFiles;
     std::vector<TriangleMesh> meshes;
     std::vector<Sphere> spheres;

@@ -318,22 +318,44 @@ Fingerprint checkpointFingerprint(const RenderJob& job, const SceneFileIdentity&
 
 namespace {
 
-// The first of the scene's other files that differs, not the whole list (a scene may read many).
+// The scene's other files (scene_inputs, "" for none) by name: an identity is "NAME (...)".
+std::multimap<std::string, std::string> inputsByName(const std::string& list) {
+    std::multimap<std::string, std::string> items;
+    for (size_t b = 0, e; b < list.size(); b = e + 2) {
+        e = std::min(list.find("; ", b), list.size());
+        std::string item = list.substr(b, e - b);
+        items.emplace(item.substr(0, item.rfind(" (")), item);
+    }
+    return items;
+}
+
+// One file of the two lists, not the whole lists (a scene may read many): an edited file first,
+// then one only one side read. Compared by name, so a file added or gone names itself, not the
+// file that took its place in the sorted list.
 std::string inputsDifference(const std::string& saved, const std::string& here,
                              const std::string& savedName) {
-    auto split = [](const std::string& list) {
-        std::vector<std::string> items;
-        for (size_t b = 0, e; b <= list.size(); b = e + 2) {
-            e = std::min(list.find("; ", b), list.size());
-            items.push_back(list.substr(b, e - b));
-        }
-        return items;
+    const auto a = inputsByName(saved), b = inputsByName(here);
+    auto identities = [](const auto& items, const std::string& name) {
+        std::vector<std::string> out;
+        for (auto [it, end] = items.equal_range(name); it != end; ++it) out.push_back(it->second);
+        return out;
     };
-    std::vector<std::string> a = split(saved), b = split(here);
-    for (size_t i = 0; i < std::max(a.size(), b.size()); ++i) {
-        std::string was = i < a.size() ? a[i] : "none", is = i < b.size() ? b[i] : "none";
-        if (was != is) return "scene_inputs: '" + was + "' in " + savedName + ", '" + is + "' here";
-    }
+    auto quoted = [](const std::vector<std::string>& ids) {
+        std::string text;
+        for (const std::string& id : ids) text += (text.empty() ? "'" : ", '") + id + "'";
+        return text;
+    };
+    std::set<std::string> names;
+    for (const auto& items : {a, b})
+        for (const auto& [name, id] : items) names.insert(name);
+    for (bool bothSides : {true, false})
+        for (const std::string& name : names) {
+            const auto was = identities(a, name), is = identities(b, name);
+            if (was == is || (was.empty() || is.empty()) == bothSides) continue;
+            return fmt::format("scene_inputs: {} in {}, {} here",
+                               was.empty() ? "no file " + name : quoted(was), savedName,
+                               is.empty() ? "no file " + name : quoted(is));
+        }
     return "";
 }
 
@@ -341,16 +363,21 @@ std::string inputsDifference(const std::string& saved, const std::string& here,
 
 std::string fingerprintDifference(const Fingerprint& saved, const Fingerprint& here,
                                   const std::string& savedName) {
-    std::map<std::string, std::string> theirs(saved.begin(), saved.end());
+    const std::map<std::string, std::string> theirs(saved.begin(), saved.end()),
+        ours(here.begin(), here.end());
+    auto differ = [&](const std::string& key, const std::string* was, const std::string* is) {
+        if (key == "scene_inputs")
+            return inputsDifference(was ? *was : "", is ? *is : "", savedName);
+        return key + " is " + (was ? "'" + *was + "'" : "absent") + " in " + savedName + ", " +
+               (is ? "'" + *is + "'" : "absent") + " here";
+    };
     for (const auto& [key, value] : here) {
         auto it = theirs.find(key);
-        std::string was = it == theirs.end() ? "absent" : it->second;
-        if (was == value) continue;
-        if (key == "scene_inputs" && it != theirs.end())
-            return inputsDifference(was, value, savedName);
-        return key + " is '" + was + "' in " + savedName + ", '" + value + "' here";
+        if (it == theirs.end() || it->second != value)
+            return differ(key, it == theirs.end() ? nullptr : &it->second, &value);
     }
-    if (saved.size() != here.size()) return savedName + " has other fingerprint fields";
+    for (const auto& [key, value] : saved)
+        if (!ours.count(key)) return differ(key, &value, nullptr);
     return "";
 }
 

@@ -324,6 +324,37 @@ TEST(Checkpoint, AResumeAfterAnEditOfAFileTheSceneReadsIsRefusedNamingIt) {
     refusedNaming("ov.mtl");
 }
 
+// The refusal names the file that changed, appeared or went, whichever side lacks the list.
+TEST(Checkpoint, ARefusalNamesTheOneInputThatDiffers) {
+    const std::string mtl = "part.mtl (26 bytes, crc32 85daacc2)",
+                      mtl2 = "part.mtl (26 bytes, crc32 33631f6d)",
+                      obj = "part.obj (9 bytes, crc32 1)", png = "a.png (absent)";
+    auto differ = [](const std::string& saved, const std::string& here) {
+        auto with = [](const std::string& inputs) {
+            Fingerprint f{{"scene", "s.kiln (1 bytes, crc32 0)"}};
+            if (!inputs.empty()) f.emplace_back("scene_inputs", inputs);
+            return f;
+        };
+        return fingerprintDifference(with(saved), with(here), "k.ckpt");
+    };
+    EXPECT_EQ(differ(mtl + "; " + obj, mtl + "; " + obj), "");
+    EXPECT_EQ(differ(mtl + "; " + obj, mtl2 + "; " + obj),
+              "scene_inputs: '" + mtl + "' in k.ckpt, '" + mtl2 + "' here");
+    // a.png sorts first: the edited .mtl is named, not the file in its place in the list
+    EXPECT_EQ(differ(mtl + "; " + obj, png + "; " + mtl2 + "; " + obj),
+              "scene_inputs: '" + mtl + "' in k.ckpt, '" + mtl2 + "' here");
+    EXPECT_EQ(differ(mtl + "; " + obj, png + "; " + mtl + "; " + obj),
+              "scene_inputs: no file a.png in k.ckpt, '" + png + "' here");
+    EXPECT_EQ(differ(png + "; " + mtl, mtl),
+              "scene_inputs: '" + png + "' in k.ckpt, no file a.png here");
+    // A checkpoint without the list (a one-file scene's) and a scene with one, and the reverse.
+    EXPECT_EQ(differ("", obj), "scene_inputs: no file part.obj in k.ckpt, '" + obj + "' here");
+    EXPECT_EQ(differ(obj, ""), "scene_inputs: '" + obj + "' in k.ckpt, no file part.obj here");
+    Fingerprint a{{"scene", "x"}, {"extra", "1"}}, b{{"scene", "x"}};
+    EXPECT_EQ(fingerprintDifference(a, b, "k.ckpt"), "extra is '1' in k.ckpt, absent here");
+    EXPECT_EQ(fingerprintDifference(b, a, "k.ckpt"), "extra is absent in k.ckpt, '1' here");
+}
+
 // A scene read from its one file keeps the fingerprint it had before other files were named.
 TEST(Checkpoint, AOneFileScenesFingerprintNamesNoOtherInputs) {
     SmallRender r;

@@ -28,6 +28,10 @@ PathIntegrator::PathIntegrator(const Scene& scene, const Accelerator& accel,
     opt_.lightSamples = resolvedLightSamples(options, plan);
     mapEscapes_ = plan.environmentMap;
     rules_ = Cs184Rules(options, lights_.size(), lights_.allDelta());
+    lightSamplesPerVertex_ = rules_.lightSamplesPerVertex(opt_.lightSamples, lights_.size());
+    // Drawing a vertex's light samples a few paths ahead pays only where the draw reads tables too
+    // large for the cache (an environment map's); elsewhere it is copies of the sampler.
+    drawAheadPays_ = plan.environmentMap;
     // Without next-event estimation (hemisphere, bsdf) emission found by the path counts in full.
     useNee_ = !rules_.hemisphere && options.sampling != DirectSampling::Bsdf && lights_.size() > 0;
     // Only where light sampling sees every emitter and MIS would otherwise weigh what the last
@@ -279,7 +283,7 @@ void PathIntegrator::trace(std::span<CameraSample> batch, RayCounter& counter) c
     w.paths.assign(batch.size(), PathState{});
     w.ahead.resize(batch.size());
     for (DrawnAhead& a : w.ahead) a.dimension = DrawnAhead::kNone;
-    size_t perVertex = size_t(rules_.lightSamplesPerVertex(opt_.lightSamples, lights_.size()));
+    size_t perVertex = size_t(lightSamplesPerVertex_);
     w.pending.reserve(batch.size() * perVertex);
     w.shadowRays.reserve(batch.size() * perVertex);
     w.active.clear();
@@ -593,7 +597,7 @@ void PathIntegrator::shadeVertex(const Vertex& v, const B& bsdf, Scratch& w) con
 template <class F, class B>
 void PathIntegrator::sampleDirectLight(const Vertex& v, const B& bsdf, const Vec3& wo,
                                        bool lightOnly, Scratch& w) const {
-    const int samples = rules_.lightSamplesPerVertex(opt_.lightSamples, lights_.size());
+    const int samples = lightSamplesPerVertex_;
     // In chunks: every sample's numbers drawn (in the order a loop of single samples draws them)
     // and its first table entry asked for, then the lights sampled, then the estimates queued, so
     // the cache misses of an environment map's tables overlap instead of following one another.
@@ -625,7 +629,7 @@ void PathIntegrator::sampleDirectLight(const Vertex& v, const B& bsdf, const Vec
 }
 
 std::optional<Sampler::Split> PathIntegrator::splitLights(Sampler& sampler) const {
-    const int samples = rules_.lightSamplesPerVertex(opt_.lightSamples, lights_.size());
+    const int samples = lightSamplesPerVertex_;
     if (rules_.eachDeltaLightOnce || samples < 2) return std::nullopt;
     // A pair for the light's choice (where there is one to make), a pair for the point on it.
     return sampler.split(lights_.size() > 1 ? 2 : 1, uint32_t(samples));
@@ -665,9 +669,9 @@ void PathIntegrator::drawLights(Sampler& sampler, std::optional<Sampler::Split> 
 // costs the draws and nothing else.
 void PathIntegrator::drawAhead(std::span<CameraSample> batch, Scratch& w, size_t k,
                                int bounce) const {
-    const int samples = rules_.lightSamplesPerVertex(opt_.lightSamples, lights_.size());
-    if (!useNee_ || rules_.eachDeltaLightOnce || samples > kLightChunk || !w.hits[k].valid() ||
-        bounce >= opt_.maxDepth || !rules_.gathersAt(bounce))
+    const int samples = lightSamplesPerVertex_;
+    if (!drawAheadPays_ || !useNee_ || rules_.eachDeltaLightOnce || samples > kLightChunk ||
+        !w.hits[k].valid() || bounce >= opt_.maxDepth || !rules_.gathersAt(bounce))
         return;
     const uint32_t pi = w.active[k];
     DrawnAhead& a = w.ahead[pi];
@@ -684,7 +688,7 @@ void PathIntegrator::locateAhead(std::span<CameraSample> batch, Scratch& w, size
     const uint32_t pi = w.active[k];
     DrawnAhead& a = w.ahead[pi];
     if (a.dimension != batch[pi].sampler.dimension()) return;  // none drawn for this vertex
-    const int samples = rules_.lightSamplesPerVertex(opt_.lightSamples, lights_.size());
+    const int samples = lightSamplesPerVertex_;
     for (size_t j = 0; j < size_t(samples); ++j)
         a.located[j] =
             a.rowPicked[j] && lights_.locateInRow(a.draws[j].light, a.draws[j].u1, a.points[j]);

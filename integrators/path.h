@@ -170,6 +170,8 @@ class PathIntegrator final : public Integrator {
     // Next-event estimation: light sampling (mis, light) with lights to sample.
     bool useNee_ = false;
     bool lightOnlyAtLastVertex_ = false;  // a diffuse last vertex: NEE alone, no continuation
+    int lightSamplesPerVertex_ = 1;       // the rules' count for -l and these lights
+    bool drawAheadPays_ = false;          // drawAhead: only with an environment map
     // An environment map lights the scene: rays leaving it look it up (their coordinates found
     // four at a time, locateEscapes).
     bool mapEscapes_ = false;

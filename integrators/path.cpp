@@ -598,6 +598,17 @@ template <class F, class B>
 void PathIntegrator::sampleDirectLight(const Vertex& v, const B& bsdf, const Vec3& wo,
                                        bool lightOnly, Scratch& w) const {
     const int samples = lightSamplesPerVertex_;
+    if (!drawAheadPays_) {  // no tables to overlap: a sample at a time, no chunk's arrays to fill
+        const std::optional<Sampler::Split> split = splitLights(v.sampler);
+        for (int k = 0; k < samples; ++k) {
+            LightDraw d;
+            drawLights(v.sampler, split, k, 1, &d);
+            LightSample ls;
+            if (lights_.sample(d.light, v.si.p, d.u1, d.u2, ls) && d.pmf != 0)
+                queueLightSample<F>(v, bsdf, wo, lightOnly, d, ls, w);
+        }
+        return;
+    }
     // In chunks: every sample's numbers drawn (in the order a loop of single samples draws them)
     // and its first table entry asked for, then the lights sampled, then the estimates queued, so
     // the cache misses of an environment map's tables overlap instead of following one another.

@@ -22,18 +22,29 @@ FrameProbe probeFrame(const RenderJob& job, int maxPixels, int spp) {
     probe.samplesPerPixel = spp;
     std::vector<double> sums(size_t(probe.pixels), 0.0);
     std::vector<int> finite(size_t(probe.pixels), 0);
-    auto trace = [&](int i) {
-        int px = s.filmOriginX() + int((i % nx + 0.5) * w / nx);
-        int py = s.filmOriginY() + int((i / nx + 0.5) * h / ny);
+    // Probe pixels [begin, end), their samples traced as one batch (a pixel's samples alone
+    // made batches of two: packets of 16 rays with 14 empty lanes).
+    auto trace = [&](int begin, int end) {
+        std::vector<PixelXY> pixels;
+        for (int i = begin; i < end; ++i)
+            pixels.push_back({s.filmOriginX() + int((i % nx + 0.5) * w / nx),
+                              s.filmOriginY() + int((i / nx + 0.5) * h / ny)});
         RayCounter counter;
-        for (int k = 0; k < spp; ++k) {
-            SampleRecord r = job.traceSample(px, py, s.sampleStart + k, counter);
-            double y = luminance(r.L);
-            if (std::isfinite(y)) sums[size_t(i)] += y, ++finite[size_t(i)];
+        const std::vector<SampleRecord> records =
+            job.traceSamples(pixels, s.sampleStart, spp, counter);
+        for (size_t k = 0; k < records.size(); ++k) {
+            const size_t i = size_t(begin) + k / size_t(spp);
+            double y = luminance(records[k].L);
+            if (std::isfinite(y)) sums[i] += y, ++finite[i];
         }
     };
+    constexpr int kPixelsPerBatch = 64;
     tbb::task_arena arena(s.threads > 0 ? s.threads : tbb::task_arena::automatic);
-    arena.execute([&] { tbb::parallel_for(0, probe.pixels, trace); });
+    arena.execute([&] {
+        tbb::parallel_for(0, (probe.pixels + kPixelsPerBatch - 1) / kPixelsPerBatch, [&](int b) {
+            trace(b * kPixelsPerBatch, std::min(probe.pixels, (b + 1) * kPixelsPerBatch));
+        });
+    });
     double total = 0;
     int count = 0;
     for (int i = 0; i < probe.pixels; ++i) {

@@ -118,6 +118,13 @@ SampleRecord RenderJob::traceSample(int x, int y, int sample, RayCounter& counte
     return kiln::traceSample(scene_, *integrator_, options_.settings, x, y, sample, counter);
 }
 
+std::vector<SampleRecord> RenderJob::traceSamples(std::span<const PixelXY> pixels, int first,
+                                                  int count, RayCounter& counter) const {
+    trainGuideOnce();
+    return kiln::traceSamples(scene_, *integrator_, options_.settings, pixels, first, count,
+                              counter);
+}
+
 Metadata RenderJob::metadata(const RenderStats& stats, const Film& film) const {
     const RenderSettings& s = options_.settings;
     const PathOptions& p = options_.path;

@@ -54,6 +54,9 @@ class RenderJob {
     RenderStats render(Film& film, const RenderControl& control = {}) const;
     // One camera sample exactly as the render traces it (for --pixel/--sample debugging).
     SampleRecord traceSample(int x, int y, int sample, RayCounter& counter) const;
+    // Samples [first, first + count) of each pixel as one batch (render_loop.h's traceSamples).
+    std::vector<SampleRecord> traceSamples(std::span<const PixelXY> pixels, int first, int count,
+                                           RayCounter& counter) const;
     // The job's options and results by name (the EXR header's kiln: attributes).
     Metadata metadata(const RenderStats& stats, const Film& film) const;
 

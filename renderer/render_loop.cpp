@@ -58,12 +58,28 @@ void addCameraSample(std::vector<CameraSample>& batch, const CameraModel& camera
 SampleRecord traceSample(const Scene& scene, const Integrator& integrator,
                          const RenderSettings& settings, int x, int y, int sample,
                          RayCounter& counter) {
+    const PixelXY pixel{x, y};
+    return traceSamples(scene, integrator, settings, {&pixel, 1}, sample, 1, counter)[0];
+}
+
+std::vector<SampleRecord> traceSamples(const Scene& scene, const Integrator& integrator,
+                                       const RenderSettings& settings,
+                                       std::span<const PixelXY> pixels, int first, int count,
+                                       RayCounter& counter) {
     CameraModel camera(scene.camera, settings.width, settings.height);
-    AovRequest all = AovRequest::parse("all", kMaxBounceLayers);
-    std::vector<CameraSample> one;
-    addCameraSample(one, camera, all, settings, pixelKey(settings, x, y), x, y, sample);
-    integrator.Li(std::span<CameraSample>(one), counter);
-    return one[0].record;
+    static const AovRequest all = AovRequest::parse("all", kMaxBounceLayers);
+    std::vector<CameraSample> batch;
+    batch.reserve(pixels.size() * size_t(std::max(count, 0)));
+    for (const auto [x, y] : pixels) {
+        const Sampler::PixelKey key = pixelKey(settings, x, y);
+        for (int s = first; s < first + count; ++s)
+            addCameraSample(batch, camera, all, settings, key, x, y, s);
+    }
+    integrator.Li(std::span<CameraSample>(batch), counter);
+    std::vector<SampleRecord> records;
+    records.reserve(batch.size());
+    for (CameraSample& c : batch) records.push_back(std::move(c.record));
+    return records;
 }
 
 namespace {

@@ -53,6 +53,15 @@ struct RenderControl {
 SampleRecord traceSample(const Scene& scene, const Integrator& integrator,
                          const RenderSettings& settings, int x, int y, int sample,
                          RayCounter& counter);
+// Samples [first, first + count) of each pixel, traced together as one batch, pixel after pixel
+// (each the sample traceSample gives: a path's numbers and light do not depend on its batch).
+struct PixelXY {
+    int x, y;
+};
+std::vector<SampleRecord> traceSamples(const Scene& scene, const Integrator& integrator,
+                                       const RenderSettings& settings,
+                                       std::span<const PixelXY> pixels, int first, int count,
+                                       RayCounter& counter);
 
 // Set by the SIGINT/SIGTERM handler; the loop stops at the next pixel and keeps what it has.
 std::atomic<bool>& renderCancelFlag();

@@ -332,6 +332,31 @@ TEST(PathRender, ABatchTracesEachSampleAsItWouldAlone) {
     EXPECT_GT(lit, 200);
 }
 
+// The frame probe traces many pixels' samples as one batch: each record is the replayed sample.
+TEST(PathRender, SamplesOfManyPixelsTracedTogetherAreEachTheReplayedSample) {
+    Scene s = loadScene(test::cs184("sky/CBspheres.dae"));
+    auto accel = makeEmbreeAccelerator(s);
+    PathIntegrator integrator(s, *accel, PathOptions{});
+    RenderSettings settings;
+    settings.width = 48, settings.height = 36, settings.sampler = SamplerKind::Sobol;
+    std::vector<PixelXY> pixels;
+    for (int i = 0; i < 40; ++i) pixels.push_back({4 + i % 40, 6 + (i * 7) % 30});
+    RayCounter together, alone;
+    const int first = 3, count = 5;
+    std::vector<SampleRecord> records =
+        traceSamples(s, integrator, settings, pixels, first, count, together);
+    ASSERT_EQ(records.size(), pixels.size() * count);
+    int lit = 0;
+    for (size_t p = 0; p < pixels.size(); ++p)
+        for (int k = 0; k < count; ++k) {
+            SampleRecord r =
+                traceSample(s, integrator, settings, pixels[p].x, pixels[p].y, first + k, alone);
+            ASSERT_EQ(records[p * count + size_t(k)].L, r.L) << p << " " << k;
+            lit += maxComponent(r.L) > 0;
+        }
+    EXPECT_EQ(together.rays, alone.rays);
+    EXPECT_GT(lit, int(pixels.size()));  // not a comparison of black samples
+}
 TEST(Adaptive, PixelsStopWhenTheCs184ConfidenceTestPasses) {
     Scene s = loadScene(test::cs184("sky/CBspheres_lambertian.dae"));
     RenderSettings settings = small(40, 30, 256);

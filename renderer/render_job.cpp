@@ -114,8 +114,8 @@ RenderStats RenderJob::render(Film& film, const RenderControl& control) const {
 }
 
 SampleRecord RenderJob::traceSample(int x, int y, int sample, RayCounter& counter) const {
-    trainGuideOnce();
-    return kiln::traceSample(scene_, *integrator_, options_.settings, x, y, sample, counter);
+    const PixelXY pixel{x, y};
+    return traceSamples({&pixel, 1}, sample, 1, counter)[0];
 }
 
 std::vector<SampleRecord> RenderJob::traceSamples(std::span<const PixelXY> pixels, int first,

@@ -55,7 +55,7 @@ std::string number(double v) { return fmt::format("{:.17g}", v); }
 std::string vec(const Vec3& v) { return number(v.x) + " " + number(v.y) + " " + number(v.z); }
 
 // Name, size and CRC-32 of a file's bytes: a scene edited since the checkpoint is another scene.
-std::string fileIdentity(const std::string& path) {
+std::string fileIdentity(const std::string& path, const std::string& name = std::string()) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw std::runtime_error(path + ": cannot read for the checkpoint fingerprint");
     uLong crc = crc32(0, nullptr, 0);
@@ -66,7 +66,8 @@ std::string fileIdentity(const std::string& path) {
         size += uint64_t(in.gcount());
     }
     return fmt::format("{} ({} bytes, crc32 {:08x})",
-                       std::filesystem::path(path).filename().string(), size, crc);
+                       name.empty() ? std::filesystem::path(path).filename().string() : name, size,
+                       crc);
 }
 
 std::string headerText(const CheckpointInfo& info) {
@@ -239,12 +240,24 @@ std::vector<std::string> otherInputs(const std::string& scenePath, const LoadOpt
     return files;
 }
 
+// A scene's other file named by its path from the scene file's folder, as written (links not
+// followed): two same-named files in different folders are told apart, and a farm node that mounts
+// the tree elsewhere names them alike. A file on another root is named by its filename.
+std::string inputName(const std::string& path, const std::string& scenePath) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::path file = fs::absolute(path, ec).lexically_normal();
+    const fs::path folder = fs::absolute(scenePath, ec).lexically_normal().parent_path();
+    const fs::path relative = ec ? fs::path() : file.lexically_relative(folder);
+    return relative.empty() ? fs::path(path).filename().string() : relative.generic_string();
+}
+
 // A file the loader could not open renders without it: that is its identity, not an error.
-std::string inputIdentity(const std::string& path) {
-    const std::string name = std::filesystem::path(path).filename().string();
+std::string inputIdentity(const std::string& path, const std::string& scenePath) {
+    const std::string name = inputName(path, scenePath);
     if (!std::filesystem::is_regular_file(path)) return name + " (absent)";
     if (!std::ifstream(path, std::ios::binary)) return name + " (unreadable)";
-    return fileIdentity(path);
+    return fileIdentity(path, name);
 }
 
 }  // namespace
@@ -259,7 +272,7 @@ SceneFileIdentity sceneFileIdentity(const std::string& scenePath, const LoadOpti
     // same order.
     std::vector<std::string> inputs;
     for (const std::string& f : otherInputs(scenePath, load, scene))
-        inputs.push_back(inputIdentity(f));
+        inputs.push_back(inputIdentity(f, scenePath));
     std::sort(inputs.begin(), inputs.end());
     for (const std::string& i : inputs) id.inputs += (id.inputs.empty() ? "" : "; ") + i;
     return id;

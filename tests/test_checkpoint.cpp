@@ -324,6 +324,39 @@ TEST(Checkpoint, AResumeAfterAnEditOfAFileTheSceneReadsIsRefusedNamingIt) {
     refusedNaming("ov.mtl");
 }
 
+// Inputs are named by their path from the scene's folder: two parts' same-named .mtl files with
+// their contents swapped are a different scene, and the refusal says which folder's file changed.
+TEST(Checkpoint, SameNamedInputsInTwoFoldersAreToldApart) {
+    auto dir = test::scratchDir();
+    auto write = [](const fs::path& p, const std::string& text) {
+        fs::create_directories(p.parent_path());
+        std::ofstream(p) << text;
+    };
+    const std::string red = "newmtl m\nKd 0.8 0.2 0.2\n", blue = "newmtl m\nKd 0.2 0.2 0.8\n";
+    const std::string quad =
+        "mtllib part.mtl\nv -0.5 0.1 -0.5\nv 0.5 0.1 -0.5\nv 0.5 0.1 0.5\n"
+        "v -0.5 0.1 0.5\nusemtl m\nf 1 2 3 4\n";
+    for (const char* part : {"a", "b"}) write(dir / part / "part.obj", quad);
+    write(dir / "a" / "part.mtl", red);
+    write(dir / "b" / "part.mtl", blue);
+    write(dir / "scene.kiln", "<kiln-scene><include file=\"" + test::spheres() +
+                                  "\"/><mesh file=\"a/part.obj\"/><mesh file=\"b/part.obj\" "
+                                  "translate=\"0 0.2 0\"/></kiln-scene>\n");
+    std::string out = (dir / "k").string(), err = (dir / "err.txt").string();
+    std::vector<std::string> args{
+        "render",  (dir / "scene.kiln").string(), "-r", "16", "12", "-s", "2", "-q", "-o", out,
+        "--resume"};
+    ASSERT_EQ(test::runKilnProcess(args, -1, 0, err), 0) << test::readText(err);
+    write(dir / "a" / "part.mtl", blue);
+    write(dir / "b" / "part.mtl", red);
+    EXPECT_EQ(test::runKilnProcess(args, -1, 0, err), 2);
+    const std::string text = test::readText(err);
+    EXPECT_NE(text.find("'a/part.mtl ("), std::string::npos) << text;
+    write(dir / "a" / "part.mtl", red);  // as they were: the checkpoint resumes again
+    write(dir / "b" / "part.mtl", blue);
+    EXPECT_EQ(test::runKilnProcess(args, -1, 0, err), 0) << test::readText(err);
+}
+
 // The refusal names the file that changed, appeared or went, whichever side lacks the list.
 TEST(Checkpoint, ARefusalNamesTheOneInputThatDiffers) {
     const std::string mtl = "part.mtl (26 bytes, crc32 85daacc2)",

@@ -242,14 +242,17 @@ std::vector<std::string> otherInputs(const std::string& scenePath, const LoadOpt
 
 // A scene's other file named by its path from the scene file's folder, as written (links not
 // followed): two same-named files in different folders are told apart, and a farm node that mounts
-// the tree elsewhere names them alike. A file on another root is named by its filename.
+// the tree elsewhere names them alike. A file outside that folder is named by its filename, as
+// its path from the folder would depend on how deep the tree is mounted.
 std::string inputName(const std::string& path, const std::string& scenePath) {
     namespace fs = std::filesystem;
-    std::error_code ec;
-    const fs::path file = fs::absolute(path, ec).lexically_normal();
-    const fs::path folder = fs::absolute(scenePath, ec).lexically_normal().parent_path();
-    const fs::path relative = ec ? fs::path() : file.lexically_relative(folder);
-    return relative.empty() ? fs::path(path).filename().string() : relative.generic_string();
+    std::error_code fileError, folderError;
+    const fs::path file = fs::absolute(path, fileError).lexically_normal();
+    const fs::path folder = fs::absolute(scenePath, folderError).lexically_normal().parent_path();
+    const fs::path relative =
+        fileError || folderError ? fs::path() : file.lexically_relative(folder);
+    const bool inside = !relative.empty() && *relative.begin() != "..";
+    return inside ? relative.generic_string() : fs::path(path).filename().string();
 }
 
 // A file the loader could not open renders without it: that is its identity, not an error.

@@ -357,6 +357,29 @@ TEST(Checkpoint, SameNamedInputsInTwoFoldersAreToldApart) {
     EXPECT_EQ(test::runKilnProcess(args, -1, 0, err), 0) << test::readText(err);
 }
 
+// Inside the scene's folder an input is named by its path from there, however the scene wrote
+// it; outside, by its filename (its path from the folder would change with the mount's depth).
+TEST(Checkpoint, InputsAreNamedFromTheSceneFolderAndOutsideItByFilename) {
+    const fs::path dir = test::scratchDir();
+    for (const fs::path& p : {dir / "s" / "scene.kiln", dir / "s" / "a" / "part.mtl",
+                              dir / "lib" / "deep" / "tex.png"}) {
+        fs::create_directories(p.parent_path());
+        std::ofstream(p) << p.filename().string();
+    }
+    fs::create_directories(dir / "s" / "b");  // the OS resolves b/.. before the file
+    Scene scene;
+    scene.inputFiles = {(dir / "s" / "b" / ".." / "a" / "part.mtl").string(),
+                        (dir / "lib" / "deep" / "tex.png").string(),
+                        (dir / "s" / "gone.obj").string()};
+    const std::string inputs =
+        sceneFileIdentity((dir / "s" / "scene.kiln").string(), {}, scene).inputs;
+    EXPECT_EQ(inputs.find("a/part.mtl (8 bytes"), 0u) << inputs;
+    EXPECT_NE(inputs.find("; tex.png (7 bytes"), std::string::npos) << inputs;
+    EXPECT_NE(inputs.find("gone.obj (absent)"), std::string::npos) << inputs;
+    EXPECT_EQ(inputs.find(".."), std::string::npos) << inputs;
+    EXPECT_EQ(inputs.find("deep"), std::string::npos) << inputs;
+}
+
 // The refusal names the file that changed, appeared or went, whichever side lacks the list.
 TEST(Checkpoint, ARefusalNamesTheOneInputThatDiffers) {
     const std::string mtl = "part.mtl (26 bytes, crc32 85daacc2)",

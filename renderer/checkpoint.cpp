@@ -240,24 +240,30 @@ std::vector<std::string> otherInputs(const std::string& scenePath, const LoadOpt
     return files;
 }
 
-// A scene's other file named by its path from the scene file's folder, as written (links not
+// The folder a scene's other files are named from (inputName): the scene file's, as written; empty
+// where it cannot be made absolute (the files are then named by their filenames).
+std::filesystem::path sceneFolder(const std::string& scenePath) {
+    std::error_code ec;
+    const std::filesystem::path scene = std::filesystem::absolute(scenePath, ec);
+    return ec ? std::filesystem::path() : scene.lexically_normal().parent_path();
+}
+
+// A scene's other file named by its path from the scene's folder, as written (links not
 // followed): two same-named files in different folders are told apart, and a farm node that mounts
 // the tree elsewhere names them alike. A file outside that folder is named by its filename, as
 // its path from the folder would depend on how deep the tree is mounted.
-std::string inputName(const std::string& path, const std::string& scenePath) {
+std::string inputName(const std::string& path, const std::filesystem::path& folder) {
     namespace fs = std::filesystem;
-    std::error_code fileError, folderError;
-    const fs::path file = fs::absolute(path, fileError).lexically_normal();
-    const fs::path folder = fs::absolute(scenePath, folderError).lexically_normal().parent_path();
-    const fs::path relative =
-        fileError || folderError ? fs::path() : file.lexically_relative(folder);
+    std::error_code ec;
+    const fs::path file = fs::absolute(path, ec).lexically_normal();
+    const fs::path relative = ec || folder.empty() ? fs::path() : file.lexically_relative(folder);
     const bool inside = !relative.empty() && *relative.begin() != "..";
     return inside ? relative.generic_string() : fs::path(path).filename().string();
 }
 
 // A file the loader could not open renders without it: that is its identity, not an error.
-std::string inputIdentity(const std::string& path, const std::string& scenePath) {
-    const std::string name = inputName(path, scenePath);
+std::string inputIdentity(const std::string& path, const std::filesystem::path& folder) {
+    const std::string name = inputName(path, folder);
     if (!std::filesystem::is_regular_file(path)) return name + " (absent)";
     if (!std::ifstream(path, std::ios::binary)) return name + " (unreadable)";
     return fileIdentity(path, name);
@@ -274,8 +280,9 @@ SceneFileIdentity sceneFileIdentity(const std::string& scenePath, const LoadOpti
     // Sorted by identity, not path: a farm node that mounts the files elsewhere lists them in the
     // same order.
     std::vector<std::string> inputs;
+    const std::filesystem::path folder = sceneFolder(scenePath);
     for (const std::string& f : otherInputs(scenePath, load, scene))
-        inputs.push_back(inputIdentity(f, scenePath));
+        inputs.push_back(inputIdentity(f, folder));
     std::sort(inputs.begin(), inputs.end());
     for (const std::string& i : inputs) id.inputs += (id.inputs.empty() ? "" : "; ") + i;
     return id;

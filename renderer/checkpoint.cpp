@@ -271,12 +271,14 @@ std::string inputIdentity(const std::string& path, const std::filesystem::path& 
 
 }  // namespace
 
-SceneFileIdentity sceneFileIdentity(const std::string& scenePath, const LoadOptions& load,
-                                    const Scene& scene) {
+SceneFileIdentity topFileIdentity(const std::string& scenePath, const LoadOptions& load) {
     ++checksumCounter();
-    SceneFileIdentity id{fileIdentity(scenePath),
-                         load.environmentMap.empty() ? "none" : fileIdentity(load.environmentMap),
-                         ""};
+    return {fileIdentity(scenePath),
+            load.environmentMap.empty() ? "none" : fileIdentity(load.environmentMap), ""};
+}
+
+SceneFileIdentity withInputIdentities(SceneFileIdentity top, const std::string& scenePath,
+                                      const LoadOptions& load, const Scene& scene) {
     // Sorted by identity, not path: a farm node that mounts the files elsewhere lists them in the
     // same order.
     std::vector<std::string> inputs;
@@ -284,8 +286,14 @@ SceneFileIdentity sceneFileIdentity(const std::string& scenePath, const LoadOpti
     for (const std::string& f : otherInputs(scenePath, load, scene))
         inputs.push_back(inputIdentity(f, folder));
     std::sort(inputs.begin(), inputs.end());
-    for (const std::string& i : inputs) id.inputs += (id.inputs.empty() ? "" : "; ") + i;
-    return id;
+    top.inputs.clear();
+    for (const std::string& i : inputs) top.inputs += (top.inputs.empty() ? "" : "; ") + i;
+    return top;
+}
+
+SceneFileIdentity sceneFileIdentity(const std::string& scenePath, const LoadOptions& load,
+                                    const Scene& scene) {
+    return withInputIdentities(topFileIdentity(scenePath, load), scenePath, load, scene);
 }
 
 Fingerprint checkpointFingerprint(const RenderJob& job, const std::string& scenePath,
@@ -293,50 +301,77 @@ Fingerprint checkpointFingerprint(const RenderJob& job, const std::string& scene
     return checkpointFingerprint(job, sceneFileIdentity(scenePath, load, job.scene()), load);
 }
 
-Fingerprint checkpointFingerprint(const RenderJob& job, const SceneFileIdentity& files,
-                                  const LoadOptions& load) {
-    const RenderJobOptions& o = job.options();
+namespace {
+
+std::string cameraText(const Camera& c) {
+    return vec(c.position) + " / " + vec(c.forward) + " / " + vec(c.up) + " / fov " +
+           number(c.hFovDeg) + " " + number(c.vFovDeg) + " / lens " + number(c.apertureRadius) +
+           " " + number(c.focalDistance) +
+           (c.orthographic()
+                ? " / orthographic " + number(c.orthoHalfWidth) + " " + number(c.orthoHalfHeight)
+                : "");
+}
+
+std::string aovText(const AovRequest& a) {
+    return std::to_string(a.mask) + " bounces " + std::to_string(a.bounceLayers) + " depth " +
+           toString(a.depth) + (a.transparent ? " transparent" : "") +
+           (a.denoisedLight ? " denoised " + AovRequest::namesOf(a.denoisedLight) : "");
+}
+
+// The fingerprint in its one order; without a job, only the fields the options and the files
+// decide (those a resume is checked against before the load).
+Fingerprint fingerprintOf(const RenderJobOptions& options, const RenderJob* job,
+                          const SceneFileIdentity& files, const LoadOptions& load) {
+    const RenderJobOptions& o =
+        job ? job->options() : options;  // the job's: light samples resolved
     const PathOptions& p = o.path;
     const RenderSettings& s = o.settings;
-    const Camera& c = job.scene().camera;
-    Fingerprint f{
-        {"kiln_version", KILN_VERSION},
-        {"scene", files.scene},
-        {"environment_map", files.environmentMap},
-        {"environment_scale", number(load.environmentScale)},
-        {"environment_rotation", number(load.environmentRotationDeg)},
-        {"material_override", load.materialOverride.empty() ? "none" : load.materialOverride},
-        {"camera", vec(c.position) + " / " + vec(c.forward) + " / " + vec(c.up) + " / fov " +
-                       number(c.hFovDeg) + " " + number(c.vFovDeg) + " / lens " +
-                       number(c.apertureRadius) + " " + number(c.focalDistance) +
-                       (c.orthographic() ? " / orthographic " + number(c.orthoHalfWidth) + " " +
-                                               number(c.orthoHalfHeight)
-                                         : "")},
-        {"resolution", std::to_string(s.width) + "x" + std::to_string(s.height)},
-        {"seed", std::to_string(s.seed)},
-        {"sampler", toString(s.sampler)},
-        {"integrator", job.integrator().name()},
-        {"plan", job.plan().compact()},
-        {"max_depth", std::to_string(p.maxDepth)},
-        {"light_samples", std::to_string(p.lightSamples)},
-        {"sampling", toString(p.sampling)},
-        {"mis_heuristic", toString(p.heuristic)},
-        {"roulette", std::string(toString(p.roulette)) + " " + number(p.fixedContinuation) + " " +
-                         std::to_string(p.rouletteMinBounces)},
-        {"accumulate_bounces", p.accumulateBounces ? "yes" : "no"},
-        {"microfacet", toString(p.microfacet)},
-        {"guiding", job.guided() ? "on" : "off"},
-        {"aovs",
-         std::to_string(o.aovs.mask) + " bounces " + std::to_string(o.aovs.bounceLayers) +
-             " depth " + toString(o.aovs.depth) + (o.aovs.transparent ? " transparent" : "") +
-             (o.aovs.denoisedLight ? " denoised " + AovRequest::namesOf(o.aovs.denoisedLight)
-                                   : "")},
-        {"film_scale", "2^" + std::to_string(job.filmScaleExponent())},
-        {"adaptive", s.adaptiveText()},
+    Fingerprint f;
+    auto put = [&f](const char* key, std::string value) { f.emplace_back(key, std::move(value)); };
+    auto putJob = [&](const char* key, auto valueOf) {
+        if (job) f.emplace_back(key, valueOf(*job));
     };
+    put("kiln_version", KILN_VERSION);
+    put("scene", files.scene);
+    put("environment_map", files.environmentMap);
+    put("environment_scale", number(load.environmentScale));
+    put("environment_rotation", number(load.environmentRotationDeg));
+    put("material_override", load.materialOverride.empty() ? "none" : load.materialOverride);
+    putJob("camera", [](const RenderJob& j) { return cameraText(j.scene().camera); });
+    put("resolution", std::to_string(s.width) + "x" + std::to_string(s.height));
+    put("seed", std::to_string(s.seed));
+    put("sampler", toString(s.sampler));
+    putJob("integrator", [](const RenderJob& j) { return std::string(j.integrator().name()); });
+    putJob("plan", [](const RenderJob& j) { return j.plan().compact(); });
+    put("max_depth", std::to_string(p.maxDepth));
+    // Its default is the plan's choice (resolvedLightSamples).
+    putJob("light_samples", [&p](const RenderJob&) { return std::to_string(p.lightSamples); });
+    put("sampling", toString(p.sampling));
+    put("mis_heuristic", toString(p.heuristic));
+    put("roulette", std::string(toString(p.roulette)) + " " + number(p.fixedContinuation) + " " +
+                        std::to_string(p.rouletteMinBounces));
+    put("accumulate_bounces", p.accumulateBounces ? "yes" : "no");
+    put("microfacet", toString(p.microfacet));
+    putJob("guiding", [](const RenderJob& j) { return std::string(j.guided() ? "on" : "off"); });
+    put("aovs", aovText(o.aovs));
+    putJob("film_scale",
+           [](const RenderJob& j) { return "2^" + std::to_string(j.filmScaleExponent()); });
+    put("adaptive", s.adaptiveText());
     // Only where there are such files: a checkpoint of a one-file scene keeps its fingerprint.
-    if (!files.inputs.empty()) f.emplace_back("scene_inputs", files.inputs);
+    if (job && !files.inputs.empty()) put("scene_inputs", files.inputs);
     return f;
+}
+
+}  // namespace
+
+Fingerprint checkpointFingerprint(const RenderJob& job, const SceneFileIdentity& files,
+                                  const LoadOptions& load) {
+    return fingerprintOf(job.options(), &job, files, load);
+}
+
+Fingerprint fingerprintBeforeLoad(const RenderJobOptions& options, const SceneFileIdentity& files,
+                                  const LoadOptions& load) {
+    return fingerprintOf(options, nullptr, files, load);
 }
 
 namespace {

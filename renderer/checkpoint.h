@@ -46,6 +46,11 @@ struct SceneFileIdentity {
 };
 SceneFileIdentity sceneFileIdentity(const std::string& scenePath, const LoadOptions& load,
                                     const Scene& scene);
+// The same in two steps: the scene file's and the --env map's alone (inputs ""), which need no
+// load, then the loaded scene's other files added.
+SceneFileIdentity topFileIdentity(const std::string& scenePath, const LoadOptions& load);
+SceneFileIdentity withInputIdentities(SceneFileIdentity top, const std::string& scenePath,
+                                      const LoadOptions& load, const Scene& scene);
 // How many times this process has read them (kiln render-frames reports it beside its loads).
 uint64_t sceneChecksumCount();
 
@@ -55,6 +60,10 @@ Fingerprint checkpointFingerprint(const RenderJob& job, const SceneFileIdentity&
                                   const LoadOptions& load);
 // The same, the files read now.
 Fingerprint checkpointFingerprint(const RenderJob& job, const std::string& scenePath,
+                                  const LoadOptions& load);
+// Its fields that the options and the top files (topFileIdentity) decide alone, in its order: a
+// resume is checked against them before the scene is loaded (checkResumeBeforeLoad).
+Fingerprint fingerprintBeforeLoad(const RenderJobOptions& options, const SceneFileIdentity& files,
                                   const LoadOptions& load);
 
 // "" when equal, else one phrase naming the first difference ("max_depth is 5 in X, 8 here").

@@ -1,17 +1,23 @@
 #include "renderer/long_render.h"
 
+#include <algorithm>
 #include <filesystem>
 
 namespace kiln {
 namespace {
 
-void checkResumable(const CheckpointInfo& saved, const RenderJob& job,
-                    const LongRenderOptions& options) {
-    const std::string& path = options.checkpointPath;
+// The checkpoint at path against a render of these settings and this fingerprint (whole, or the
+// fields fingerprintBeforeLoad has: the saved one's other fields are then not compared).
+void checkResumable(const CheckpointInfo& saved, const std::string& path, const RenderSettings& s,
+                    const Fingerprint& fingerprint, bool whole) {
     std::string name = std::filesystem::path(path).filename().string();
-    std::string diff = fingerprintDifference(saved.fingerprint, options.fingerprint, name);
+    Fingerprint compared;
+    for (const auto& field : saved.fingerprint)
+        if (whole || std::any_of(fingerprint.begin(), fingerprint.end(),
+                                 [&](const auto& f) { return f.first == field.first; }))
+            compared.push_back(field);
+    std::string diff = fingerprintDifference(compared, fingerprint, name);
     if (!diff.empty()) throw CheckpointError(path + ": belongs to another render: " + diff);
-    const RenderSettings& s = job.options().settings;
     CheckpointInfo here;
     here.fullWidth = s.width, here.fullHeight = s.height;
     here.originX = s.filmOriginX(), here.originY = s.filmOriginY();
@@ -62,8 +68,15 @@ Film resumeFilm(const RenderJob& job, const LongRenderOptions& options, Checkpoi
     const std::string& path = options.checkpointPath;
     if (!options.resume || path.empty() || !std::filesystem::exists(path)) return Film(0, 0);
     previous = readCheckpointInfo(path);
-    checkResumable(previous, job, options);
+    checkResumable(previous, path, job.options().settings, options.fingerprint, true);
     return readCheckpoint(path, previous);
+}
+
+void checkResumeBeforeLoad(const std::string& checkpointPath, const RenderSettings& settings,
+                           const Fingerprint& beforeLoad) {
+    if (std::filesystem::exists(checkpointPath))
+        checkResumable(readCheckpointInfo(checkpointPath), checkpointPath, settings, beforeLoad,
+                       false);
 }
 
 LongRenderResult renderLongFilm(const RenderJob& job, const LongRenderOptions& options) {

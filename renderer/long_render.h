@@ -55,6 +55,13 @@ LongRenderResult renderLongFilm(const RenderJob& job, const LongRenderOptions& o
 // Throws std::runtime_error when it cannot be written (the previous checkpoint stays).
 void writeFinalCheckpoint(const LongRenderOptions& options, LongRenderResult& result);
 
+// A resume's checks that need no scene, before it is loaded: the checkpoint's header (when there
+// is one) against the fields of fingerprintBeforeLoad, and its region and samples against
+// settings. A refused resume then costs no load, build or probe (ground rule: exit 2 before
+// expensive work); resumeFilm checks the whole fingerprint after. Throws CheckpointError.
+void checkResumeBeforeLoad(const std::string& checkpointPath, const RenderSettings& settings,
+                           const Fingerprint& beforeLoad);
+
 // The film a resume starts from, checked against the job; nullopt-like empty film (0 x 0) when
 // there is no checkpoint. Throws CheckpointError naming what differs.
 Film resumeFilm(const RenderJob& job, const LongRenderOptions& options, CheckpointInfo& previous);

@@ -267,6 +267,51 @@ TEST(Checkpoint, ResumeWithoutACheckpointStartsAndAForeignOneIsAOneLineExit2) {
     }
 }
 
+// A resume refused for what the command line and the scene file decide (another seed, fewer
+// samples, an edit of the scene file, a damaged checkpoint) is refused before the scene is loaded:
+// no load stage, where a 100M-triangle scene's load, build and probe take a minute. What only the
+// loaded scene decides (an edit of a mesh the scene file places) is refused after the load.
+TEST(Checkpoint, ARefusalTheCommandLineDecidesComesBeforeTheLoad) {
+    auto dir = test::scratchDir();
+    const fs::path kiln = dir / "scene.kiln", part = dir / "part.obj";
+    const std::string quad = "v -0.5 0.1 -0.5\nv 0.5 0.1 -0.5\nv 0.5 0.1 0.5\nf 1 2 3\n";
+    const std::string sceneText = "<kiln-scene><include file=\"" + test::spheres() +
+                                  "\"/><mesh file=\"part.obj\"/></kiln-scene>\n";
+    std::ofstream(part) << quad;
+    std::ofstream(kiln) << sceneText;
+    std::string out = (dir / "k").string(), err = (dir / "err.txt").string();
+    auto args = [&](const char* spp, std::vector<std::string> extra = {}) {
+        return plus({"render", kiln.string(), "-r", "16", "12", "-s", spp, "-o", out, "--resume",
+                     "--progress", "json"},
+                    extra);
+    };
+    auto loaded = [&] {
+        return test::readText(err).find("\"stage\":\"load\"") != std::string::npos;
+    };
+    ASSERT_EQ(test::runKilnProcess(args("2"), -1, 0, err), 0) << test::readText(err);
+    ASSERT_TRUE(loaded()) << test::readText(err);  // the control: a render that loads says so
+    auto refused = [&](const std::vector<std::string>& a, const char* why, bool afterLoad) {
+        EXPECT_EQ(test::runKilnProcess(a, -1, 0, err), 2) << why;
+        std::string text = test::readText(err);
+        EXPECT_NE(text.find(why), std::string::npos) << text;
+        EXPECT_EQ(loaded(), afterLoad) << why << ": " << text;
+    };
+    refused(args("2", {"--seed", "5"}), "seed is '0'", false);
+    refused(args("2", {"--microfacet", "ggx"}), "microfacet is", false);
+    refused(args("1"), "must not shrink", false);
+    refused(args("2", {"-r", "16", "8"}), "resolution is '16x12'", false);
+    std::ofstream(kiln) << sceneText << "<!-- edited -->\n";
+    refused(args("2"), "scene is", false);
+    std::ofstream(kiln) << sceneText;
+    std::ofstream(part) << quad << "v 0 0 0\n";
+    refused(args("2"), "part.obj", true);
+    std::ofstream(part) << quad;
+    EXPECT_EQ(test::runKilnProcess(args("4"), -1, 0, err), 0) << test::readText(err);
+    const std::string bytes = test::readText(out + ".ckpt");
+    std::ofstream(out + ".ckpt", std::ios::binary) << bytes.substr(0, 30);
+    refused(args("4"), "truncated", false);
+}
+
 // A .kiln scene's other files (a mesh it places, the .mtl Assimp reads beside that OBJ, a texture,
 // the --material-override file) are part of the fingerprint: a resume after an edit of one is
 // refused, naming it, not blended into the film.

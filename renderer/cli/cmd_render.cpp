@@ -357,8 +357,9 @@ struct LoadedScene {
     Camera camera;  // as loaded, before any render's camera options
     std::unique_ptr<Accelerator> accel;
     // The scene's files as a checkpoint fingerprint names them, read at the first render with
-    // checkpoints: every render of this load shares them (the data rendered is this load's).
-    std::optional<SceneFileIdentity> files;
+    // checkpoints: every render of this load shares them (the data rendered is this load's). The
+    // scene file and --env map (top) are read before the load when a resume is checked then.
+    std::optional<SceneFileIdentity> top, files;
 
     bool holdsScene(const std::string& scenePath, const RenderCommand& c) const {
         return scene && scenePath == path && c.load == load;
@@ -368,16 +369,42 @@ struct LoadedScene {
         return accel && holdsScene(scenePath, c) && c.accel == choice &&
                choice.kind != AcceleratorKind::BruteForce;
     }
-    void clear() {  // the accelerator before the scene it points into
-        accel.reset();
+    // Forgets the scene held for the one this file and these options will load.
+    void expect(const std::string& scenePath, const LoadOptions& options) {
+        accel.reset();  // the accelerator before the scene it points into
         scene.reset();
+        top.reset();
         files.reset();
+        path = scenePath, load = options;
+    }
+    const SceneFileIdentity& topFiles() {
+        if (!top) top = topFileIdentity(path, load);
+        return *top;
     }
     const SceneFileIdentity& fileIdentity() {
-        if (!files) files = sceneFileIdentity(path, load, *scene);
+        if (!files) files = withInputIdentities(topFiles(), path, load, *scene);
         return *files;
     }
 };
+
+// --resume against a checkpoint of another scene file or other options is refused here, before
+// the load, the build and the probe (at 100M triangles, a minute); what only the loaded scene
+// decides (the camera, the plan, the other files) is checked after (resumeFilm).
+void checkResumeBeforeLoad(const RenderCommand& c, const RenderJobOptions& options,
+                           const OutputPaths& out, LoadedScene& loaded) {
+    if (!c.resume || !fs::exists(out.checkpoint)) return;
+    try {
+        loaded.topFiles();
+    } catch (const std::runtime_error&) {
+        return;  // an unreadable scene or map: the load names it
+    }
+    try {
+        checkResumeBeforeLoad(out.checkpoint, options.settings,
+                              fingerprintBeforeLoad(options, loaded.topFiles(), c.load));
+    } catch (const CheckpointError& e) {
+        throw UsageError(e.what());
+    }
+}
 
 // kiln render's steps for one command line (SCENE and options): the checks, the scene and its
 // accelerator (those `loaded` holds when it holds them for this render), the render and its
@@ -412,16 +439,18 @@ int renderFrame(const std::vector<std::string>& args, LoadedScene& loaded,
     c.accel = c.accel.withThreads(c.job.job.settings.threads);
     const bool sceneReused = loaded.holdsScene(scenePath, c);
     const bool reused = loaded.holdsAccelerator(scenePath, c);
+    if (!sceneReused) loaded.expect(scenePath, c.load);
+    // Not for a debug sample, which writes no checkpoint.
+    const bool debugSample = c.debugX >= 0 || c.debugSample >= 0;
+    if (!debugSample) checkResumeBeforeLoad(c, jobOptions, out, loaded);
     double loadTime = 0, buildTime = 0;
     if (!sceneReused) {
-        loaded.clear();
         auto t0 = std::chrono::steady_clock::now();
         loaded.scene = std::make_unique<Scene>([&] {
             StageProgress stage("load");
             return loadScene(scenePath, c.load);
         }());
         loadTime = seconds(t0);
-        loaded.path = scenePath, loaded.load = c.load;
         loaded.camera = loaded.scene->camera;
         for (const std::string& w : loaded.scene->warnings) logWarning("{}: {}", scenePath, w);
     }
@@ -438,9 +467,7 @@ int renderFrame(const std::vector<std::string>& args, LoadedScene& loaded,
         buildTime = seconds(t1);
         loaded.choice = c.accel;
     }
-    // Read here, once per load, so the line below counts this render's read (not for a debug
-    // sample, which writes no checkpoint).
-    const bool debugSample = c.debugX >= 0 || c.debugSample >= 0;
+    // Read here, once per load, so the line below counts this render's read.
     const SceneFileIdentity* files =
         c.checkpoints() && !debugSample ? &loaded.fileIdentity() : nullptr;
     if (++rendersInProcess() > 1)

@@ -57,7 +57,9 @@ std::string vec(const Vec3& v) { return number(v.x) + " " + number(v.y) + " " + 
 // Name, size and CRC-32 of a file's bytes: a scene edited since the checkpoint is another scene.
 std::string fileIdentity(const std::string& path, const std::string& name = std::string()) {
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw std::runtime_error(path + ": cannot read for the checkpoint fingerprint");
+    // A folder opens and reads as 0 bytes: its "identity" would pass for an empty scene's.
+    if (!in || !std::filesystem::is_regular_file(path))
+        throw std::runtime_error(path + ": cannot read for the checkpoint fingerprint");
     uLong crc = crc32(0, nullptr, 0);
     uint64_t size = 0;
     std::vector<char> chunk(1 << 20);
@@ -345,7 +347,8 @@ Fingerprint fingerprintOf(const RenderJobOptions& options, const RenderJob* job,
     putJob("plan", [](const RenderJob& j) { return j.plan().compact(); });
     put("max_depth", std::to_string(p.maxDepth));
     // Its default is the plan's choice (resolvedLightSamples).
-    putJob("light_samples", [&p](const RenderJob&) { return std::to_string(p.lightSamples); });
+    putJob("light_samples",
+           [](const RenderJob& j) { return std::to_string(j.options().path.lightSamples); });
     put("sampling", toString(p.sampling));
     put("mis_heuristic", toString(p.heuristic));
     put("roulette", std::string(toString(p.roulette)) + " " + number(p.fixedContinuation) + " " +

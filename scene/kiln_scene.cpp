@@ -398,6 +398,20 @@ Camera::FovAxis fovAxis(const std::string& path, pugi::xml_node n) {
         "<camera> fov_axis must be horizontal, vertical, diagonal or narrow, not '" + axis + "'");
 }
 
+// An <override> child's form (checkedPart): one of material="NAME" (a material of this file) or
+// spec="...".
+void checkOverrideForm(const std::string& path, pugi::xml_node n,
+                       const std::map<std::string, uint32_t>& materials) {
+    pugi::xml_node o = n.child("override");
+    if (!o) return;
+    checkKnown(path, o, {"material", "spec"});
+    if (bool(o.attribute("material")) == bool(o.attribute("spec")))
+        throw SceneError(path, "<override> needs one of material=\"NAME\" or spec=\"...\"");
+    if (o.attribute("material") && !materials.count(o.attribute("material").as_string()))
+        throw SceneError(path, std::string("<override> names unknown material '") +
+                                   o.attribute("material").as_string() + "'");
+}
+
 // <override material="NAME"/> (a material of this file) or <override spec="clay"/> (as
 // --material-override): replaces every material of the part that does not emit.
 void applyOverride(const std::string& path, pugi::xml_node n,
@@ -405,9 +419,6 @@ void applyOverride(const std::string& path, pugi::xml_node n,
                    Scene& part) {
     pugi::xml_node o = n.child("override");
     if (!o) return;
-    checkKnown(path, o, {"material", "spec"});
-    if (bool(o.attribute("material")) == bool(o.attribute("spec")))
-        throw SceneError(path, "<override> needs one of material=\"NAME\" or spec=\"...\"");
     if (o.attribute("spec")) {
         // A file named by the spec is relative to this .kiln, as every path in it.
         std::string spec = o.attribute("spec").as_string();
@@ -417,11 +428,8 @@ void applyOverride(const std::string& path, pugi::xml_node n,
         overrideMaterials(part, spec);
         return;
     }
-    auto it = materials.find(o.attribute("material").as_string());
-    if (it == materials.end())
-        throw SceneError(path, std::string("<override> names unknown material '") +
-                                   o.attribute("material").as_string() + "'");
-    overrideMaterials(part, scene.materials[it->second], scene.textureSources);
+    const uint32_t material = materials.at(o.attribute("material").as_string());  // checked
+    overrideMaterials(part, scene.materials[material], scene.textureSources);
 }
 
 void readCamera(const std::string& path, pugi::xml_node n, Scene& scene) {
@@ -480,11 +488,28 @@ int interiorMedium(const std::string& path, pugi::xml_node n,
     return it->second;
 }
 
-// <include>, <mesh> or <instances>: the referenced file read as a part, placed, merged.
-void readPart(const std::string& path, pugi::xml_node n,
-              const std::map<std::string, uint32_t>& materials,
-              const std::map<std::string, int>& media, Scene& scene) {
-    std::string tag = n.name();
+// What an <include>, <mesh> or <instances> element asks for, checked before any file is read.
+struct PartSpec {
+    std::string tag, file, source;  // source: the file's path from the working directory
+    int override = -1;              // a material of this file for every one of the part's
+    int interior = -1;
+    std::array<int, 3> grid{};
+    double spacing = 0;
+};
+
+// The "<mesh file=...>: " prefix of a part's errors: the user edits the .kiln that asked for it.
+SceneError partError(const std::string& path, const PartSpec& spec, const std::string& what) {
+    return SceneError(path, "<" + spec.tag + " file=\"" + spec.file + "\">: " + what);
+}
+
+// Its attributes, names, grid, placement and override checked, and its file there: a mistake
+// anywhere in the file is refused before a 100M-triangle part is imported.
+PartSpec checkedPart(const std::string& path, pugi::xml_node n,
+                     const std::map<std::string, uint32_t>& materials,
+                     const std::map<std::string, int>& media) {
+    PartSpec spec;
+    spec.tag = n.name();
+    const std::string& tag = spec.tag;
     if (tag == "include")
         checkKnown(path, n, {"file"}, {"override"});
     else if (tag == "mesh")
@@ -493,34 +518,45 @@ void readPart(const std::string& path, pugi::xml_node n,
     else
         checkKnown(path, n, {"file", "material", "grid", "spacing", "scale", "translate"},
                    {"fit", "matrix", "override"});
-    std::string file = n.attribute("file").as_string();
-    if (file.empty()) throw SceneError(path, "<" + tag + "> needs a file attribute");
-    int override = -1;
+    spec.file = n.attribute("file").as_string();
+    if (spec.file.empty()) throw SceneError(path, "<" + tag + "> needs a file attribute");
     if (n.attribute("material")) {
         auto it = materials.find(n.attribute("material").as_string());
         if (it == materials.end())
             throw SceneError(path, "<" + tag + "> names unknown material '" +
                                        n.attribute("material").as_string() + "'");
-        override = int(it->second);
+        spec.override = int(it->second);
     }
-    std::array<int, 3> grid{};
-    double spacing = 0;
     if (tag == "instances") {
-        grid = gridCounts(path, n);
-        spacing = numbers(path, n, "spacing", 1)[0];
+        spec.grid = gridCounts(path, n);
+        spec.spacing = numbers(path, n, "spacing", 1)[0];
     }
+    spec.interior = interiorMedium(path, n, media);
+    if (tag != "include") placement(path, n, Bounds3T<double>(Vec3d(0), Vec3d(1)));  // its syntax
+    checkOverrideForm(path, n, materials);
+    spec.source = (fs::path(path).parent_path() / spec.file).string();
+    if (std::error_code ec; !fs::exists(spec.source, ec))
+        throw partError(path, spec, SceneError(spec.source, "no such file").what());
+    return spec;
+}
+
+// <include>, <mesh> or <instances>: the referenced file read as a part, placed, merged.
+void readPart(const std::string& path, pugi::xml_node n, const PartSpec& spec,
+              const std::map<std::string, uint32_t>& materials, Scene& scene) {
+    const std::string& tag = spec.tag;
+    const int override = spec.override, interior = spec.interior;
+    const std::array<int, 3>& grid = spec.grid;
+    const double spacing = spec.spacing;
     Scene part;
-    part.sourcePath = (fs::path(path).parent_path() / file).string();
+    part.sourcePath = spec.source;
     try {
         importFile(part.sourcePath, part);
     } catch (const SceneError& e) {
-        // Name the .kiln that asked for the file: the user edits that one.
-        throw SceneError(path, "<" + tag + " file=\"" + file + "\">: " + e.what());
+        throw partError(path, spec, e.what());
     }
     applyOverride(path, n, materials, scene, part);  // (a spec's file joins part.inputFiles)
     scene.inputFiles.push_back(part.sourcePath);
     scene.inputFiles.insert(scene.inputFiles.end(), part.inputFiles.begin(), part.inputFiles.end());
-    const int interior = interiorMedium(path, n, media);
     if (tag == "instances") {
         Mat4 fit = placement(path, n, meshBounds(part));
         std::vector<Mat4> placements;
@@ -577,11 +613,18 @@ void readKilnScene(const std::string& path, Scene& scene) {
         media[m.name] = int(scene.media.size());
         scene.media.push_back(std::move(m));
     }
+    // Every element checked before the first part is imported (the camera and lights on a scratch
+    // scene: they are stored against the origin the geometry fixes).
+    std::vector<std::pair<pugi::xml_node, PartSpec>> parts;
     for (pugi::xml_node n : root.children()) {
         std::string tag = n.name();
         if (tag == "include" || tag == "mesh" || tag == "instances")
-            readPart(path, n, materials, media, scene);
+            parts.emplace_back(n, checkedPart(path, n, materials, media));
     }
+    Scene scratch;
+    for (pugi::xml_node n : root.children("camera")) readCamera(path, n, scratch);
+    for (pugi::xml_node n : root.children("light")) readLight(path, n, scratch);
+    for (const auto& [n, spec] : parts) readPart(path, n, spec, materials, scene);
     for (pugi::xml_node n : root.children("camera")) readCamera(path, n, scene);
     for (pugi::xml_node n : root.children("light")) readLight(path, n, scene);
 }

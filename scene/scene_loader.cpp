@@ -260,6 +260,25 @@ void warnFloatResolution(Scene& scene) {
     }
 }
 
+// The --env map's light, read before the scene (it needs nothing of it): a missing or malformed
+// map is refused before a 100M-triangle import, not a minute after.
+std::optional<Light> environmentLight(const LoadOptions& options,
+                                      std::vector<std::string>& warnings) {
+    if (options.environmentMap.empty()) return std::nullopt;
+    if (!std::filesystem::exists(options.environmentMap))
+        throw SceneError(options.environmentMap, "no such environment map");
+    Light env;
+    env.environmentImage = loadEnvironmentMap(options.environmentMap, warnings);
+    env.name = "environment";
+    env.kind = LightKind::Environment;
+    env.environmentPath = options.environmentMap;
+    env.environmentScale = options.environmentScale;
+    env.environmentRotationDeg = options.environmentRotationDeg;
+    env.radiance = Color(options.environmentScale);
+    env.environmentBilinear = true;
+    return env;
+}
+
 std::atomic<uint64_t>& loadCounter() {
     static std::atomic<uint64_t> count{0};
     return count;
@@ -274,8 +293,9 @@ Scene loadScene(const std::string& path, const LoadOptions& options) {
     auto start = std::chrono::steady_clock::now();
     Scene scene;
     scene.sourcePath = path;
-    // Checked before the (maybe long) import: a bad spec is a quick one-line error.
+    // Checked before the (maybe long) import: a bad spec or map is a quick one-line error.
     if (!options.materialOverride.empty()) parseMaterialOverride(options.materialOverride);
+    const std::optional<Light> environment = environmentLight(options, scene.warnings);
     importOrRefuse(path, scene);
     std::string ext = lowerExtension(path);
     if (!options.materialOverride.empty()) overrideMaterials(scene, options.materialOverride);
@@ -300,20 +320,7 @@ Scene loadScene(const std::string& path, const LoadOptions& options) {
     if (!options.emissiveMeshLights)
         std::erase_if(scene.lights,
                       [](const Light& l) { return l.kind == LightKind::MeshEmitter; });
-    if (!options.environmentMap.empty()) {
-        if (!std::filesystem::exists(options.environmentMap))
-            throw SceneError(options.environmentMap, "no such environment map");
-        Light env;
-        env.environmentImage = loadEnvironmentMap(options.environmentMap, scene.warnings);
-        env.name = "environment";
-        env.kind = LightKind::Environment;
-        env.environmentPath = options.environmentMap;
-        env.environmentScale = options.environmentScale;
-        env.environmentRotationDeg = options.environmentRotationDeg;
-        env.radiance = Color(options.environmentScale);
-        env.environmentBilinear = true;
-        scene.lights.push_back(env);
-    }
+    if (environment) scene.lights.push_back(*environment);
     openTextures(scene, options.textureCacheMb);
     if (!hasLight && options.environmentMap.empty()) {
         // Bare meshes expect the default rig; a scene file that forgot its lights gets a warning.

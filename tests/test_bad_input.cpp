@@ -182,6 +182,25 @@ TEST(BadInput, UnreadableEnvironmentMap) {
     }
 }
 
+// The --env map is read before the scene's import: a malformed map is refused first, not after a
+// 100M-triangle import. The scene here is malformed too, so the error tells which was read first.
+TEST(BadInput, AMalformedEnvironmentMapIsRefusedBeforeTheImport) {
+    auto dir = test::scratchDir();
+    const std::string mesh =
+        test::writeFile(dir / "broken.ply", "ply\nformat ascii 1.0\nend_header\n");
+    LoadOptions o;
+    EXPECT_THROW(loadScene(mesh, o), SceneError);  // the control: the scene alone is refused
+    o.environmentMap = test::writeFile(dir / "sky.exr", "not an image at all");
+    try {
+        loadScene(mesh, o);
+        FAIL();
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("sky.exr: cannot read environment map"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
 // A garbled COLLADA count or index list is refused by kiln's XML pass before Assimp (which
 // dereferences null or allocates without bound on them) ever sees it.
 TEST(BadInput, GarbledColladaCountsNeverReachAssimp) {
@@ -241,33 +260,47 @@ TEST(BadInput, GltfIndexOutOfRange) {
 TEST(BadInput, KilnSceneMistakesAreErrors) {
     auto dir = test::scratchDir();
     test::writeFile(dir / "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-    for (auto [body, what] : {
-             std::pair{R"(<mesh file="tri.obj" translat="1 0 0"/>)",
-                       "unknown attribute 'translat'"},
-             std::pair{R"(<mesh file="tri.obj"><fitt center="0 0 0" size="1"/></mesh>)",
-                       "unknown element <fitt>"},
-             std::pair{
-                 R"(<mesh file="tri.obj"/><camera position="0 0 5" look-at="0 0 0" fov="0"/>)",
-                 "fov must be between 0 and 180"},
-             std::pair{
-                 R"(<mesh file="tri.obj"/><camera position="0 0 5" look-at="0 0 0" fov="180"/>)",
-                 "fov must be between 0 and 180"},
-             std::pair{
-                 R"(<mesh file="tri.obj"/><camera position="0 0 5" look-at="0 0 0" fov="-30"/>)",
-                 "fov must be between 0 and 180"},
-             std::pair{
-                 R"(<mesh file="tri.obj"/><camera position="1 2 3" look-at="1 2 3" fov="40"/>)",
-                 "are the same point"},
-             std::pair{R"(<instances file="tri.obj" grid="100000 100000 100000" spacing="1"/>)",
-                       "would need about"},
-             std::pair{R"(<instances file="tri.obj" grid="2.5 1 1" spacing="1"/>)",
-                       "whole numbers"},
-             std::pair{R"(<mesh file="missing.ply"/>)", "missing.ply: no such file"},
-         }) {
-        std::string path =
-            test::writeFile(dir / "bad.kiln", std::string("<kiln-scene>") + body + "</kiln-scene>");
-        expectError(path, what);
-    }
+    // Each mistake again after a part whose import fails: every element is checked before the
+    // first part is imported, so the mistake is what is named (not a minute into a 100M-triangle
+    // import, which this broken part stands for).
+    test::writeFile(dir / "broken.ply", "ply\nformat ascii 1.0\nend_header\n");
+    expectError(test::writeFile(dir / "first.kiln",
+                                R"(<kiln-scene><mesh file="broken.ply"/></kiln-scene>)"),
+                "broken.ply");
+    for (const char* before : {"", R"(<mesh file="broken.ply"/>)"})
+        for (
+            auto [body, what] : {
+                std::pair{R"(<mesh file="tri.obj" translat="1 0 0"/>)",
+                          "unknown attribute 'translat'"},
+                std::pair{R"(<mesh file="tri.obj"><fitt center="0 0 0" size="1"/></mesh>)",
+                          "unknown element <fitt>"},
+                std::pair{
+                    R"(<mesh file="tri.obj"/><camera position="0 0 5" look-at="0 0 0" fov="0"/>)",
+                    "fov must be between 0 and 180"},
+                std::pair{
+                    R"(<mesh file="tri.obj"/><camera position="0 0 5" look-at="0 0 0" fov="180"/>)",
+                    "fov must be between 0 and 180"},
+                std::pair{
+                    R"(<mesh file="tri.obj"/><camera position="0 0 5" look-at="0 0 0" fov="-30"/>)",
+                    "fov must be between 0 and 180"},
+                std::pair{
+                    R"(<mesh file="tri.obj"/><camera position="1 2 3" look-at="1 2 3" fov="40"/>)",
+                    "are the same point"},
+                std::pair{R"(<instances file="tri.obj" grid="100000 100000 100000" spacing="1"/>)",
+                          "would need about"},
+                std::pair{R"(<instances file="tri.obj" grid="2.5 1 1" spacing="1"/>)",
+                          "whole numbers"},
+                std::pair{R"(<mesh file="missing.ply"/>)", "missing.ply: no such file"},
+                std::pair{R"(<light kind="spot" radiance="1 1 1"/>)", "unknown light kind 'spot'"},
+                std::pair{R"(<mesh file="tri.obj"><override material="nope"/></mesh>)",
+                          "unknown material 'nope'"},
+                std::pair{R"(<mesh file="tri.obj"><matrix values="1 0 0"/></mesh>)",
+                          "values needs 16 numbers"},
+            }) {
+            std::string path = test::writeFile(
+                dir / "bad.kiln", std::string("<kiln-scene>") + before + body + "</kiln-scene>");
+            expectError(path, what);
+        }
 }
 
 TEST(BadInput, KilnIncludeCycleIsAnError) {

@@ -310,6 +310,10 @@ TEST(Checkpoint, ARefusalTheCommandLineDecidesComesBeforeTheLoad) {
     const std::string bytes = test::readText(out + ".ckpt");
     std::ofstream(out + ".ckpt", std::ios::binary) << bytes.substr(0, 30);
     refused(args("4"), "truncated", false);
+    // A folder where the scene was is the load's own error, not a scene of 0 bytes that differs.
+    fs::rename(kiln, dir / "moved.kiln");
+    fs::create_directory(kiln);
+    refused(args("4"), "is a directory", true);
 }
 
 // A .kiln scene's other files (a mesh it places, the .mtl Assimp reads beside that OBJ, a texture,

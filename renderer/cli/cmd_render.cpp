@@ -390,17 +390,18 @@ struct LoadedScene {
 // --resume against a checkpoint of another scene file or other options is refused here, before
 // the load, the build and the probe (at 100M triangles, a minute); what only the loaded scene
 // decides (the camera, the plan, the other files) is checked after (resumeFilm).
-void checkResumeBeforeLoad(const RenderCommand& c, const RenderJobOptions& options,
-                           const OutputPaths& out, LoadedScene& loaded) {
+void refuseResumeBeforeLoad(const RenderCommand& c, const RenderJobOptions& options,
+                            const OutputPaths& out, LoadedScene& loaded) {
     if (!c.resume || !fs::exists(out.checkpoint)) return;
+    const SceneFileIdentity* files = nullptr;
     try {
-        loaded.topFiles();
+        files = &loaded.topFiles();
     } catch (const std::runtime_error&) {
-        return;  // an unreadable scene or map: the load names it
+        return;  // an unreadable scene or map, or a folder: the load names it
     }
     try {
-        checkResumeBeforeLoad(out.checkpoint, options.settings,
-                              fingerprintBeforeLoad(options, loaded.topFiles(), c.load));
+        kiln::checkResumeBeforeLoad(out.checkpoint, options.settings,
+                                    fingerprintBeforeLoad(options, *files, c.load));
     } catch (const CheckpointError& e) {
         throw UsageError(e.what());
     }
@@ -442,7 +443,7 @@ int renderFrame(const std::vector<std::string>& args, LoadedScene& loaded,
     if (!sceneReused) loaded.expect(scenePath, c.load);
     // Not for a debug sample, which writes no checkpoint.
     const bool debugSample = c.debugX >= 0 || c.debugSample >= 0;
-    if (!debugSample) checkResumeBeforeLoad(c, jobOptions, out, loaded);
+    if (!debugSample) refuseResumeBeforeLoad(c, jobOptions, out, loaded);
     double loadTime = 0, buildTime = 0;
     if (!sceneReused) {
         auto t0 = std::chrono::steady_clock::now();

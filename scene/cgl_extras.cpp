@@ -294,7 +294,12 @@ class Parser {
         sphereCentres_.push_back(world.point(Vec3d(0, 0, 0)));
         pugi::xml_node bind =
             inst.child("bind_material").child("technique_common").child("instance_material");
-        out_.sphereMaterialIds.push_back(urlTarget(bind.attribute("target")));
+        const std::string materialId = urlTarget(bind.attribute("target"));
+        // Here, before Assimp imports the file's meshes (the materials are parsed already).
+        if (!materialId.empty() && !out_.materialsById.count(materialId))
+            throw SceneError(file_,
+                             "sphere '" + s.name + "' binds unknown material '" + materialId + "'");
+        out_.sphereMaterialIds.push_back(materialId);
     }
 
     void addLight(pugi::xml_node inst, const Mat4& world) {

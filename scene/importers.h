@@ -94,11 +94,16 @@ std::string lowerExtension(const std::string& path);
 
 // Any supported file into `scene` (appending), without validation or completion (lights, framing).
 void importFile(const std::string& path, Scene& scene);
+// importFile's first checks (there, not a folder, readable, not empty): SceneError naming path.
+void checkSceneFileOpens(const std::string& path);
 
 // kiln's own scene description (.kiln, XML): includes other scene files, places meshes by path with
 // a transform or a fit to a box, instances a mesh on a grid, and sets materials, lights and the
 // camera.
 void readKilnScene(const std::string& path, Scene& scene);
+// Its every element checked, and those of the .kiln files it includes, importing nothing: a mistake
+// anywhere in a tree of .kiln files is refused before its first mesh is read.
+void checkKilnScene(const std::string& path);
 
 // Throws SceneError, before any allocation, when a mesh of these counts would not fit.
 void checkMemoryFor(const std::string& path, uint64_t vertices, uint64_t triangles);

@@ -344,13 +344,23 @@ Medium parseMedium(const std::string& file, pugi::xml_node n) {
 thread_local std::vector<std::string> includeStack;
 constexpr size_t kMaxIncludeDepth = 16;
 
+std::string canonicalName(const std::string& path) {
+    std::error_code ec;
+    return fs::weakly_canonical(path, ec).string();
+}
+
+// An include of a file being read: a cycle.
+void checkNotIncluding(const std::string& path) {
+    if (std::find(includeStack.begin(), includeStack.end(), canonicalName(path)) !=
+        includeStack.end())
+        throw SceneError(path, "includes itself (include cycle)");
+}
+
 class IncludeGuard {
   public:
     explicit IncludeGuard(const std::string& path) {
-        std::error_code ec;
-        std::string canonical = fs::weakly_canonical(path, ec).string();
-        if (std::find(includeStack.begin(), includeStack.end(), canonical) != includeStack.end())
-            throw SceneError(path, "includes itself (include cycle)");
+        checkNotIncluding(path);
+        std::string canonical = canonicalName(path);
         if (includeStack.size() >= kMaxIncludeDepth)
             throw SceneError(
                 path, "includes nested deeper than " + std::to_string(kMaxIncludeDepth) + " files");
@@ -398,6 +408,16 @@ Camera::FovAxis fovAxis(const std::string& path, pugi::xml_node n) {
         "<camera> fov_axis must be horizontal, vertical, diagonal or narrow, not '" + axis + "'");
 }
 
+// An <override spec="...">'s spec, as --material-override takes it: a file it names is relative to
+// this .kiln, as every path in it.
+std::string overrideSpec(const std::string& path, pugi::xml_node o) {
+    std::string spec = o.attribute("spec").as_string();
+    if (spec != "clay" && spec != kDiffuseOverride && spec.rfind("lambertian:", 0) != 0 &&
+        fs::path(spec).is_relative())
+        spec = (fs::path(path).parent_path() / spec).string();
+    return spec;
+}
+
 // An <override> child's form (checkedPart): one of material="NAME" (a material of this file) or
 // spec="...".
 void checkOverrideForm(const std::string& path, pugi::xml_node n,
@@ -410,6 +430,11 @@ void checkOverrideForm(const std::string& path, pugi::xml_node n,
     if (o.attribute("material") && !materials.count(o.attribute("material").as_string()))
         throw SceneError(path, std::string("<override> names unknown material '") +
                                    o.attribute("material").as_string() + "'");
+    if (o.attribute("spec")) try {
+            parseMaterialOverride(overrideSpec(path, o));
+        } catch (const SceneError& e) {
+            throw SceneError(path, std::string("<override> spec: ") + e.what());  // the .kiln
+        }
 }
 
 // <override material="NAME"/> (a material of this file) or <override spec="clay"/> (as
@@ -420,12 +445,7 @@ void applyOverride(const std::string& path, pugi::xml_node n,
     pugi::xml_node o = n.child("override");
     if (!o) return;
     if (o.attribute("spec")) {
-        // A file named by the spec is relative to this .kiln, as every path in it.
-        std::string spec = o.attribute("spec").as_string();
-        if (spec != "clay" && spec != kDiffuseOverride && spec.rfind("lambertian:", 0) != 0 &&
-            fs::path(spec).is_relative())
-            spec = (fs::path(path).parent_path() / spec).string();
-        overrideMaterials(part, spec);
+        overrideMaterials(part, overrideSpec(path, o));
         return;
     }
     const uint32_t material = materials.at(o.attribute("material").as_string());  // checked
@@ -535,8 +555,13 @@ PartSpec checkedPart(const std::string& path, pugi::xml_node n,
     if (tag != "include") placement(path, n, Bounds3T<double>(Vec3d(0), Vec3d(1)));  // its syntax
     checkOverrideForm(path, n, materials);
     spec.source = (fs::path(path).parent_path() / spec.file).string();
-    if (std::error_code ec; !fs::exists(spec.source, ec))
-        throw partError(path, spec, SceneError(spec.source, "no such file").what());
+    try {
+        checkSceneFileOpens(spec.source);
+        checkNotIncluding(spec.source);
+        if (lowerExtension(spec.source) == ".kiln") checkKilnScene(spec.source);
+    } catch (const SceneError& e) {
+        throw partError(path, spec, e.what());
+    }
     return spec;
 }
 
@@ -583,9 +608,10 @@ void readPart(const std::string& path, pugi::xml_node n, const PartSpec& spec,
 
 }  // namespace
 
-void readKilnScene(const std::string& path, Scene& scene) {
-    IncludeGuard guard(path);
-    pugi::xml_document doc;
+namespace {
+
+// A .kiln file parsed, its root element and the names of its children checked.
+pugi::xml_node openKilnFile(const std::string& path, pugi::xml_document& doc) {
     pugi::xml_parse_result ok = doc.load_file(path.c_str());
     if (!ok)
         throw SceneError(path, std::string("malformed XML at byte ") + std::to_string(ok.offset) +
@@ -599,22 +625,31 @@ void readKilnScene(const std::string& path, Scene& scene) {
             tag != "medium")
             throw SceneError(path, "unknown element <" + tag + ">");
     }
-    // Materials, then geometry, then camera and lights: the geometry fixes the scene's origin,
-    // so positions given in the file are stored against it whatever the order of the elements.
-    std::map<std::string, uint32_t> materials;
+    return root;
+}
+
+// The file's materials and media into scene, by name.
+void readDefinitions(const std::string& path, pugi::xml_node root, Scene& scene,
+                     std::map<std::string, uint32_t>& materials,
+                     std::map<std::string, int>& media) {
     for (pugi::xml_node n : root.children("material")) {
         materials[n.attribute("name").as_string()] = uint32_t(scene.materials.size());
         scene.materials.push_back(parseMaterial(path, n, scene));
     }
-    std::map<std::string, int> media;
     for (pugi::xml_node n : root.children("medium")) {
         Medium m = parseMedium(path, n);
         if (media.count(m.name)) throw SceneError(path, "<medium> " + m.name + " named twice");
         media[m.name] = int(scene.media.size());
         scene.media.push_back(std::move(m));
     }
-    // Every element checked before the first part is imported (the camera and lights on a scratch
-    // scene: they are stored against the origin the geometry fixes).
+}
+
+// Every element after the definitions checked before the first part is imported: the parts
+// (checkedPart, an included .kiln's whole tree too), the camera and lights on a scratch scene (they
+// are stored against the origin the geometry fixes).
+std::vector<std::pair<pugi::xml_node, PartSpec>> checkedElements(
+    const std::string& path, pugi::xml_node root, const std::map<std::string, uint32_t>& materials,
+    const std::map<std::string, int>& media) {
     std::vector<std::pair<pugi::xml_node, PartSpec>> parts;
     for (pugi::xml_node n : root.children()) {
         std::string tag = n.name();
@@ -624,7 +659,33 @@ void readKilnScene(const std::string& path, Scene& scene) {
     Scene scratch;
     for (pugi::xml_node n : root.children("camera")) readCamera(path, n, scratch);
     for (pugi::xml_node n : root.children("light")) readLight(path, n, scratch);
-    for (const auto& [n, spec] : parts) readPart(path, n, spec, materials, scene);
+    return parts;
+}
+
+}  // namespace
+
+void checkKilnScene(const std::string& path) {
+    IncludeGuard guard(path);
+    pugi::xml_document doc;
+    pugi::xml_node root = openKilnFile(path, doc);
+    Scene scratch;
+    std::map<std::string, uint32_t> materials;
+    std::map<std::string, int> media;
+    readDefinitions(path, root, scratch, materials, media);
+    checkedElements(path, root, materials, media);
+}
+
+void readKilnScene(const std::string& path, Scene& scene) {
+    IncludeGuard guard(path);
+    pugi::xml_document doc;
+    pugi::xml_node root = openKilnFile(path, doc);
+    // Materials, then geometry, then camera and lights: the geometry fixes the scene's origin,
+    // so positions given in the file are stored against it whatever the order of the elements.
+    std::map<std::string, uint32_t> materials;
+    std::map<std::string, int> media;
+    readDefinitions(path, root, scene, materials, media);
+    for (const auto& [n, spec] : checkedElements(path, root, materials, media))
+        readPart(path, n, spec, materials, scene);
     for (pugi::xml_node n : root.children("camera")) readCamera(path, n, scene);
     for (pugi::xml_node n : root.children("light")) readLight(path, n, scene);
 }

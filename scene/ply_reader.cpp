@@ -89,6 +89,27 @@ struct Element {
 
 enum class Format { Ascii, BinaryLE, BinaryBE };
 
+// What the header alone decides of the vertex element (there, with x, y and z, no more rows than
+// the file can hold), refused before any row is read: an element of 100M rows may come first.
+void checkVertexElement(const std::string& path, const std::vector<Element>& elements,
+                        size_t fileBytes, Format format) {
+    bool found = false;
+    for (const Element& e : elements) {
+        if (e.name != "vertex") continue;
+        found = true;
+        auto has = [&](const char* name) {
+            return std::any_of(e.props.begin(), e.props.end(),
+                               [&](const Property& p) { return p.name == name; });
+        };
+        if (!has("x") || !has("y") || !has("z"))
+            throw SceneError(path, "PLY vertex element lacks x, y or z");
+        if (e.count > (fileBytes / (format == Format::Ascii ? 6 : 12)) + 1)
+            throw SceneError(path, "PLY header declares " + std::to_string(e.count) +
+                                       " vertices, more than the file can hold");
+    }
+    if (!found) throw SceneError(path, "PLY has no vertex element");
+}
+
 // Reads values from the body, binary or ASCII, with bounds checks that name the file.
 class Cursor {
   public:
@@ -291,6 +312,7 @@ void readPly(const std::string& path, Scene& scene) {
         if (e.name == "face" || e.name == "tristrips") faces += e.count;
     }
     checkMemoryFor(path, vertices, faces);
+    checkVertexElement(path, elements, file.size(), format);
 
     TriangleMesh mesh;
     mesh.name = "ply";
@@ -327,13 +349,8 @@ void readPly(const std::string& path, Scene& scene) {
                 else if (n == "blue" || n == "diffuse_blue")
                     ib = int(i);
             }
-            if (ix < 0 || iy < 0 || iz < 0)
-                throw SceneError(path, "PLY vertex element lacks x, y or z");
             bool normals = inx >= 0 && iny >= 0 && inz >= 0, uvs = iu >= 0 && iv >= 0;
             bool colours = ir >= 0 && ig >= 0 && ib >= 0;
-            if (e.count > (file.size() / (format == Format::Ascii ? 6 : 12)) + 1)
-                throw SceneError(path, "PLY header declares " + std::to_string(e.count) +
-                                           " vertices, more than the file can hold");
             mesh.positions.resize(3 * e.count + 1);
             if (normals) mesh.normals.resize(3 * e.count);
             if (uvs) mesh.uvs.resize(2 * e.count);
@@ -486,7 +503,6 @@ void readPly(const std::string& path, Scene& scene) {
                 for (const Property& p : e.props) cur.skipProperty(p);
         }
     }
-    if (mesh.positions.empty()) throw SceneError(path, "PLY has no vertex element");
     mesh.finalizePadding();
     mesh.materialIds = {uint32_t(scene.materials.size())};
     scene.materials.push_back(Material{"ply-default"});

@@ -41,10 +41,7 @@ void applyColladaExtras(const ColladaExtras& extras, Scene& scene) {
         if (known != sphereMaterial.end()) {
             s.material = known->second;
         } else {
-            auto it = extras.materialsById.find(id);
-            if (!id.empty() && it == extras.materialsById.end())
-                throw SceneError(scene.sourcePath,
-                                 "sphere '" + s.name + "' binds unknown material '" + id + "'");
+            auto it = extras.materialsById.find(id);  // known (ColladaExtras' check)
             s.material = uint32_t(scene.materials.size());
             scene.materials.push_back(it == extras.materialsById.end() ? Material{"default"}
                                                                        : it->second);
@@ -135,13 +132,17 @@ void recenterScene(Scene& scene) {
     rebaseScene(scene, scene.origin + Vec3d(c));
 }
 
-void importFile(const std::string& path, Scene& scene) {
+void checkSceneFileOpens(const std::string& path) {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) throw SceneError(path, "no such file");
     if (std::filesystem::is_directory(path, ec))
         throw SceneError(path, "is a directory, not a scene file");
     if (!std::ifstream(path).good()) throw SceneError(path, "cannot read file (permission?)");
     if (std::filesystem::file_size(path, ec) == 0) throw SceneError(path, "file is empty");
+}
+
+void importFile(const std::string& path, Scene& scene) {
+    checkSceneFileOpens(path);
 
     std::string ext = lowerExtension(path);
     if (ext == ".ply") {

@@ -1,8 +1,11 @@
 // Bad input: a one-line SceneError naming the file and the problem, never a crash.
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <tuple>
 
 #include "renderer/geometry/camera.h"
+#include "scene/cgl_extras.h"
 #include "scene/scene_error.h"
 #include "scene/scene_info.h"
 #include "scene/scene_loader.h"
@@ -201,6 +204,44 @@ TEST(BadInput, AMalformedEnvironmentMapIsRefusedBeforeTheImport) {
     }
 }
 
+// What a PLY header alone decides is refused before any row is read: here a 100M-row element comes
+// first and the file holds none of its rows, so a reader that got to the vertices first would say
+// the file ends early (and on a real file, after reading them all).
+TEST(BadInput, PlyHeaderMistakesAreRefusedBeforeAnyRow) {
+    auto dir = test::scratchDir();
+    const std::string junk = "ply\nformat ascii 1.0\nelement junk 100000000\nproperty float a\n";
+    expectError(
+        test::writeFile(dir / "noz.ply", junk + "element vertex 3\nproperty float x\nproperty "
+                                                "float y\nend_header\n"),
+        "PLY vertex element lacks x, y or z");
+    expectError(test::writeFile(dir / "novertex.ply", junk + "end_header\n"),
+                "PLY has no vertex element");
+    expectError(test::writeFile(dir / "many.ply", junk + "element vertex 100000000\nproperty float "
+                                                         "x\nproperty float y\nproperty float "
+                                                         "z\nend_header\n"),
+                "more than the file can hold");
+}
+
+// A CGL sphere bound to a material the file lacks is refused by kiln's XML pass, which runs before
+// Assimp imports the file's meshes (it was found only after them).
+TEST(BadInput, ASphereBoundToAnUnknownMaterialIsRefusedBeforeAssimp) {
+    auto dir = test::scratchDir();
+    std::ifstream in(test::cs184("sky/CBspheres_lambertian.dae"));
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string from = R"(target="#refract")";
+    ASSERT_NE(text.find(from), std::string::npos);
+    text.replace(text.find(from), from.size(), R"(target="#nope")");
+    const std::string path = test::writeFile(dir / "sphere.dae", text);
+    const char* what = "sphere 'Sphere1' binds unknown material 'nope'";
+    try {
+        parseColladaExtras(path);
+        ADD_FAILURE() << "the XML pass let it through";
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+    expectError(path, what);
+}
+
 // A garbled COLLADA count or index list is refused by kiln's XML pass before Assimp (which
 // dereferences null or allocates without bound on them) ever sees it.
 TEST(BadInput, GarbledColladaCountsNeverReachAssimp) {
@@ -264,6 +305,10 @@ TEST(BadInput, KilnSceneMistakesAreErrors) {
     // first part is imported, so the mistake is what is named (not a minute into a 100M-triangle
     // import, which this broken part stands for).
     test::writeFile(dir / "broken.ply", "ply\nformat ascii 1.0\nend_header\n");
+    test::writeFile(dir / "empty.obj", "");
+    test::writeFile(dir / "nested.kiln",
+                    R"(<kiln-scene><mesh file="tri.obj"/><bogus/></kiln-scene>)");
+    std::filesystem::create_directories(dir / "adir");
     expectError(test::writeFile(dir / "first.kiln",
                                 R"(<kiln-scene><mesh file="broken.ply"/></kiln-scene>)"),
                 "broken.ply");
@@ -296,6 +341,13 @@ TEST(BadInput, KilnSceneMistakesAreErrors) {
                           "unknown material 'nope'"},
                 std::pair{R"(<mesh file="tri.obj"><matrix values="1 0 0"/></mesh>)",
                           "values needs 16 numbers"},
+                std::pair{R"(<mesh file="tri.obj"><override spec="claay"/></mesh>)",
+                          "claay: not a material override"},
+                std::pair{R"(<mesh file="adir"/>)", "adir: is a directory"},
+                std::pair{R"(<mesh file="empty.obj"/>)", "empty.obj: file is empty"},
+                std::pair{R"(<include file="bad.kiln"/>)", "include cycle"},
+                std::pair{R"(<include file="nested.kiln"/>)",
+                          "nested.kiln: unknown element <bogus>"},
             }) {
             std::string path = test::writeFile(
                 dir / "bad.kiln", std::string("<kiln-scene>") + before + body + "</kiln-scene>");

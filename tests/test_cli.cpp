@@ -237,6 +237,25 @@ TEST(Cli, SigintWritesThePartialImageAndExitsNonZero) {
 namespace kiln {
 namespace {
 
+// Flags the command line alone decides are refused before the scene is read: with a broken scene
+// the flag is what the error names (at 100M triangles the load, build and plan take a minute).
+TEST(Cli, FlagMistakesAreRefusedBeforeTheScene) {
+    auto dir = test::scratchDir();
+    const std::string broken =
+        test::writeFile(dir / "broken.ply", "ply\nformat ascii 1.0\nend_header\n");
+    EXPECT_NE(runKiln("render " + broken + " -q -o " + (dir / "x").string()).err.find("broken.ply"),
+              std::string::npos);  // the control: the scene alone is refused
+    for (auto [flags, what] : {
+             std::pair{"-r 64 48 --pixel 100 10 --sample 0", "--pixel is outside the 64x48 image"},
+             std::pair{"--position 0 0 5 --look-at 0 0 0 --up 0 0 1", "parallel to the view"},
+         }) {
+        CliRun r = runKiln("render " + broken + " -q -o " + (dir / "x").string() + " " + flags);
+        EXPECT_EQ(r.code, 2) << flags;
+        EXPECT_EQ(lines(r.err), 1) << r.err;
+        EXPECT_NE(r.err.find(what), std::string::npos) << r.err;
+    }
+}
+
 TEST(Cli, AnImageTooBigForMemoryIsRefusedBeforeLoading) {
     // 8000x6000 with the default AOVs under a 4 GiB limit: one line naming the size and what is
     // available, exit 2, no output file and no bad_alloc.

@@ -61,6 +61,14 @@ void CameraOptions::check() const {
                          std::to_string(turntable));
     if (position && lookAt && *position == *lookAt)
         throw UsageError("--position and --look-at are the same point");
+    // All three given, the view needs nothing of the scene: an up along it is refused before the
+    // load, with the words it would get after.
+    if (position && lookAt && up) try {
+            Camera scratch;
+            pointCamera(scratch, *position, *lookAt, *up);
+        } catch (const std::invalid_argument& e) {
+            throw UsageError(e.what());
+        }
 }
 
 void CameraOptions::apply(Scene& scene) const {

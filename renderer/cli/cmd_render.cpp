@@ -118,11 +118,7 @@ Json renderResult(const RenderCommand& c, const Scene& scene,
 }
 
 int printDebugSample(const RenderJob& job, const RenderCommand& c) {
-    const RenderSettings& s = job.options().settings;
     if (c.debugX < 0 || c.debugSample < 0) throw UsageError("--pixel and --sample go together");
-    if (c.debugX >= s.width || c.debugY >= s.height)
-        throw UsageError("--pixel is outside the " + std::to_string(s.width) + "x" +
-                         std::to_string(s.height) + " image");
     RayCounter counter;
     SampleRecord r = job.traceSample(c.debugX, c.debugY, c.debugSample, counter);
     std::printf("pixel %d %d sample %d: L = %.9g %.9g %.9g (%s), %llu rays\n", c.debugX, c.debugY,
@@ -341,6 +337,10 @@ RenderJobOptions checkedJobOptions(const RenderCommand& c) {
     c.camera.check();
     if ((c.debugX >= 0) != (c.debugSample >= 0))
         throw UsageError("--pixel and --sample go together");
+    const RenderSettings& s = jobOptions.settings;
+    if (c.debugX >= s.width || c.debugY >= s.height)
+        throw UsageError("--pixel is outside the " + std::to_string(s.width) + "x" +
+                         std::to_string(s.height) + " image");
     return jobOptions;
 }
 

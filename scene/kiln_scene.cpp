@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <map>
 #include <pugixml.hpp>
+#include <set>
 
 #include "renderer/core/memory.h"
 #include "scene/importers.h"
@@ -220,7 +221,7 @@ int textureAttribute(const std::string& file, pugi::xml_node n, const char* attr
     pugi::xml_attribute tex = n.attribute(attr);
     if (!tex) return -1;
     fs::path p = fs::path(file).parent_path() / tex.as_string();
-    if (!fs::is_regular_file(p))
+    if (std::error_code ec; !fs::is_regular_file(p, ec))
         throw SceneError(file, "<material> " + std::string(attr) + " " + p.string() + " not found");
     TextureSource source;
     source.name = p.lexically_normal().string();
@@ -342,6 +343,11 @@ Medium parseMedium(const std::string& file, pugi::xml_node n) {
 // The .kiln files being read, outermost first: an include cycle or runaway nesting is an error,
 // not a stack overflow.
 thread_local std::vector<std::string> includeStack;
+// True while an outermost .kiln read imports the parts of a tree it has checked whole.
+thread_local bool includesChecked = false;
+// The files that read checked, by canonical path and depth (the depth limit depends on it): a file
+// included many times in a tree is checked once there.
+thread_local std::set<std::pair<std::string, size_t>> checkedTrees;
 constexpr size_t kMaxIncludeDepth = 16;
 
 std::string canonicalName(const std::string& path) {
@@ -431,7 +437,7 @@ void checkOverrideForm(const std::string& path, pugi::xml_node n,
         throw SceneError(path, std::string("<override> names unknown material '") +
                                    o.attribute("material").as_string() + "'");
     if (o.attribute("spec")) try {
-            parseMaterialOverride(overrideSpec(path, o));
+            checkMaterialOverride(overrideSpec(path, o));
         } catch (const SceneError& e) {
             throw SceneError(path, std::string("<override> spec: ") + e.what());  // the .kiln
         }
@@ -526,7 +532,7 @@ SceneError partError(const std::string& path, const PartSpec& spec, const std::s
 // anywhere in the file is refused before a 100M-triangle part is imported.
 PartSpec checkedPart(const std::string& path, pugi::xml_node n,
                      const std::map<std::string, uint32_t>& materials,
-                     const std::map<std::string, int>& media) {
+                     const std::map<std::string, int>& media, bool deep) {
     PartSpec spec;
     spec.tag = n.name();
     const std::string& tag = spec.tag;
@@ -558,7 +564,7 @@ PartSpec checkedPart(const std::string& path, pugi::xml_node n,
     try {
         checkSceneFileOpens(spec.source);
         checkNotIncluding(spec.source);
-        if (lowerExtension(spec.source) == ".kiln") checkKilnScene(spec.source);
+        if (deep && lowerExtension(spec.source) == ".kiln") checkKilnScene(spec.source);
     } catch (const SceneError& e) {
         throw partError(path, spec, e.what());
     }
@@ -649,12 +655,12 @@ void readDefinitions(const std::string& path, pugi::xml_node root, Scene& scene,
 // are stored against the origin the geometry fixes).
 std::vector<std::pair<pugi::xml_node, PartSpec>> checkedElements(
     const std::string& path, pugi::xml_node root, const std::map<std::string, uint32_t>& materials,
-    const std::map<std::string, int>& media) {
+    const std::map<std::string, int>& media, bool deep) {
     std::vector<std::pair<pugi::xml_node, PartSpec>> parts;
     for (pugi::xml_node n : root.children()) {
         std::string tag = n.name();
         if (tag == "include" || tag == "mesh" || tag == "instances")
-            parts.emplace_back(n, checkedPart(path, n, materials, media));
+            parts.emplace_back(n, checkedPart(path, n, materials, media, deep));
     }
     Scene scratch;
     for (pugi::xml_node n : root.children("camera")) readCamera(path, n, scratch);
@@ -665,6 +671,7 @@ std::vector<std::pair<pugi::xml_node, PartSpec>> checkedElements(
 }  // namespace
 
 void checkKilnScene(const std::string& path) {
+    if (!checkedTrees.emplace(canonicalName(path), includeStack.size()).second) return;
     IncludeGuard guard(path);
     pugi::xml_document doc;
     pugi::xml_node root = openKilnFile(path, doc);
@@ -672,7 +679,7 @@ void checkKilnScene(const std::string& path) {
     std::map<std::string, uint32_t> materials;
     std::map<std::string, int> media;
     readDefinitions(path, root, scratch, materials, media);
-    checkedElements(path, root, materials, media);
+    checkedElements(path, root, materials, media, true);
 }
 
 void readKilnScene(const std::string& path, Scene& scene) {
@@ -684,8 +691,18 @@ void readKilnScene(const std::string& path, Scene& scene) {
     std::map<std::string, uint32_t> materials;
     std::map<std::string, int> media;
     readDefinitions(path, root, scene, materials, media);
-    for (const auto& [n, spec] : checkedElements(path, root, materials, media))
-        readPart(path, n, spec, materials, scene);
+    // The outermost read checks the whole tree of includes (checkKilnScene) once; the reads its
+    // imports lead to check their own elements only (a tree re-checked at every level cost
+    // depth x its size).
+    const bool outermost = !includesChecked;
+    if (outermost) checkedTrees.clear();
+    auto parts = checkedElements(path, root, materials, media, outermost);
+    includesChecked = true;
+    struct Restore {
+        bool was;
+        ~Restore() { includesChecked = was; }
+    } restore{!outermost};
+    for (const auto& [n, spec] : parts) readPart(path, n, spec, materials, scene);
     for (pugi::xml_node n : root.children("camera")) readCamera(path, n, scene);
     for (pugi::xml_node n : root.children("light")) readLight(path, n, scene);
 }

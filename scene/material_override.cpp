@@ -2,6 +2,8 @@
 // of a scene (or of an included asset) that does not emit, so lights keep lighting it.
 #include <charconv>
 #include <filesystem>
+#include <optional>
+#include <utility>
 
 #include "scene/importers.h"
 #include "scene/mesh_maps.h"
@@ -47,10 +49,8 @@ Material materialFromFile(const std::string& path, const std::string& name,
                                         : "has no material named '" + name + "'");
 }
 
-}  // namespace
-
-Material parseMaterialOverride(const std::string& spec, std::vector<TextureSource>* textures,
-                               std::vector<std::string>* files) {
+// A built-in spec's material (diffuse, clay, lambertian:...); nullopt for a file spec.
+std::optional<Material> builtinOverride(const std::string& spec) {
     Material m;
     m.name = "override";
     if (spec == kDiffuseOverride) {  // applied per material by overrideMaterials(scene, spec)
@@ -67,19 +67,41 @@ Material parseMaterialOverride(const std::string& spec, std::vector<TextureSourc
             throw SceneError(spec, "lambertian albedo must be G or R,G,B in [0, 1]");
         return m;
     }
-    std::string path = spec, name;  // FILE, or FILE:NAME
-    if (!std::filesystem::exists(path)) {
+    return std::nullopt;
+}
+
+// A file spec's .kiln file and material name (FILE, or FILE:NAME; "" for its first material).
+std::pair<std::string, std::string> overrideFile(const std::string& spec) {
+    auto exists = [](const std::string& p) {
+        std::error_code ec;  // a name too long for the system is not there either
+        return std::filesystem::exists(p, ec);
+    };
+    std::string path = spec, name;
+    if (!exists(path)) {
         size_t colon = spec.rfind(':');
         if (colon != std::string::npos) path = spec.substr(0, colon), name = spec.substr(colon + 1);
     }
-    if (!std::filesystem::exists(path))
+    if (!exists(path))
         throw SceneError(
             spec,
             "not a material override: use clay, diffuse, lambertian:G, lambertian:R,G,B, "
             "or a .kiln file with a <material> (FILE or FILE:NAME)");
     if (lowerExtension(path) != ".kiln")
         throw SceneError(path, "a material override file must be a .kiln scene with <material>");
+    return {path, name};
+}
+
+}  // namespace
+
+Material parseMaterialOverride(const std::string& spec, std::vector<TextureSource>* textures,
+                               std::vector<std::string>* files) {
+    if (std::optional<Material> m = builtinOverride(spec)) return *m;
+    auto [path, name] = overrideFile(spec);
     return materialFromFile(path, name, textures, files);
+}
+
+void checkMaterialOverride(const std::string& spec) {
+    if (!builtinOverride(spec)) checkKilnScene(overrideFile(spec).first);
 }
 
 namespace {

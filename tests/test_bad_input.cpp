@@ -306,6 +306,11 @@ TEST(BadInput, KilnSceneMistakesAreErrors) {
     // import, which this broken part stands for).
     test::writeFile(dir / "broken.ply", "ply\nformat ascii 1.0\nend_header\n");
     test::writeFile(dir / "empty.obj", "");
+    // An override file is checked, not imported, before the parts: its broken mesh would be named.
+    test::writeFile(
+        dir / "mats.kiln",
+        R"(<kiln-scene><material name="gold" albedo="0.8 0.6 0.2"/><mesh file="broken.ply"/></kiln-scene>)");
+    const std::string longName(300, 'x');  // too long for the file system: not there, no exception
     test::writeFile(dir / "nested.kiln",
                     R"(<kiln-scene><mesh file="tri.obj"/><bogus/></kiln-scene>)");
     std::filesystem::create_directories(dir / "adir");
@@ -346,6 +351,9 @@ TEST(BadInput, KilnSceneMistakesAreErrors) {
                 std::pair{R"(<mesh file="adir"/>)", "adir: is a directory"},
                 std::pair{R"(<mesh file="empty.obj"/>)", "empty.obj: file is empty"},
                 std::pair{R"(<include file="bad.kiln"/>)", "include cycle"},
+                std::pair{
+                    R"(<mesh file="tri.obj"><override spec="mats.kiln:gold"/></mesh><mesh file="missing.ply"/>)",
+                    "missing.ply: no such file"},
                 std::pair{R"(<include file="nested.kiln"/>)",
                           "nested.kiln: unknown element <bogus>"},
             }) {
@@ -353,6 +361,10 @@ TEST(BadInput, KilnSceneMistakesAreErrors) {
                 dir / "bad.kiln", std::string("<kiln-scene>") + before + body + "</kiln-scene>");
             expectError(path, what);
         }
+    expectError(
+        test::writeFile(dir / "long.kiln", "<kiln-scene><mesh file=\"tri.obj\"><override spec=\"" +
+                                               longName + "\"/></mesh></kiln-scene>"),
+        "not a material override");
 }
 
 TEST(BadInput, KilnIncludeCycleIsAnError) {

@@ -671,7 +671,8 @@ std::vector<std::pair<pugi::xml_node, PartSpec>> checkedElements(
 }  // namespace
 
 void checkKilnScene(const std::string& path) {
-    if (!checkedTrees.emplace(canonicalName(path), includeStack.size()).second) return;
+    const std::pair<std::string, size_t> key{canonicalName(path), includeStack.size()};
+    if (checkedTrees.count(key)) return;
     IncludeGuard guard(path);
     pugi::xml_document doc;
     pugi::xml_node root = openKilnFile(path, doc);
@@ -680,6 +681,7 @@ void checkKilnScene(const std::string& path) {
     std::map<std::string, int> media;
     readDefinitions(path, root, scratch, materials, media);
     checkedElements(path, root, materials, media, true);
+    checkedTrees.insert(key);  // only once it passed (a file cannot reach itself at one depth)
 }
 
 void readKilnScene(const std::string& path, Scene& scene) {

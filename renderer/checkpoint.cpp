@@ -321,11 +321,10 @@ std::string aovText(const AovRequest& a) {
 }
 
 // The fingerprint in its one order; without a job, only the fields the options and the files
-// decide (those a resume is checked against before the load).
-Fingerprint fingerprintOf(const RenderJobOptions& options, const RenderJob* job,
+// decide (those a resume is checked against before the load). With a job, o is its options (light
+// samples resolved).
+Fingerprint fingerprintOf(const RenderJobOptions& o, const RenderJob* job,
                           const SceneFileIdentity& files, const LoadOptions& load) {
-    const RenderJobOptions& o =
-        job ? job->options() : options;  // the job's: light samples resolved
     const PathOptions& p = o.path;
     const RenderSettings& s = o.settings;
     Fingerprint f;
@@ -347,8 +346,7 @@ Fingerprint fingerprintOf(const RenderJobOptions& options, const RenderJob* job,
     putJob("plan", [](const RenderJob& j) { return j.plan().compact(); });
     put("max_depth", std::to_string(p.maxDepth));
     // Its default is the plan's choice (resolvedLightSamples).
-    putJob("light_samples",
-           [](const RenderJob& j) { return std::to_string(j.options().path.lightSamples); });
+    putJob("light_samples", [&p](const RenderJob&) { return std::to_string(p.lightSamples); });
     put("sampling", toString(p.sampling));
     put("mis_heuristic", toString(p.heuristic));
     put("roulette", std::string(toString(p.roulette)) + " " + number(p.fixedContinuation) + " " +

@@ -355,18 +355,18 @@ std::string canonicalName(const std::string& path) {
     return fs::weakly_canonical(path, ec).string();
 }
 
-// An include of a file being read: a cycle.
-void checkNotIncluding(const std::string& path) {
-    if (std::find(includeStack.begin(), includeStack.end(), canonicalName(path)) !=
-        includeStack.end())
+// path's canonical name; an include of a file being read (a cycle) is refused.
+std::string notBeingRead(const std::string& path) {
+    std::string canonical = canonicalName(path);
+    if (std::find(includeStack.begin(), includeStack.end(), canonical) != includeStack.end())
         throw SceneError(path, "includes itself (include cycle)");
+    return canonical;
 }
 
 class IncludeGuard {
   public:
     explicit IncludeGuard(const std::string& path) {
-        checkNotIncluding(path);
-        std::string canonical = canonicalName(path);
+        std::string canonical = notBeingRead(path);
         if (includeStack.size() >= kMaxIncludeDepth)
             throw SceneError(
                 path, "includes nested deeper than " + std::to_string(kMaxIncludeDepth) + " files");
@@ -563,7 +563,7 @@ PartSpec checkedPart(const std::string& path, pugi::xml_node n,
     spec.source = (fs::path(path).parent_path() / spec.file).string();
     try {
         checkSceneFileOpens(spec.source);
-        checkNotIncluding(spec.source);
+        notBeingRead(spec.source);
         if (deep && lowerExtension(spec.source) == ".kiln") checkKilnScene(spec.source);
     } catch (const SceneError& e) {
         throw partError(path, spec, e.what());

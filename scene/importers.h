@@ -104,6 +104,9 @@ void readKilnScene(const std::string& path, Scene& scene);
 // Its every element checked, and those of the .kiln files it includes, importing nothing: a mistake
 // anywhere in a tree of .kiln files is refused before its first mesh is read.
 void checkKilnScene(const std::string& path);
+// True where the .kiln file certainly has no material named `name` ("": none at all): none of its
+// <material> elements, and no part whose import could bring one.
+bool kilnSceneLacksMaterial(const std::string& path, const std::string& name);
 
 // Throws SceneError, before any allocation, when a mesh of these counts would not fit.
 void checkMemoryFor(const std::string& path, uint64_t vertices, uint64_t triangles);

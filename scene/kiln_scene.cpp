@@ -684,6 +684,17 @@ void checkKilnScene(const std::string& path) {
     checkedTrees.insert(key);  // only once it passed (a file cannot reach itself at one depth)
 }
 
+bool kilnSceneLacksMaterial(const std::string& path, const std::string& name) {
+    pugi::xml_document doc;
+    pugi::xml_node root = openKilnFile(path, doc);
+    for (pugi::xml_node n : root.children("material"))
+        if (name.empty() || name == n.attribute("name").as_string()) return false;
+    // A part's import may bring the material (a glTF's, a COLLADA file's): only importing it tells.
+    for (const char* tag : {"include", "mesh", "instances"})
+        if (root.child(tag)) return false;
+    return true;
+}
+
 void readKilnScene(const std::string& path, Scene& scene) {
     IncludeGuard guard(path);
     pugi::xml_document doc;

@@ -32,6 +32,11 @@ bool parseAlbedo(const std::string& text, Color& albedo) {
     return true;
 }
 
+SceneError noSuchMaterial(const std::string& path, const std::string& name) {
+    return SceneError(path, name.empty() ? "has no <material> for --material-override"
+                                         : "has no material named '" + name + "'");
+}
+
 // The material named `name` (or the first) of a .kiln file, read with every check a scene gets,
 // and the file's texture sources its texture ids index.
 Material materialFromFile(const std::string& path, const std::string& name,
@@ -45,8 +50,7 @@ Material materialFromFile(const std::string& path, const std::string& name,
     }
     for (const Material& m : holder.materials)
         if (name.empty() || m.name == name) return m;
-    throw SceneError(path, name.empty() ? "has no <material> for --material-override"
-                                        : "has no material named '" + name + "'");
+    throw noSuchMaterial(path, name);
 }
 
 // A built-in spec's material (diffuse, clay, lambertian:...); nullopt for a file spec.
@@ -101,7 +105,10 @@ Material parseMaterialOverride(const std::string& spec, std::vector<TextureSourc
 }
 
 void checkMaterialOverride(const std::string& spec) {
-    if (!builtinOverride(spec)) checkKilnScene(overrideFile(spec).first);
+    if (builtinOverride(spec)) return;
+    auto [path, name] = overrideFile(spec);
+    checkKilnScene(path);
+    if (kilnSceneLacksMaterial(path, name)) throw noSuchMaterial(path, name);
 }
 
 namespace {

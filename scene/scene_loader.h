@@ -44,8 +44,9 @@ Material parseMaterialOverride(const std::string& spec,
                                std::vector<TextureSource>* textures = nullptr,
                                std::vector<std::string>* files = nullptr);
 // The spec's form and, for a file, the file's whole .kiln tree, importing none of its meshes (a
-// <override spec> is checked before a scene's first part is imported); its material's name is
-// looked up when the override is applied.
+// <override spec> is checked before a scene's first part is imported), and its material's name
+// where the file itself settles it (a name only a part's import could bring is looked up when the
+// override is applied).
 void checkMaterialOverride(const std::string& spec);
 
 // Replaces every material of the scene that does not emit by `m` (emitters keep lighting it); m's

@@ -310,6 +310,10 @@ TEST(BadInput, KilnSceneMistakesAreErrors) {
     test::writeFile(
         dir / "mats.kiln",
         R"(<kiln-scene><material name="gold" albedo="0.8 0.6 0.2"/><mesh file="broken.ply"/></kiln-scene>)");
+    // Files that settle their material names themselves (no part could bring another).
+    test::writeFile(dir / "only_mats.kiln",
+                    R"(<kiln-scene><material name="gold" albedo="0.8 0.6 0.2"/></kiln-scene>)");
+    test::writeFile(dir / "no_mats.kiln", "<kiln-scene/>");
     const std::string longName(300, 'x');  // too long for the file system: not there, no exception
     test::writeFile(dir / "nested.kiln",
                     R"(<kiln-scene><mesh file="tri.obj"/><bogus/></kiln-scene>)");
@@ -356,6 +360,10 @@ TEST(BadInput, KilnSceneMistakesAreErrors) {
                     "missing.ply: no such file"},
                 std::pair{R"(<include file="nested.kiln"/>)",
                           "nested.kiln: unknown element <bogus>"},
+                std::pair{R"(<mesh file="tri.obj"><override spec="only_mats.kiln:silver"/></mesh>)",
+                          "has no material named 'silver'"},
+                std::pair{R"(<mesh file="tri.obj"><override spec="no_mats.kiln"/></mesh>)",
+                          "has no <material>"},
             }) {
             std::string path = test::writeFile(
                 dir / "bad.kiln", std::string("<kiln-scene>") + before + body + "</kiln-scene>");

@@ -5,22 +5,9 @@ void kiln::requireImageModule() {}
 
 extern "C" __attribute__((visibility("default"))) const kiln::ImageModule* kiln_image_module() {
     using namespace kiln;
-    static const ImageModule module{&readImageHeader,
-                                    &readWorkingSpaceImage,
-                                    &readChannelImage,
-                                    &writeExr,
-                                    &exrLayers,
-                                    &exrPixel,
-                                    &exrHeader,
-                                    &writeSampleHeatMap,
-                                    &writePreview,
-                                    &displayTransform,
-                                    &createTextures,
-                                    &destroyTextures,
-                                    &addTexture,
-                                    &lookupTexture,
-                                    &lookupTextureChannel,
-                                    &readExrImage,
-                                    &writeExrImage};
+    static const ImageModule module{
+        &readImageHeader,   &readWorkingSpaceImage, &readChannelImage, &writeSampleHeatMap,
+        &writeDisplayImage, &createTextures,        &destroyTextures,  &addTexture,
+        &lookupTexture,     &lookupTextureChannel,  &readExrImage,     &writeExrImage};
     return &module;
 }

@@ -2,7 +2,9 @@
 // oiio_textures, texture_convert, atomic_file_proxy) is built into kiln_image.so, which the kiln
 // executable loads with dlopen() at its first image call (image_stubs.cpp). OpenImageIO links about
 // 250 libraries whose relocation was all of kiln's start-up (docs/performance.md "Start-up"): kiln
-// --version, kiln info of an untextured scene and the batch and farm parents now never load them.
+// --version, kiln info and kiln render of a scene that reads no image (the film's EXR and the PNG
+// preview are written without OpenImageIO: film_exr.cpp, preview.cpp) and the batch and farm
+// parents never load them.
 // The tests and the Python module link the same code directly, without the module.
 #pragma once
 
@@ -18,13 +20,8 @@ struct ImageModule {
     decltype(&kiln::readImageHeader) readImageHeader;
     decltype(&kiln::readWorkingSpaceImage) readWorkingSpaceImage;
     decltype(&kiln::readChannelImage) readChannelImage;
-    decltype(&kiln::writeExr) writeExr;
-    decltype(&kiln::exrLayers) exrLayers;
-    decltype(&kiln::exrPixel) exrPixel;
-    decltype(&kiln::exrHeader) exrHeader;
     decltype(&kiln::writeSampleHeatMap) writeSampleHeatMap;
-    decltype(&kiln::writePreview) writePreview;
-    decltype(&kiln::displayTransform) displayTransform;
+    decltype(&kiln::writeDisplayImage) writeDisplayImage;
     decltype(&kiln::createTextures) createTextures;
     decltype(&kiln::destroyTextures) destroyTextures;
     decltype(&kiln::addTexture) addTexture;

@@ -1,8 +1,9 @@
-// Writes the film: a scene-linear EXR (crash-safe: temporary file + rename) and a display-referred
-// preview (PNG/JPEG) through OpenColorIO.
+// Writes the film: a scene-linear EXR (crash-safe: temporary file + rename; OpenEXR, film_exr.cpp)
+// and a display-referred preview (PNG/JPEG) through OpenColorIO (preview.cpp).
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <optional>
@@ -91,6 +92,14 @@ void writeSampleHeatMap(const std::string& path, const Film& film);
 void writePreview(const std::string& path, const Film& film, const std::string& display = "",
                   const std::string& view = "", float exposureStops = 0,
                   const std::string& look = "", const std::vector<Color>* denoised = nullptr);
+
+// Whether writePreview writes this path as PNG itself (a .png or no extension) rather than through
+// the image module.
+bool writesPngPreview(const std::string& path);
+
+// A preview in a format other than PNG (JPEG, ...): RGBA display codes written by OpenImageIO, in
+// the image module (writePreview writes a PNG itself).
+void writeDisplayImage(const std::string& path, int w, int h, const std::vector<uint8_t>& rgba);
 
 // The scene-linear -> display transform of one value (for tests and tools).
 float displayTransform(float linear, const std::string& display = "", const std::string& view = "");

@@ -52,28 +52,11 @@ RgbImage readWorkingSpaceImage(const std::string& path) {
 bool readChannelImage(const std::string& path, ChannelImage& image) {
     return module().readChannelImage(path, image);
 }
-void writeExr(const std::string& path, const Film& film, const Metadata& metadata,
-              const ExrOptions& options) {
-    module().writeExr(path, film, metadata, options);
-}
-std::vector<ExrLayer> exrLayers(const Film& film) { return module().exrLayers(film); }
-void exrPixel(const Film& film, int x, int y, std::vector<float>& values) {
-    module().exrPixel(film, x, y, values);
-}
-std::map<std::string, ExrAttribute> exrHeader(const Film& film, const Metadata& metadata,
-                                              const ExrOptions& options) {
-    return module().exrHeader(film, metadata, options);
-}
 void writeSampleHeatMap(const std::string& path, const Film& film) {
     module().writeSampleHeatMap(path, film);
 }
-void writePreview(const std::string& path, const Film& film, const std::string& display,
-                  const std::string& view, float exposureStops, const std::string& look,
-                  const std::vector<Color>* denoised) {
-    module().writePreview(path, film, display, view, exposureStops, look, denoised);
-}
-float displayTransform(float linear, const std::string& display, const std::string& view) {
-    return module().displayTransform(linear, display, view);
+void writeDisplayImage(const std::string& path, int w, int h, const std::vector<uint8_t>& rgba) {
+    module().writeDisplayImage(path, w, h, rgba);
 }
 OiioTextures* createTextures(float cacheMb) { return module().createTextures(cacheMb); }
 void destroyTextures(OiioTextures* textures) { module().destroyTextures(textures); }

@@ -8,7 +8,7 @@ cd "$(dirname "$0")/.."
 packages=(build-essential cmake pkg-config
   libembree-dev libopenimageio-dev openimageio-tools libopenexr-dev openexr
   libopencolorio-dev opencolorio-tools libtbb-dev libassimp-dev libgtest-dev
-  libpugixml-dev zlib1g-dev libmurmurhash-dev nlohmann-json3-dev libfmt-dev libcli11-dev help2man
+  libpugixml-dev zlib1g-dev libpng-dev libmurmurhash-dev nlohmann-json3-dev libfmt-dev libcli11-dev help2man
   assimp-testmodels
   python3-dev pybind11-dev python3-numpy  # the kiln Python module (docs/python.md)
   python3-pytest python3-openimageio python3-matplotlib  # its tests and the walkthrough

@@ -11,6 +11,7 @@
 #include <OpenEXR/ImfMatrixAttribute.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfPartType.h>
+#include <OpenEXR/ImfStdIO.h>
 #include <OpenEXR/ImfStringAttribute.h>
 #include <OpenEXR/ImfThreading.h>
 #include <fmt/format.h>
@@ -21,6 +22,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <ctime>
+#include <fstream>
 #include <stdexcept>
 #include <thread>
 
@@ -338,15 +340,22 @@ void writeExr(const std::string& path, const Film& film, const Metadata& metadat
     }();
     (void)threaded;
     AtomicFile file(path);
+    // OpenEXR writes through a stream kiln owns and checks: its OutputFile writes the line offsets
+    // in its destructor and drops any error there, and leaves its own stream unchecked (a short
+    // write would be renamed into place).
+    std::ofstream os(file.tempPath(), std::ios::binary | std::ios::trunc);
     try {
-        Imf::OutputFile out(
-            file.tempPath().c_str(),
-            openExrHeader(film, exrHeader(film, metadata, options), options.compression, channels));
+        Imf::StdOFStream stream(os, file.tempPath().c_str());
+        Imf::OutputFile out(stream, openExrHeader(film, exrHeader(film, metadata, options),
+                                                  options.compression, channels));
         out.setFrameBuffer(frame);
         out.writePixels(film.height());
     } catch (const std::exception& e) {
         throw std::runtime_error(path + ": cannot write EXR: " + e.what());
     }
+    os.close();
+    if (os.fail())
+        throw std::runtime_error(path + ": cannot write EXR: a write to the disk failed");
     file.commit();
 }
 

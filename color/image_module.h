@@ -32,8 +32,9 @@ struct ImageModule {
 };
 
 // Loads the module now in the kiln executable (a no-op where the image code is linked in): kiln
-// render calls it before the scene loads, so a missing module is an error before any work and its
-// loading counts in none of the render's load, build, render and write times. Throws
+// render calls it before the scene loads when its outputs need it (a heat map, a preview in another
+// format than PNG), so a missing module is an error before any work. A scene's textures and maps
+// load it as they are read (its loading then counts in the render's load time). Throws
 // std::runtime_error when it cannot be loaded.
 void requireImageModule();
 

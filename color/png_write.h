@@ -1,5 +1,5 @@
-// 8-bit PNG writing with libpng, through an AtomicFile: the preview and the heat map need no
-// OpenImageIO (image_module.h).
+// 8-bit PNG writing with libpng, through an AtomicFile: the preview needs no OpenImageIO
+// (image_module.h).
 #pragma once
 
 #include <cstdint>

@@ -40,12 +40,12 @@ OCIO::ConstCPUProcessorRcPtr displayProcessor(const std::string& display, const 
     }
 }
 
-// A display value as an 8-bit code: scaled, rounded half away from zero, clamped (OpenImageIO's
-// float to uint8 conversion, so the preview's codes are those it wrote).
+// A display value as an 8-bit code: scaled, rounded half away from zero, clamped, NaN to 0
+// (OpenImageIO's float to uint8 conversion, so the preview's codes are those it wrote).
 uint8_t toCode(float v) {
-    float s = v * 255.0f;
-    s += s < 0 ? -0.5f : 0.5f;
-    return uint8_t(std::clamp(s, 0.0f, 255.0f));
+    const float s = std::round(v * 255.0f);
+    if (!(s > 0)) return 0;
+    return uint8_t(std::min(s, 255.0f));
 }
 
 // The preview's RGBA codes: the beauty (or the denoised one) scaled by 2^exposureStops, opaque

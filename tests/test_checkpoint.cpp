@@ -7,6 +7,7 @@
 #include <random>
 
 #include "color/atomic_file.h"
+#include "kiln_run.h"
 #include "long_render_support.h"
 #include "renderer/long_render.h"
 
@@ -502,11 +503,19 @@ TEST(Checkpoint, DiskFullDuringACheckpointKeepsThePreviousOneAndReportsTheFailur
     std::string png = (disk.dir / "a.png").string();
     writePreview(png, first.film);
     std::string pngBefore = test::readText(png);
+    // The film's EXR likewise keeps the previous file.
+    std::string exr = (disk.dir / "a.exr").string();
+    ExrOptions zips;
+    zips.compression = ExrCompression::Zips;
+    writeExr(exr, first.film, {}, zips);
+    std::string exrBefore = test::readText(exr);
     fillDisk(disk.dir);
     EXPECT_THROW(r.run(r.options(8), ckpt, true), std::runtime_error);
     EXPECT_THROW(writePreview(png, first.film), std::runtime_error);
+    EXPECT_THROW(writeExr(exr, first.film, {}, zips), std::runtime_error);
     EXPECT_EQ(test::readText(ckpt), before);  // still the valid previous checkpoint
     EXPECT_EQ(test::readText(png), pngBefore);
+    EXPECT_EQ(test::readText(exr), exrBefore);
     CheckpointInfo info;
     EXPECT_EQ(test::filmState(readCheckpoint(ckpt, info)), test::filmState(first.film));
     for (const auto& entry : fs::directory_iterator(disk.dir))  // no temporary file left
@@ -525,6 +534,23 @@ TEST(Checkpoint, DiskFullDuringACheckpointKeepsThePreviousOneAndReportsTheFailur
                                    -1, 0, err),
               2);
     EXPECT_NE(test::readText(err).find("not writable"), std::string::npos) << test::readText(err);
+}
+
+// An EXR whose last bytes sit in the stream's buffer until the file is closed: a failure of that
+// last write (here the file-size limit) is an error, and nothing is renamed into place (OpenEXR's
+// OutputFile writes its line offsets in its destructor and drops any error there: a render exited 0
+// with a truncated EXR).
+TEST(Checkpoint, AnExrCutShortAtItsLastWriteIsAnError) {
+    fs::path dir = test::scratchDir();
+    const std::string out = (dir / "cut").string();
+    test::CliRun r = test::runProgram("trap '' XFSZ; ulimit -f 3; " + std::string(KILN_BINARY),
+                                      "render " + test::repo("scenes/cornell.dae") +
+                                          " -r 8 8 -s 1 -q --compression zips -o " + out);
+    EXPECT_EQ(r.code, 1) << r.err;
+    EXPECT_NE(r.err.find("cut.exr: cannot write EXR"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out + ".exr"));
+    for (const auto& entry : fs::directory_iterator(dir))  // no temporary file left
+        EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
 }
 
 // Issue #33 item 5: a finished render whose final checkpoint does not fit the disk keeps its image.

@@ -92,6 +92,16 @@ TEST(Cs184View, ExposureScalesTheLightBeforeTheDisplay) {
     std::vector<float> a = readPixels((dir / "a.png").string());
     EXPECT_EQ(a, readPixels((dir / "b.png").string()));
     EXPECT_NE(a, readPixels((dir / "c.png").string()));
+    // Down as well as up, the preview staying opaque: alpha is coverage, not light (the preview
+    // once scaled it too and showed a -1 stop image half transparent).
+    writePreview((dir / "d.png").string(), doubled, "sRGB", "Standard", -1.0f);
+    EXPECT_EQ(readPixels((dir / "d.png").string()), readPixels((dir / "c.png").string()));
+    auto in = OIIO::ImageInput::open((dir / "d.png").string());
+    ASSERT_TRUE(in);
+    ASSERT_EQ(in->spec().nchannels, 4);
+    std::vector<float> rgba(64 * 4);
+    ASSERT_TRUE(in->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, rgba.data()));
+    for (int i = 0; i < 64; ++i) EXPECT_EQ(rgba[size_t(i) * 4 + 3], 1.0f) << i;
 }
 
 // Brute force finds exactly the reference BVH's hits (same primitive tests, same tie rule) on

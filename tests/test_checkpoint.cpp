@@ -548,6 +548,8 @@ TEST(Checkpoint, AnExrCutShortAtItsLastWriteIsAnError) {
                                           " -r 8 8 -s 1 -q --compression zips -o " + out);
     EXPECT_EQ(r.code, 1) << r.err;
     EXPECT_NE(r.err.find("cut.exr: cannot write EXR"), std::string::npos) << r.err;
+    // The summary names what was written: the preview, not the EXR.
+    EXPECT_NE(r.err.find("-> " + out + ".png\n"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(out + ".exr"));
     for (const auto& entry : fs::directory_iterator(dir))  // no temporary file left
         EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();

@@ -185,10 +185,14 @@ struct SignalScope {
     }
 };
 
-void printSummary(const std::string& scenePath, const OutputPaths& out, const std::string& heat,
+void printSummary(const std::string& scenePath, const std::vector<OutputWrite>& writes,
                   const RenderStats& stats, double load, double build, double write) {
     double mrays = stats.seconds > 0 ? double(stats.rays) / stats.seconds * 1e-6 : 0.0;
-    logInfo("{} -> {}, {}{}{}", scenePath, out.exr, out.preview, heat.empty() ? "" : ", ", heat);
+    std::string written;  // the images that were written (a failed one has had its error line)
+    for (const OutputWrite& w : writes)
+        if (w.error.empty() && w.kind != "checkpoint")
+            written += (written.empty() ? "" : ", ") + w.path;
+    logInfo("{} -> {}", scenePath, written.empty() ? "no image written" : written);
     logInfo(
         "{} samples, {} rays, {:.2f} Mrays/s; time load {:.3f}s, build {:.3f}s, render {:.3f}s, "
         "write {:.3f}s",
@@ -302,7 +306,7 @@ int renderLong(RenderCommand& c, const RenderJob& job, const Accelerator& accel,
         failures += writeCheckpointAfterImages(c, lo, r, out, failures, writes);
     }
     double writeTime = seconds(t2);
-    printSummary(scenePath, out, heatPath, r.stats, loadTime, buildTime, writeTime);
+    printSummary(scenePath, writes, r.stats, loadTime, buildTime, writeTime);
     if (job.guided())
         logInfo("path guiding {}; trained in {:.3f}s (counted in the render time)",
                 job.guidingText(), job.guideTrainingSeconds());

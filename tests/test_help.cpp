@@ -153,8 +153,8 @@ TEST(Help, AMovedBinarySaysWhereItLookedForItsConfig) {
 }
 
 // A render that reads no image writes its EXR and PNG without the image module (OpenImageIO and
-// its ~250 libraries never load: a 16x16 render's wall time fell from 0.54 s to 0.10 s); a heat map
-// or a JPEG preview needs the module, and its absence is an error before any work.
+// its ~250 libraries never load: a 16x16 render took 0.12 s, 0.49 s before; docs/performance.md); a
+// heat map or a JPEG preview needs the module, and its absence is an error before any work.
 TEST(Help, AnUntexturedRenderWritesItsImagesWithoutTheImageModule) {
     namespace fs = std::filesystem;
     auto dir = test::scratchDir();

@@ -438,8 +438,7 @@ int renderFrame(const std::vector<std::string>& args, LoadedScene& loaded,
     // OpenImageIO's writers, for a heat map or a preview in another format than PNG (kiln writes
     // the EXR and a PNG itself), loaded now: a missing module is an error before any work. A
     // texture or a map loads it when the scene is read.
-    if (c.heatMap || c.job.job.settings.adaptiveStep() > 0 || !writesPngPreview(out.preview))
-        requireImageModule();
+    if (writesHeatMap(c) || !writesPngPreview(out.preview)) requireImageModule();
     checkOutputWritable(c, out);
     checkOutputsFit(c, jobOptions, out);
 

@@ -294,6 +294,10 @@ DenoisedFrame denoiseFrame(const Film& film, int threads) {
     return frame;
 }
 
+bool writesHeatMap(const RenderCommand& c) {
+    return c.heatMap || c.job.job.settings.adaptiveStep() > 0;
+}
+
 int writeOutputs(const RenderCommand& c, const OutputPaths& out, const Film& film,
                  const Metadata& meta, std::string& heatPath,
                  const std::function<void(const std::string&)>& onError,
@@ -332,7 +336,7 @@ int writeOutputs(const RenderCommand& c, const OutputPaths& out, const Film& fil
     attempt("preview", out.preview, [&] {
         writePreview(out.preview, film, c.display, c.view, c.exposure, c.look, exr.denoised.get());
     });
-    if (c.heatMap || c.job.job.settings.adaptiveStep() > 0) {
+    if (writesHeatMap(c)) {
         heatPath = fs::path(out.exr).replace_extension(".samples.png").string();
         attempt("heatmap", heatPath, [&] { writeSampleHeatMap(heatPath, film); });
     }

@@ -106,6 +106,9 @@ struct DenoisedFrame {
 // The film's denoised frame for a render with --denoise (threads: the render's -t).
 DenoisedFrame denoiseFrame(const Film& film, int threads);
 
+// Whether the render writes OUT.samples.png: with -a, --noise-threshold or --heatmap.
+bool writesHeatMap(const RenderCommand& c);
+
 // Writes OUT.exr, OUT.png and, with -a, --noise-threshold or --heatmap, OUT.samples.png (its path
 // in heatPath), each on its own: one failing write does not stop the others. Each failure's
 // message goes to onError (default: logged as an error); returns how many failed. writes, when

@@ -13,7 +13,6 @@
 #include <OpenEXR/ImfPartType.h>
 #include <OpenEXR/ImfStdIO.h>
 #include <OpenEXR/ImfStringAttribute.h>
-#include <OpenEXR/ImfThreading.h>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -24,9 +23,9 @@
 #include <ctime>
 #include <fstream>
 #include <stdexcept>
-#include <thread>
 
 #include "color/atomic_file.h"
+#include "color/exr_threads.h"
 #include "color/image_output.h"
 #include "color/working_space.h"
 
@@ -333,12 +332,7 @@ void writeExr(const std::string& path, const Film& film, const Metadata& metadat
                      Imf::Slice(channels[c].half ? Imf::HALF : Imf::FLOAT,
                                 first + (long(c) - origin * long(n)) * long(sizeof(float)),
                                 n * sizeof(float), w * n * sizeof(float)));
-    // Compressed in parallel, as OpenImageIO's writer did (its EXR threads: every core).
-    static const bool threaded = [] {
-        Imf::setGlobalThreadCount(int(std::max(1u, std::thread::hardware_concurrency())));
-        return true;
-    }();
-    (void)threaded;
+    exrThreadsOnEveryCore();
     AtomicFile file(path);
     // OpenEXR writes through a stream kiln owns and checks: its OutputFile writes the line offsets
     // in its destructor and drops any error there, and leaves its own stream unchecked (a short

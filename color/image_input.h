@@ -1,5 +1,5 @@
 // Reading images into the working space (linear Rec.709, D65): environment maps, reference renders.
-// The only place outside image_output that opens image files.
+// Through the image module (OpenImageIO); exr_rgb_input.h reads plain RGB EXRs without it.
 #pragma once
 
 #include <OpenImageIO/oiioversion.h>

@@ -1,6 +1,7 @@
 // Help that helps: "did you mean" for a mistyped command, subcommand or option; kiln help COMMAND;
 // bash completion of every command, subcommand, option and enumerated value (the script run by
 // bash as completion runs it); the man page with every command's options and the environment.
+#include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
@@ -152,9 +153,10 @@ TEST(Help, AMovedBinarySaysWhereItLookedForItsConfig) {
     EXPECT_NE(installed.out.find((dir / "share/kiln/config.ocio").string()), std::string::npos);
 }
 
-// A render that reads no image writes its EXR and PNG without the image module (OpenImageIO and
-// its ~250 libraries never load: a 16x16 render took 0.12 s, 0.49 s before; docs/performance.md); a
-// heat map or a JPEG preview needs the module, and its absence is an error before any work.
+// A render that reads no image but an EXR environment map writes its EXR and PNG without the image
+// module (OpenImageIO and its ~250 libraries never load: a 16x16 render took 0.12 s, 0.49 s before;
+// docs/performance.md); a heat map, a JPEG preview or a PNG map needs the module, and its absence
+// is an error before any work.
 TEST(Help, AnUntexturedRenderWritesItsImagesWithoutTheImageModule) {
     namespace fs = std::filesystem;
     auto dir = test::scratchDir();
@@ -176,6 +178,18 @@ TEST(Help, AnUntexturedRenderWritesItsImagesWithoutTheImageModule) {
     }
     EXPECT_FALSE(fs::exists(dir / "shown.exr"));
     EXPECT_FALSE(fs::exists(dir / "heat.exr"));
+    // An EXR environment map is read with OpenEXR alone (readExrRgb); a PNG one needs the module.
+    test::CliRun lit = test::runProgram(render + " --env " + test::shared("envmaps/courtyard.exr") +
+                                            " -o " + (dir / "lit").string(),
+                                        "");
+    EXPECT_EQ(lit.code, 0) << lit.err;
+    EXPECT_TRUE(fs::exists(dir / "lit.exr"));
+    ASSERT_TRUE(
+        OIIO::ImageBuf(test::shared("envmaps/courtyard.exr")).write((dir / "map.png").string()));
+    test::CliRun png = test::runProgram(
+        render + " --env " + (dir / "map.png").string() + " -o " + (dir / "png").string(), "");
+    EXPECT_NE(png.code, 0);
+    EXPECT_NE(png.err.find("cannot load kiln_image.so"), std::string::npos) << png.err;
 }
 
 }  // namespace

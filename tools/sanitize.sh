@@ -6,12 +6,12 @@
 # process it started (reports go to build-sanitize/reports/ and are printed at the end).
 # Usage: tools/sanitize.sh [GTEST_FILTER]      (.ci/run runs it with the default filter)
 # Default filter (what fits CI's sanitizer budget, README): the importer tests (parameterised ones
-# included) and bad-input tests, the fuzz test (which runs the sanitized kiln binary on 180 mutated
-# files), the far-coordinate and framing tests, checkpoints (kills, resumes, atomic files) and shard
-# merges; pass '*' for the whole suite (about 10x slower than Release).
+# included), bad-input tests and the EXR reader that bypasses OpenImageIO, the fuzz test (which
+# runs the sanitized kiln binary on 180 mutated files), the far-coordinate and framing tests,
+# checkpoints (kills, resumes, atomic files) and shard merges; pass '*' for the whole suite (about 10x slower than Release).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-filter=${1:-'BadInput*:Import*:*/MeshImport.*:*/Cs184Import.*:PrincipledImport.*:AssimpFormats*:Cs184*:KilnScene*:ObjReader*:PlyTristrips*:OwnScenes*:EnvironmentOption*:Fuzz*:FarCoordinates*:Framing*:Checkpoint*:AtomicFile*:Merge*'}
+filter=${1:-'BadInput*:Import*:*/MeshImport.*:*/Cs184Import.*:PrincipledImport.*:AssimpFormats*:Cs184*:KilnScene*:ObjReader*:PlyTristrips*:OwnScenes*:EnvironmentOption*:ExrRgbInput*:Fuzz*:FarCoordinates*:Framing*:Checkpoint*:AtomicFile*:Merge*'}
 dir=build-sanitize
 
 # ccache only where it is installed (a fresh machine has none); an empty launcher also clears one

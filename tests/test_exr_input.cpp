@@ -1,0 +1,142 @@
+// readExrRgb (color/exr_rgb_input.h): an EXR environment map read with OpenEXR alone gives the
+// image OpenImageIO's reader gives, bit for bit, or declines the file so the module reads it.
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStringAttribute.h>
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <optional>
+
+#include "color/exr_rgb_input.h"
+#include "test_support.h"
+
+namespace kiln {
+namespace {
+
+namespace fs = std::filesystem;
+
+void expectSameBits(const RgbImage& a, const RgbImage& b, const std::string& what) {
+    ASSERT_EQ(a.width, b.width) << what;
+    ASSERT_EQ(a.height, b.height) << what;
+    ASSERT_EQ(a.pixels.size(), b.pixels.size()) << what;
+    size_t differing = 0;
+    for (size_t i = 0; i < a.pixels.size(); ++i)
+        differing += std::memcmp(&a.pixels[i], &b.pixels[i], sizeof(Color)) != 0;
+    EXPECT_EQ(differing, 0u) << what;
+}
+
+// Read both ways: OpenEXR alone must take the file and agree with OpenImageIO.
+void expectReadAsOiioReadsIt(const std::string& path) {
+    std::optional<RgbImage> direct = readExrRgb(path);
+    ASSERT_TRUE(direct) << path;
+    expectSameBits(*direct, readWorkingSpaceImage(path), path);
+}
+
+// A 7x5 float image of distinct values (some negative, one NaN), one value per channel.
+OIIO::ImageBuf pattern(const std::vector<std::string>& channels) {
+    OIIO::ImageSpec spec(7, 5, int(channels.size()), OIIO::TypeDesc::FLOAT);
+    spec.channelnames = channels;
+    OIIO::ImageBuf buf(spec);
+    std::vector<float> values(size_t(7 * 5) * channels.size());
+    for (size_t i = 0; i < values.size(); ++i) values[i] = 0.37f * float(i) - 3.1f;
+    values[11] = std::numeric_limits<float>::quiet_NaN();
+    buf.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, values.data());
+    return buf;
+}
+
+std::string write(const fs::path& dir, const std::string& name, OIIO::ImageBuf buf,
+                  OIIO::TypeDesc format = OIIO::TypeDesc::FLOAT) {
+    const std::string path = (dir / name).string();
+    EXPECT_TRUE(buf.write(path, format)) << buf.geterror();
+    return path;
+}
+
+TEST(ExrRgbInput, TheSharedEnvironmentMapsReadAsOpenImageIoReadsThem) {
+    // city.exr states D50-white chromaticities: the conversion to the working space is compared
+    // too.
+    for (const char* map :
+         {"city", "courtyard", "forest", "interior", "night", "studio", "sunrise", "sunset"})
+        expectReadAsOiioReadsIt(test::shared(std::string("envmaps/") + map + ".exr"));
+}
+
+TEST(ExrRgbInput, HalfOffsetWindowsChromaticitiesLayersAndTilesReadAlike) {
+    auto dir = test::scratchDir();
+    // Half RGBA in a data window away from the origin, with D50 chromaticities.
+    OIIO::ImageBuf rgba = pattern({"R", "G", "B", "A"});
+    rgba.set_origin(3, -2);
+    const float d50[8] = {0.648447f, 0.330877f,  0.321187f, 0.597894f,
+                          0.155901f, 0.0660563f, 0.345708f, 0.358541f};
+    rgba.specmod().attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), d50);
+    expectReadAsOiioReadsIt(write(dir, "half.exr", rgba, OIIO::TypeDesc::HALF));
+    // Layers and other unlayered channels beside R, G, B (OpenImageIO sorts R, G, B first).
+    expectReadAsOiioReadsIt(
+        write(dir, "layers.exr", pattern({"Z", "diffuse.R", "R", "A", "G", "B", "AB", "X"})));
+    // Stated sRGB (OpenImageIO's writer leaves the attribute out, so OpenEXR writes it): decoded.
+    const std::string srgb = (dir / "srgb.exr").string();
+    {
+        Imf::Header header(7, 5);
+        header.insert("oiio:ColorSpace", Imf::StringAttribute("sRGB"));
+        Imf::FrameBuffer frame;
+        std::vector<float> values(7 * 5 * 3);
+        for (size_t i = 0; i < values.size(); ++i) values[i] = 0.011f * float(i);
+        for (int c = 0; c < 3; ++c) {
+            const char* name = c == 0 ? "R" : c == 1 ? "G" : "B";
+            header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+            frame.insert(name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(values.data() + c),
+                                          3 * sizeof(float), 7 * 3 * sizeof(float)));
+        }
+        Imf::OutputFile out(srgb.c_str(), header);
+        out.setFrameBuffer(frame);
+        out.writePixels(5);
+    }
+    auto in = OIIO::ImageInput::open(srgb);
+    ASSERT_TRUE(in);
+    ASSERT_TRUE(isSrgbEncoded(in->spec()));
+    expectReadAsOiioReadsIt(srgb);
+    // Tiled and MIP-mapped, as maketx writes environment maps: the finest level.
+    OIIO::ImageSpec config;
+    const std::string tiled = (dir / "tiled.exr").string();
+    ASSERT_TRUE(OIIO::ImageBufAlgo::make_texture(OIIO::ImageBufAlgo::MakeTxEnvLatl,
+                                                 pattern({"R", "G", "B"}), tiled, config));
+    expectReadAsOiioReadsIt(tiled);
+}
+
+TEST(ExrRgbInput, FilesItCannotReadExactlyAreLeftToTheModule) {
+    auto dir = test::scratchDir();
+    const std::vector<std::vector<std::string>> declined = {
+        {"R", "G"},                               // no blue
+        {"R", "G", "B", "Red"},                   // "Red" sorts between R and G
+        {"R", "G", "B", "r"},                     // so does "r"
+        {"Y", "RY", "BY"},                        // luminance-chroma
+        {"diffuse.R", "diffuse.G", "diffuse.B"},  // layered only
+    };
+    for (const auto& channels : declined) {
+        const std::string path = write(dir, "declined.exr", pattern(channels));
+        EXPECT_FALSE(readExrRgb(path)) << channels.size() << " " << channels.back();
+    }
+    EXPECT_FALSE(
+        readExrRgb(write(dir, "uint.exr", pattern({"R", "G", "B"}), OIIO::TypeDesc::UINT)));
+    EXPECT_FALSE(
+        readExrRgb(write(dir, "map.png", pattern({"R", "G", "B"}), OIIO::TypeDesc::UINT8)));
+    EXPECT_FALSE(readExrRgb((dir / "missing.exr").string()));
+    // Cut short: OpenEXR's error leaves it to the module, whose message says what is wrong.
+    const std::string whole = test::shared("envmaps/courtyard.exr");
+    std::ifstream in(whole, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), {});
+    const fs::path cut = dir / "cut.exr";
+    std::ofstream(cut, std::ios::binary).write(bytes.data(), long(bytes.size() / 2));
+    EXPECT_FALSE(readExrRgb(cut.string()));
+    EXPECT_THROW(readWorkingSpaceImage(cut.string()), ImageReadError);
+}
+
+}  // namespace
+}  // namespace kiln

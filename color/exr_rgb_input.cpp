@@ -27,21 +27,39 @@ bool sortsAmongRgb(const char* name) {
     return false;
 }
 
-// R, G and B unlayered, half or float, full resolution, and nothing OpenImageIO would put before
-// them (it sorts the unlayered channels first, R, G, B at their head).
+// R, G and B unlayered, half or float, nothing OpenImageIO would put before them (it sorts the
+// unlayered channels first, R, G, B at their head), and no channel subsampled (OpenImageIO
+// refuses the file).
 bool plainRgb(const Imf::ChannelList& channels) {
     int found = 0;
     for (auto c = channels.begin(); c != channels.end(); ++c) {
+        const Imf::Channel& ch = c.channel();
+        if (ch.xSampling != 1 || ch.ySampling != 1) return false;
         const std::string name = c.name();
         if (name.find('.') != std::string::npos) continue;  // a layer: sorted after these
         const bool rgb = name == "R" || name == "G" || name == "B";
         if (!rgb && sortsAmongRgb(name.c_str())) return false;
         if (!rgb) continue;
-        const Imf::Channel& ch = c.channel();
-        if (ch.type == Imf::UINT || ch.xSampling != 1 || ch.ySampling != 1) return false;
+        if (ch.type == Imf::UINT) return false;  // OpenImageIO converts integers its own way
         ++found;
     }
     return found == 3;
+}
+
+// OpenImageIO keeps attribute names regardless of case (the last of a name wins) and takes a
+// chromaticities of another type or spelling too: the colour is read here only where the two
+// attributes it acts on are spelt and typed as OpenEXR writes them, or absent.
+bool plainColourAttributes(const Imf::Header& header) {
+    for (auto a = header.begin(); a != header.end(); ++a) {
+        const std::string type = a.attribute().typeName();
+        if (strcasecmp(a.name(), "oiio:ColorSpace") == 0 &&
+            (std::string(a.name()) != "oiio:ColorSpace" || type != "string"))
+            return false;
+        if (strcasecmp(a.name(), "chromaticities") == 0 &&
+            (std::string(a.name()) != "chromaticities" || type != "chromaticities"))
+            return false;
+    }
+    return true;
 }
 
 // OpenImageIO's isSrgbEncoded for an EXR: only a stated oiio:ColorSpace "sRGB".
@@ -71,11 +89,11 @@ std::optional<RgbImage> readPlainRgb(const std::string& path) {
     exrThreadsOnEveryCore();
     Imf::InputFile file(path.c_str(), Imf::globalThreadCount());
     const Imf::Header& header = file.header();
-    if (!plainRgb(header.channels())) return std::nullopt;
+    if (!plainRgb(header.channels()) || !plainColourAttributes(header)) return std::nullopt;
     const Imath::Box2i window = header.dataWindow();
     const int64_t w = int64_t(window.max.x) - window.min.x + 1,
                   h = int64_t(window.max.y) - window.min.y + 1;
-    // OpenImageIO's limits for an EXR, and room for the floats and the image made from them.
+    // Sizes an int holds, and room for the floats and the image made from them.
     if (w < 1 || h < 1 || w > (1 << 20) || h > (1 << 20) ||
         uint64_t(w * h) * 2 * sizeof(Color) > availableMemoryBytes())
         return std::nullopt;

@@ -13,8 +13,9 @@ namespace kiln {
 // OpenImageIO's order are R, G, B of the unlayered part, stored as half or float: the data window
 // of part 0 at full resolution, converted to the working space from its chromaticities (or its
 // oiio:ColorSpace "sRGB"). std::nullopt for every other file (another format, other channels,
-// one OpenEXR cannot read, or too large for memory): the caller reads it through the image
-// module as before, whose errors name the problem.
+// a subsampled channel, those attributes spelt or typed otherwise, one OpenEXR cannot read, or
+// too large for memory): the caller reads it through the image module as before, whose errors
+// name the problem.
 std::optional<RgbImage> readExrRgb(const std::string& path);
 
 }  // namespace kiln

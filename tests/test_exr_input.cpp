@@ -1,6 +1,7 @@
 // readExrRgb (color/exr_rgb_input.h): an EXR environment map read with OpenEXR alone gives the
 // image OpenImageIO's reader gives, bit for bit, or declines the file so the module reads it.
 #include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfChromaticitiesAttribute.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfOutputFile.h>
@@ -13,6 +14,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <optional>
 
@@ -60,6 +62,24 @@ std::string write(const fs::path& dir, const std::string& name, OIIO::ImageBuf b
     return path;
 }
 
+// A 7x5 float R, G, B file written by OpenEXR itself, its header changed by `edit` first.
+void writeRgbWithOpenExr(const std::string& path, const std::function<void(Imf::Header&)>& edit) {
+    Imf::Header header(7, 5);
+    Imf::FrameBuffer frame;
+    std::vector<float> values(7 * 5 * 3);
+    for (size_t i = 0; i < values.size(); ++i) values[i] = 0.011f * float(i);
+    for (int c = 0; c < 3; ++c) {
+        const char* name = c == 0 ? "R" : c == 1 ? "G" : "B";
+        header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+        frame.insert(name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(values.data() + c),
+                                      3 * sizeof(float), 7 * 3 * sizeof(float)));
+    }
+    edit(header);
+    Imf::OutputFile out(path.c_str(), header);
+    out.setFrameBuffer(frame);
+    out.writePixels(5);
+}
+
 TEST(ExrRgbInput, TheSharedEnvironmentMapsReadAsOpenImageIoReadsThem) {
     // city.exr states D50-white chromaticities: the conversion to the working space is compared
     // too.
@@ -82,22 +102,9 @@ TEST(ExrRgbInput, HalfOffsetWindowsChromaticitiesLayersAndTilesReadAlike) {
         write(dir, "layers.exr", pattern({"Z", "diffuse.R", "R", "A", "G", "B", "AB", "X"})));
     // Stated sRGB (OpenImageIO's writer leaves the attribute out, so OpenEXR writes it): decoded.
     const std::string srgb = (dir / "srgb.exr").string();
-    {
-        Imf::Header header(7, 5);
+    writeRgbWithOpenExr(srgb, [](Imf::Header& header) {
         header.insert("oiio:ColorSpace", Imf::StringAttribute("sRGB"));
-        Imf::FrameBuffer frame;
-        std::vector<float> values(7 * 5 * 3);
-        for (size_t i = 0; i < values.size(); ++i) values[i] = 0.011f * float(i);
-        for (int c = 0; c < 3; ++c) {
-            const char* name = c == 0 ? "R" : c == 1 ? "G" : "B";
-            header.channels().insert(name, Imf::Channel(Imf::FLOAT));
-            frame.insert(name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(values.data() + c),
-                                          3 * sizeof(float), 7 * 3 * sizeof(float)));
-        }
-        Imf::OutputFile out(srgb.c_str(), header);
-        out.setFrameBuffer(frame);
-        out.writePixels(5);
-    }
+    });
     auto in = OIIO::ImageInput::open(srgb);
     ASSERT_TRUE(in);
     ASSERT_TRUE(isSrgbEncoded(in->spec()));
@@ -128,6 +135,23 @@ TEST(ExrRgbInput, FilesItCannotReadExactlyAreLeftToTheModule) {
     EXPECT_FALSE(
         readExrRgb(write(dir, "map.png", pattern({"R", "G", "B"}), OIIO::TypeDesc::UINT8)));
     EXPECT_FALSE(readExrRgb((dir / "missing.exr").string()));
+    // OpenImageIO takes these attributes whatever their case (and a chromaticities of another
+    // type), and refuses a file with any channel subsampled.
+    const std::string lower = (dir / "lower.exr").string();
+    writeRgbWithOpenExr(lower, [](Imf::Header& header) {
+        header.insert("oiio:colorspace", Imf::StringAttribute("sRGB"));
+    });
+    EXPECT_FALSE(readExrRgb(lower));
+    const std::string capital = (dir / "capital.exr").string();
+    writeRgbWithOpenExr(capital, [](Imf::Header& header) {
+        header.insert("Chromaticities", Imf::ChromaticitiesAttribute(Imf::Chromaticities()));
+    });
+    EXPECT_FALSE(readExrRgb(capital));
+    const std::string subsampled = (dir / "subsampled.exr").string();
+    writeRgbWithOpenExr(subsampled, [](Imf::Header& header) {
+        header.channels().insert("A", Imf::Channel(Imf::HALF, 1, 5));
+    });
+    EXPECT_FALSE(readExrRgb(subsampled));
     // Cut short: OpenEXR's error leaves it to the module, whose message says what is wrong.
     const std::string whole = test::shared("envmaps/courtyard.exr");
     std::ifstream in(whole, std::ios::binary);

@@ -69,18 +69,14 @@ bool statesSrgb(const Imf::Header& header) {
 }
 
 TexelConversion conversionOf(const Imf::Header& header) {
-    if (statesSrgb(header)) {
-        TexelConversion decode;
-        decode.decodeSrgb = true;
-        return decode;
-    }
     const auto* attribute =
         header.findTypedAttribute<Imf::ChromaticitiesAttribute>("chromaticities");
-    if (!attribute) return linearConversion(nullptr);
-    const Imf::Chromaticities& c = attribute->value();
-    const Chromaticities stated = {c.red.x,  c.red.y,  c.green.x, c.green.y,
-                                   c.blue.x, c.blue.y, c.white.x, c.white.y};
-    return linearConversion(&stated);
+    Chromaticities stated{};
+    if (attribute) {
+        const Imf::Chromaticities& c = attribute->value();
+        stated = {c.red.x, c.red.y, c.green.x, c.green.y, c.blue.x, c.blue.y, c.white.x, c.white.y};
+    }
+    return imageConversion(statesSrgb(header), attribute ? &stated : nullptr);
 }
 
 std::optional<RgbImage> readPlainRgb(const std::string& path) {

@@ -24,17 +24,13 @@ bool isSrgbEncoded(const OIIO::ImageSpec& spec) {
 }
 
 TexelConversion colourConversion(const OIIO::ImageSpec& spec) {
-    if (isSrgbEncoded(spec)) {
-        TexelConversion decode;
-        decode.decodeSrgb = true;
-        return decode;
-    }
     const OIIO::ParamValue* chroma =
         spec.find_attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8));
-    if (!chroma) return linearConversion(nullptr);
     Chromaticities stated;
-    for (int i = 0; i < 8; ++i) stated[size_t(i)] = static_cast<const float*>(chroma->data())[i];
-    return linearConversion(&stated);
+    if (chroma)
+        for (int i = 0; i < 8; ++i)
+            stated[size_t(i)] = static_cast<const float*>(chroma->data())[i];
+    return imageConversion(isSrgbEncoded(spec), chroma ? &stated : nullptr);
 }
 
 ImageHeader readImageHeader(const std::string& path) {

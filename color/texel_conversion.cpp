@@ -26,4 +26,11 @@ TexelConversion linearConversion(const Chromaticities* stated) {
     return conversion;
 }
 
+TexelConversion imageConversion(bool srgbEncoded, const Chromaticities* stated) {
+    if (!srgbEncoded) return linearConversion(stated);
+    TexelConversion decode;
+    decode.decodeSrgb = true;
+    return decode;
+}
+
 }  // namespace kiln

@@ -25,4 +25,7 @@ struct TexelConversion {
 // working space: no matrix when both are Rec.709.
 TexelConversion linearConversion(const Chromaticities* stated);
 
+// A colour image into the working space: decoded when sRGB-encoded, else linearConversion(stated).
+TexelConversion imageConversion(bool srgbEncoded, const Chromaticities* stated);
+
 }  // namespace kiln

@@ -2,12 +2,18 @@
 
 #include <OpenColorIO/OpenColorIO.h>
 #include <fmt/format.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <map>
+#include <mutex>
 #include <stdexcept>
+#include <tuple>
+
+#include "color/ocio_configs.h"
 
 namespace kiln {
 namespace OCIO = OCIO_NAMESPACE;
@@ -131,12 +137,32 @@ std::string colorConfigPath() {
     return std::string(KILN_SOURCE_DIR) + "/color/config.ocio";
 }
 
-ColorSetup checkColorConfig(const std::string& display, const std::string& view,
-                            const std::string& look) {
+std::string ocioConfigStamp(const std::string& path) {
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0) return path;
+    return fmt::format("{}\n{} {} {} {}", path, st.st_ino, st.st_size, st.st_mtim.tv_sec,
+                       st.st_mtim.tv_nsec);
+}
+
+OCIO::ConstConfigRcPtr sharedOcioConfig(const std::string& path) {
+    static std::mutex mutex;
+    static std::map<std::string, OCIO::ConstConfigRcPtr> read;
+    const std::string stamp = ocioConfigStamp(path);
+    std::lock_guard lock(mutex);
+    auto it = read.find(stamp);
+    if (it == read.end())
+        it = read.emplace(stamp, OCIO::Config::CreateFromFile(path.c_str())).first;
+    return it->second;
+}
+
+namespace {
+
+ColorSetup checkedColorSetup(const std::string& display, const std::string& view,
+                             const std::string& look) {
     ColorSetup setup{colorConfigPath(), "", display, view, look, {}};
     checkFallback(setup);
     try {
-        OCIO::ConstConfigRcPtr config = OCIO::Config::CreateFromFile(setup.configPath.c_str());
+        OCIO::ConstConfigRcPtr config = sharedOcioConfig(setup.configPath);
         setup.sceneLinear = resolveSceneLinear(config);
         if (setup.sceneLinear.empty())
             throw std::invalid_argument(
@@ -158,10 +184,29 @@ ColorSetup checkColorConfig(const std::string& display, const std::string& view,
     return setup;
 }
 
+}  // namespace
+
+// Checked once per config and display, view and look in a process (a frame of a batch checks
+// what the one before did); a failed check is not kept, so it fails again with its message.
+ColorSetup checkColorConfig(const std::string& display, const std::string& view,
+                            const std::string& look) {
+    using Key = std::tuple<std::string, std::string, std::string, std::string>;
+    static std::mutex mutex;
+    static std::map<Key, ColorSetup> checked;
+    const Key key{ocioConfigStamp(colorConfigPath()), display, view, look};
+    {
+        std::lock_guard lock(mutex);
+        if (auto it = checked.find(key); it != checked.end()) return it->second;
+    }
+    ColorSetup setup = checkedColorSetup(display, view, look);
+    std::lock_guard lock(mutex);
+    return checked.emplace(key, std::move(setup)).first->second;
+}
+
 ColorConfigNames listColorConfig() {
     ColorConfigNames names{colorConfigPath(), "", {}, {}};
     try {
-        OCIO::ConstConfigRcPtr config = OCIO::Config::CreateFromFile(names.configPath.c_str());
+        OCIO::ConstConfigRcPtr config = sharedOcioConfig(names.configPath);
         names.sceneLinear = resolveSceneLinear(config);
         for (int d = 0; d < config->getNumDisplays(); ++d) {
             const char* display = config->getDisplay(d);

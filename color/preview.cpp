@@ -6,9 +6,14 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <map>
+#include <mutex>
 #include <stdexcept>
+#include <tuple>
 
+#include "color/color_config.h"
 #include "color/image_output.h"
+#include "color/ocio_configs.h"
 #include "color/png_write.h"
 
 namespace OCIO = OCIO_NAMESPACE;
@@ -18,11 +23,9 @@ namespace {
 
 // scene_linear -> display/view (through the look when given), as OpenImageIO's ociodisplay builds
 // it: a display-view transform in OCIO's legacy viewing pipeline, the looks as its override.
-OCIO::ConstCPUProcessorRcPtr displayProcessor(const std::string& display, const std::string& view,
-                                              const std::string& look) {
-    const ColorSetup setup = checkColorConfig(display, view, look);
+OCIO::ConstCPUProcessorRcPtr makeDisplayProcessor(const ColorSetup& setup) {
     try {
-        OCIO::ConstConfigRcPtr config = OCIO::Config::CreateFromFile(setup.configPath.c_str());
+        OCIO::ConstConfigRcPtr config = sharedOcioConfig(setup.configPath);
         OCIO::DisplayViewTransformRcPtr transform = OCIO::DisplayViewTransform::Create();
         transform->setSrc(setup.sceneLinear.c_str());
         transform->setDisplay(setup.display.c_str());
@@ -38,6 +41,21 @@ OCIO::ConstCPUProcessorRcPtr displayProcessor(const std::string& display, const 
     } catch (const OCIO::Exception& e) {
         throw std::runtime_error(std::string("colour transform failed: ") + e.what());
     }
+}
+
+// Made once per config, display, view and look in a process (every frame of a batch writes a
+// preview).
+OCIO::ConstCPUProcessorRcPtr displayProcessor(const std::string& display, const std::string& view,
+                                              const std::string& look) {
+    const ColorSetup setup = checkColorConfig(display, view, look);
+    using Key = std::tuple<std::string, std::string, std::string, std::string>;
+    static std::mutex mutex;
+    static std::map<Key, OCIO::ConstCPUProcessorRcPtr> made;
+    const Key key{ocioConfigStamp(setup.configPath), setup.display, setup.view, setup.look};
+    std::lock_guard lock(mutex);
+    auto it = made.find(key);
+    if (it == made.end()) it = made.emplace(key, makeDisplayProcessor(setup)).first;
+    return it->second;
 }
 
 // A display value as an 8-bit code: scaled, rounded half away from zero, clamped, NaN to 0

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "color/color_config.h"
+#include "color/ocio_configs.h"
 #include "renderer/core/log.h"
 
 namespace kiln {
@@ -56,7 +57,7 @@ float srgbCurve(float v) {
 // Null when falling back to srgbCurve.
 OCIO::ConstCPUProcessorRcPtr makeDecoder(const std::string& path) {
     try {
-        OCIO::ConstConfigRcPtr config = OCIO::Config::CreateFromFile(path.c_str());
+        OCIO::ConstConfigRcPtr config = sharedOcioConfig(path);
         if (std::string name = srgbTextureSpace(config); !name.empty())
             return config->getProcessor(name.c_str(), OCIO::ROLE_SCENE_LINEAR)
                 ->getOptimizedCPUProcessor(OCIO::BIT_DEPTH_F32, OCIO::BIT_DEPTH_F32,

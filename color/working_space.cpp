@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "color/color_config.h"
+#include "color/ocio_configs.h"
 
 namespace kiln {
 namespace OCIO = OCIO_NAMESPACE;
@@ -85,7 +86,7 @@ Chromaticities statedChromaticities(const OCIO::ConstConfigRcPtr& config,
 WorkingSpace describe(const std::string& path) {
     WorkingSpace space;
     try {
-        OCIO::ConstConfigRcPtr config = OCIO::Config::CreateFromFile(path.c_str());
+        OCIO::ConstConfigRcPtr config = sharedOcioConfig(path);
         for (const char* role : {"scene_linear", "linear"})
             if (OCIO::ConstColorSpaceRcPtr cs = config->getColorSpace(role)) {
                 space.name = cs->getName();

@@ -55,6 +55,7 @@ LoadedScene::LoadedScene(std::string path, std::vector<std::string> loadArgs)
     : path_(std::move(path)), loadArgs_(std::move(loadArgs)) {
     RenderCommand c = parseRenderArguments(loadArgs_);
     scene_ = loadScene(path_, c.load);
+    bounds_ = scene_.storedBounds();
     info_ = sceneInfoJson(scene_);
 }
 
@@ -104,7 +105,7 @@ LoadedScene::Result LoadedScene::render(RenderCommand c, const RenderControl& co
     checkColour(c);
     std::lock_guard lock(mutex_);
     CameraRestore restore(scene_);
-    applyCameraOptions(scene_, c);
+    applyCameraOptions(scene_, c, bounds_);
     const Accelerator& accel = accelerator(c.accel, &options);
     RenderJob job(scene_, accel, options);
     warnHemisphereBlind(job, path_);

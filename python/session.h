@@ -78,6 +78,7 @@ class LoadedScene {
     std::string path_;
     std::vector<std::string> loadArgs_;
     Scene scene_;
+    Bounds3 bounds_;  // scene_.storedBounds(), for each render's camera options
     std::string info_;
     std::mutex mutex_;       // held by a render or crosscheck: the camera is theirs meanwhile
     std::mutex accelMutex_;  // the map (listed while a render runs, e.g. from its callback)

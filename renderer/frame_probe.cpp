@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 namespace kiln {
@@ -15,6 +16,10 @@ FrameProbe probeFrame(const RenderJob& job, int maxPixels, int spp) {
     const int w = s.filmWidth(), h = s.filmHeight();
     FrameProbe probe;
     if (w <= 0 || h <= 0 || maxPixels <= 0 || spp <= 0) return probe;
+    // At most a quarter of the render's own camera samples: a thumbnail's probe (a batch
+    // turntable's 64x48 frames at 1 sample) traced twice the render's samples.
+    const int64_t renderSamples = int64_t(w) * h * std::max(1, s.spp - s.sampleStart);
+    maxPixels = int(std::clamp<int64_t>(renderSamples / (4 * int64_t(spp)), 1, maxPixels));
     // An nx x ny grid of the region's aspect, at most maxPixels, never more than the region has.
     double scale = std::sqrt(double(maxPixels) / (double(w) * double(h)));
     int nx = std::clamp(int(w * scale), 1, w), ny = std::clamp(int(h * scale), 1, h);

@@ -19,8 +19,9 @@ struct FrameProbe {
 };
 
 // Up to maxPixels pixels on an even grid over the render region, spp samples each (the render's
-// first sample indices). Costs maxPixels * spp camera samples; trains the guide field if the job
-// is guided (the render would train it anyway).
+// first sample indices), and never more samples than a quarter of the render's (pixels x spp).
+// Costs at most maxPixels * spp camera samples; trains the guide field if the job is guided (the
+// render would train it anyway).
 FrameProbe probeFrame(const RenderJob& job, int maxPixels = 4096, int spp = 2);
 
 // Below this mean luminance (scene-linear, after exposure) an image shows as black: 1e-3 is

@@ -246,6 +246,30 @@ TEST(Checkpoint, TimeLimitStopsWithAValidCheckpointAndExit3) {
     EXPECT_TRUE(readCheckpointInfo(out + ".ckpt").complete);
 }
 
+// --no-final-checkpoint (a batch frame whose checkpoint would be removed once done): a finished
+// whole frame writes none, and its image is the one with a checkpoint; a shard's (sample range or
+// crop) is still written, since kiln merge reads it.
+TEST(Checkpoint, NoFinalCheckpointLeavesOutOnlyAFinishedWholeFramesOne) {
+    auto dir = test::scratchDir();
+    auto render = [&](const std::string& name, std::vector<std::string> more) {
+        std::vector<std::string> args{
+            "render", test::spheres(),       "-r",      "16", "12", "-s", "2", "-q",
+            "-o",     (dir / name).string(), "--resume"};
+        args.insert(args.end(), more.begin(), more.end());
+        EXPECT_EQ(test::runKilnProcess(args), 0) << name;
+        return (dir / name).string();
+    };
+    const std::string kept = render("kept", {});
+    const std::string none = render("none", {"--no-final-checkpoint"});
+    EXPECT_TRUE(fs::exists(kept + ".ckpt"));
+    EXPECT_FALSE(fs::exists(none + ".ckpt"));
+    EXPECT_TRUE(test::readExrPixels(kept + ".exr") == test::readExrPixels(none + ".exr"));
+    EXPECT_TRUE(fs::exists(render("range", {"--no-final-checkpoint", "--sample-range", "0", "1"}) +
+                           ".ckpt"));
+    EXPECT_TRUE(fs::exists(
+        render("crop", {"--no-final-checkpoint", "--crop", "0", "0.5", "0", "1"}) + ".ckpt"));
+}
+
 TEST(Checkpoint, ResumeWithoutACheckpointStartsAndAForeignOneIsAOneLineExit2) {
     auto dir = test::scratchDir();
     std::string out = (dir / "f").string(), err = (dir / "err.txt").string();

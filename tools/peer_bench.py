@@ -321,18 +321,19 @@ def main():
     a = ap.parse_args()
     if a.repeats < 2:
         sys.exit("--repeats: at least 2 (medians of interleaved pairs)")
-    if a.write_scenes:
-        os.makedirs(a.write_scenes, exist_ok=True)
-        for name in sorted(SCENES):
-            os.remove(describe(name, a.write_scenes)[1])  # the Cycles JSON names absolute paths
-        return
-    os.makedirs(a.out, exist_ok=True)
-    spps = [int(v) for v in a.spp.split(",")]
-    samplers = a.samplers.split(",")
     scenes = SCENES
     if a.scene_file:
         with open(a.scene_file) as f:
             scenes = json.load(f)
+    if a.write_scenes:
+        os.makedirs(a.write_scenes, exist_ok=True)
+        for name in sorted(scenes):
+            # the Cycles JSON names absolute paths
+            os.remove(describe(name, a.write_scenes, scenes=scenes)[1])
+        return
+    os.makedirs(a.out, exist_ok=True)
+    spps = [int(v) for v in a.spp.split(",")]
+    samplers = a.samplers.split(",")
     if a.scene not in scenes:
         sys.exit("--scene %s: not one of %s" % (a.scene, ", ".join(sorted(scenes))))
     kiln_scene, json_path, s = describe(a.scene, a.out, a.resolution, scenes)

@@ -71,10 +71,10 @@ void CameraOptions::check() const {
         }
 }
 
-void CameraOptions::apply(Scene& scene) const {
+void CameraOptions::apply(Scene& scene, const Bounds3& storedBounds) const {
     check();
     Camera& cam = scene.camera;
-    Vec3 centre = scene.storedBounds().centroid();
+    Vec3 centre = storedBounds.centroid();
     try {
         if (position || lookAt || up)
             pointCamera(cam, position ? stored(scene, *position) : cam.position,

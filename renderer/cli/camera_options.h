@@ -19,7 +19,9 @@ struct CameraOptions {
     // What the options say alone (the turntable and its frame, distinct points); throws UsageError.
     void check() const;
     // The override, then the orbit; throws UsageError on an impossible camera.
-    void apply(Scene& scene) const;
+    // storedBounds: the scene's (the orbit's and --position's default centre), found once per
+    // load by a process that renders many frames of it.
+    void apply(Scene& scene, const Bounds3& storedBounds) const;
 };
 
 }  // namespace kiln

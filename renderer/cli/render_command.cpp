@@ -79,6 +79,11 @@ void addLongRenderOptions(ArgParser& parser, RenderCommand& c) {
                       if (c.rangeEnd <= c.rangeStart)
                           throw UsageError("--sample-range takes A B with A < B");
                   });
+    parser.flag("no-final-checkpoint", "",
+                "a finished render of the whole frame writes no OUT.ckpt at its end (one "
+                "stopped early, or a --sample-range or --crop shard, still does); kiln batch and "
+                "farm frames without --keep-checkpoints",
+                c.noFinalCheckpoint);
     parser.option("time-limit", "", 1, "SECONDS",
                   "stop at a pixel boundary SECONDS after start, write OUT.ckpt and the image so "
                   "far, exit 3 (--resume continues)",
@@ -177,13 +182,13 @@ void applyLongRenderOptions(const RenderCommand& c, RenderJobOptions& o) {
             "decides from the samples before");
 }
 
-void applyThinLens(Scene& scene, const RenderCommand& c) {
+void applyThinLens(Scene& scene, const RenderCommand& c, const Bounds3& stored) {
     if (c.aperture <= 0) return;
     scene.camera.apertureRadius = c.aperture;
     scene.camera.focalDistance =
-        c.focus > 0 ? c.focus
-                    : std::max(1e-6f, dot(scene.storedBounds().centroid() - scene.camera.position,
-                                          scene.camera.forward));
+        c.focus > 0
+            ? c.focus
+            : std::max(1e-6f, dot(stored.centroid() - scene.camera.position, scene.camera.forward));
 }
 
 // Which kiln wrote the file: the libraries as kiln:libraries (the commit goes in Software).
@@ -230,9 +235,9 @@ void checkColour(RenderCommand& c) {
     }
 }
 
-void applyCameraOptions(Scene& scene, const RenderCommand& c) {
-    c.camera.apply(scene);
-    applyThinLens(scene, c);
+void applyCameraOptions(Scene& scene, const RenderCommand& c, const Bounds3& stored) {
+    c.camera.apply(scene, stored);
+    applyThinLens(scene, c, stored);
 }
 
 void warnHemisphereBlind(const RenderJob& job, const std::string& scenePath) {

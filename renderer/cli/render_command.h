@@ -54,6 +54,9 @@ struct RenderCommand {
     // Long renders (docs/long-renders.md).
     double checkpointEvery = 0, timeLimit = 0;
     bool resume = false;
+    // --no-final-checkpoint: a finished whole frame writes no OUT.ckpt at its end (nothing will
+    // refine it: a batch or farm frame whose checkpoint would be removed right after).
+    bool noFinalCheckpoint = false;
     int rangeStart = -1, rangeEnd = -1;  // --sample-range
     std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
     bool checkpoints() const {
@@ -77,8 +80,9 @@ RenderJobOptions renderJobOptions(const RenderCommand& c);
 void checkColour(RenderCommand& c);
 
 // The camera options (--position ... --turntable/--frame) and the thin lens (-b, -d) applied to
-// the loaded scene. Throws UsageError on an impossible camera.
-void applyCameraOptions(Scene& scene, const RenderCommand& c);
+// the loaded scene, whose storedBounds() are `stored` (found once per load: a pass over every
+// vertex, a tenth of a 1M-triangle thumbnail frame). Throws UsageError on an impossible camera.
+void applyCameraOptions(Scene& scene, const RenderCommand& c, const Bounds3& stored);
 
 // A warning when the direct-light sampling cannot see the scene's only lights.
 void warnHemisphereBlind(const RenderJob& job, const std::string& scenePath);

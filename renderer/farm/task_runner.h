@@ -28,7 +28,8 @@ struct RunOptions {
     // {"event": "task", ...} line (docs/output.md).
     bool report = true;
     // A finished render's OUT.ckpt (the film's exact sums, 0.7 GB at 1080p) is removed unless kept
-    // (for refinement with a higher -s, or as a shard for kiln merge).
+    // (for refinement with a higher -s, or as a shard for kiln merge); not kept, the renders are
+    // given --no-final-checkpoint (none written at their end only to be removed).
     bool keepCheckpoints = false;
     bool jsonEvents = false;
     // Appended to each render's command line, but not to what its done marker records: how it

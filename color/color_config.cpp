@@ -3,6 +3,7 @@
 #include <OpenColorIO/OpenColorIO.h>
 #include <fmt/format.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -139,9 +140,15 @@ std::string colorConfigPath() {
 
 std::string ocioConfigStamp(const std::string& path) {
     struct stat st {};
-    if (::stat(path.c_str(), &st) != 0) return path;
-    return fmt::format("{}\n{} {} {} {}", path, st.st_ino, st.st_size, st.st_mtim.tv_sec,
-                       st.st_mtim.tv_nsec);
+    std::string stamp = path;
+    if (::stat(path.c_str(), &st) == 0)
+        stamp += fmt::format("\n{} {} {} {}", st.st_ino, st.st_size, st.st_mtim.tv_sec,
+                             st.st_mtim.tv_nsec);
+    // OCIO reads the environment with the config: its context variables ($SHOT in a LUT's path)
+    // and OCIO_ACTIVE_DISPLAYS / _VIEWS / OCIO_INACTIVE_COLORSPACES, which a Python session may
+    // change between renders.
+    for (char** e = environ; e && *e; ++e) stamp += std::string("\n") + *e;
+    return stamp;
 }
 
 OCIO::ConstConfigRcPtr sharedOcioConfig(const std::string& path) {

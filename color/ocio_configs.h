@@ -14,8 +14,11 @@ namespace kiln {
 // what OCIO::Config::CreateFromFile throws; a config that failed to read is read again next time.
 OCIO_NAMESPACE::ConstConfigRcPtr sharedOcioConfig(const std::string& path);
 
-// The path with the file's inode, size and modification time: a key that changes when the config is
-// rewritten (a long Python session, a test writing configs one after another at one path).
+// The path with the file's inode, size and modification time, and the environment (OCIO's context
+// variables and active displays and views): a key that changes when the config is rewritten or the
+// environment it is read in changes (a long Python session, a test writing configs one after
+// another at one path). A rewrite of the same size within the file system's timestamp granularity
+// (a coarse NFS mtime) is not seen.
 std::string ocioConfigStamp(const std::string& path);
 
 }  // namespace kiln

@@ -9,6 +9,7 @@
 
 #include "farm_test_support.h"
 #include "renderer/farm/job_file.h"
+#include "renderer/farm/render_task.h"
 #include "renderer/geometry/turntable.h"
 
 extern char** environ;
@@ -315,6 +316,23 @@ TEST(Batch, FinishedFramesWriteNoCheckpointUnlessKept) {
     farm::CommandResult again = test::kiln({"batch", job, "-q", "--json"});
     ASSERT_EQ(again.exitCode, 0) << again.output;
     EXPECT_NE(again.output.find("\"skipped\": 2"), std::string::npos) << again.output;
+}
+
+// A child's done marker records the command as it ran, --no-final-checkpoint included: the frame
+// stays complete for a batch or farm task that checks the command without it (a child killed
+// before its batch rewrote the marker must not render its finished frames again).
+TEST(Batch, ADoneMarkerIgnoresWhatOnlyChangesWhatARenderKeeps) {
+    fs::path dir = test::scratchDir();
+    const std::string out = (dir / "f").string();
+    test::writeFile(out + ".exr", "an image");
+    const std::vector<std::string> command{"render", "scene.obj", "-s", "4", "-o", out};
+    std::vector<std::string> asRun = command;
+    asRun.insert(asRun.end(), {"--no-final-checkpoint", "-q"});
+    farm::markComplete(out, asRun);
+    EXPECT_TRUE(farm::isComplete(out, command));
+    std::vector<std::string> other = command;
+    other[3] = "8";
+    EXPECT_FALSE(farm::isComplete(out, other));
 }
 
 // A frame that fails in the middle of a run (its EXR path is a directory) fails alone: the frames

@@ -264,6 +264,12 @@ TEST(Checkpoint, NoFinalCheckpointLeavesOutOnlyAFinishedWholeFramesOne) {
     EXPECT_TRUE(fs::exists(kept + ".ckpt"));
     EXPECT_FALSE(fs::exists(none + ".ckpt"));
     EXPECT_TRUE(test::readExrPixels(kept + ".exr") == test::readExrPixels(none + ".exr"));
+    // A checkpoint there before (here a 2-sample one, refined to 4) is stale once the frame is
+    // finished: removed, so a later --resume does not redo its samples.
+    EXPECT_EQ(test::runKilnProcess({"render", test::spheres(), "-r", "16", "12", "-s", "4", "-q",
+                                    "-o", kept, "--resume", "--no-final-checkpoint"}),
+              0);
+    EXPECT_FALSE(fs::exists(kept + ".ckpt"));
     EXPECT_TRUE(fs::exists(render("range", {"--no-final-checkpoint", "--sample-range", "0", "1"}) +
                            ".ckpt"));
     EXPECT_TRUE(fs::exists(

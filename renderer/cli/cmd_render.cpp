@@ -249,7 +249,13 @@ int writeCheckpointAfterImages(RenderCommand& c, const RenderJob& job, const Lon
     const bool shard = c.rangeStart >= 0 || job.options().settings.hasRegion();
     // --no-final-checkpoint: the caller removes a finished frame's checkpoint (0.7 GB at 1080p)
     // as soon as it is done; one stopped early or a shard's is what --resume or kiln merge reads.
-    if (c.noFinalCheckpoint && imageFailures == 0 && r.stats.complete && !shard) return 0;
+    // One written during the render is stale then (a --resume would redo its samples): removed.
+    const bool stopped = r.stats.interrupted || r.stats.timeLimitReached;
+    if (c.noFinalCheckpoint && imageFailures == 0 && r.stats.complete && !stopped && !shard) {
+        std::error_code ec;
+        if (!lo.checkpointPath.empty()) fs::remove(lo.checkpointPath, ec);
+        return 0;
+    }
     try {
         writeFinalCheckpoint(lo, r);
         if (!lo.checkpointPath.empty()) writes.push_back({"checkpoint", out.checkpoint, ""});

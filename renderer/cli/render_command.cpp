@@ -80,9 +80,9 @@ void addLongRenderOptions(ArgParser& parser, RenderCommand& c) {
                           throw UsageError("--sample-range takes A B with A < B");
                   });
     parser.flag("no-final-checkpoint", "",
-                "a finished render of the whole frame writes no OUT.ckpt at its end (one "
-                "stopped early, or a --sample-range or --crop shard, still does); kiln batch and "
-                "farm frames without --keep-checkpoints",
+                "a finished render of the whole frame leaves no OUT.ckpt: none written at its end, "
+                "one written during it removed (one stopped early, or a --sample-range or --crop "
+                "shard, still writes it); kiln batch and farm frames without --keep-checkpoints",
                 c.noFinalCheckpoint);
     parser.option("time-limit", "", 1, "SECONDS",
                   "stop at a pixel boundary SECONDS after start, write OUT.ckpt and the image so "

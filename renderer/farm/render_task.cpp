@@ -23,11 +23,13 @@ std::string doneMarkerPath(const std::string& output) { return output + ".done";
 
 namespace {
 // The command as the done marker holds it: without -q, which changes what a render prints, not
-// what it writes (a batch run again with or without -q finds the same outputs complete).
+// what it writes (a batch run again with or without -q finds the same outputs complete), nor
+// --no-final-checkpoint, which changes what it keeps: a frame a child marked done before a kill
+// stays done, whether the batch keeps checkpoints or not.
 std::string joinLines(const std::vector<std::string>& command) {
     std::string text;
     for (const std::string& a : command)
-        if (a != "-q" && a != "--quiet") text += a + "\n";
+        if (a != "-q" && a != "--quiet" && a != "--no-final-checkpoint") text += a + "\n";
     return text;
 }
 }  // namespace

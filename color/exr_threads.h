@@ -1,20 +1,44 @@
-// OpenEXR's (de)compression threads: every core, as OpenImageIO set them when it read and wrote
-// kiln's EXRs. Set once per process, before the first file is opened.
+// OpenEXR's (de)compression threads: a render's -t, or every core (as OpenImageIO set them when it
+// read and wrote kiln's EXRs). OpenEXR keeps one pool per process.
 #pragma once
 
 #include <OpenEXR/ImfThreading.h>
 
 #include <algorithm>
+#include <mutex>
 #include <thread>
 
 namespace kiln {
+namespace detail {
+struct ExrThreadChoice {
+    std::mutex mutex;
+    bool chosen = false;  // set by a render's -t or the first EXR opened
+};
+inline ExrThreadChoice& exrThreadChoice() {
+    static ExrThreadChoice choice;
+    return choice;
+}
+inline void resizeExrPool(int threads) {
+    const int n = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
+    if (Imf::globalThreadCount() != n) Imf::setGlobalThreadCount(n);
+}
+}  // namespace detail
 
+// A render's -t (0: every core): a farm task given 4 cores compresses its EXR on 4 threads too.
+inline void setExrThreads(int threads) {
+    detail::ExrThreadChoice& c = detail::exrThreadChoice();
+    std::lock_guard lock(c.mutex);
+    c.chosen = true;
+    detail::resizeExrPool(threads);
+}
+
+// Before a file is opened: every core, unless a render chose its count.
 inline void exrThreadsOnEveryCore() {
-    static const bool set = [] {
-        Imf::setGlobalThreadCount(int(std::max(1u, std::thread::hardware_concurrency())));
-        return true;
-    }();
-    (void)set;
+    detail::ExrThreadChoice& c = detail::exrThreadChoice();
+    std::lock_guard lock(c.mutex);
+    if (c.chosen) return;
+    c.chosen = true;
+    detail::resizeExrPool(0);
 }
 
 }  // namespace kiln

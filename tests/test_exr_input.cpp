@@ -11,14 +11,17 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <limits>
 #include <optional>
+#include <thread>
 
 #include "color/exr_rgb_input.h"
+#include "color/exr_threads.h"
 #include "test_support.h"
 
 namespace kiln {
@@ -160,6 +163,19 @@ TEST(ExrRgbInput, FilesItCannotReadExactlyAreLeftToTheModule) {
     std::ofstream(cut, std::ios::binary).write(bytes.data(), long(bytes.size() / 2));
     EXPECT_FALSE(readExrRgb(cut.string()));
     EXPECT_THROW(readWorkingSpaceImage(cut.string()), ImageReadError);
+}
+
+// OpenEXR's pool follows a render's -t (a farm task given 4 cores compresses on 4), and every core
+// is only the default: an EXR opened after the render chose keeps its count.
+TEST(ExrThreads, ARendersCountIsKeptAndEveryCoreIsOnlyTheDefault) {
+    setExrThreads(1);
+    EXPECT_EQ(Imf::globalThreadCount(), 1);
+    exrThreadsOnEveryCore();
+    EXPECT_EQ(Imf::globalThreadCount(), 1);
+    setExrThreads(3);
+    EXPECT_EQ(Imf::globalThreadCount(), 3);
+    setExrThreads(0);
+    EXPECT_EQ(Imf::globalThreadCount(), int(std::max(1u, std::thread::hardware_concurrency())));
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include <optional>
 
 #include "color/atomic_file.h"
+#include "color/exr_threads.h"
 #include "color/image_module.h"
 #include "renderer/accel/recording_accelerator.h"
 #include "renderer/cli/commands.h"
@@ -456,6 +457,8 @@ int renderFrame(const std::vector<std::string>& args, LoadedScene& loaded,
     // Embree's build on the render's threads too: a farm task given 4 cores of a node keeps to
     // them from the first moment.
     c.accel = c.accel.withThreads(c.job.job.settings.threads);
+    // OpenEXR's threads too: an environment map read at the load, the EXR written at the end.
+    setExrThreads(c.job.job.settings.threads);
     const bool sceneReused = loaded.holdsScene(scenePath, c);
     const bool reused = loaded.holdsAccelerator(scenePath, c);
     if (!sceneReused) loaded.expect(scenePath, c.load);

@@ -3,7 +3,6 @@
 #include <OpenColorIO/OpenColorIO.h>
 #include <fmt/format.h>
 #include <sys/stat.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -11,8 +10,11 @@
 #include <filesystem>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <tuple>
+#include <utility>
+#include <vector>
 
 #include "color/ocio_configs.h"
 
@@ -138,28 +140,85 @@ std::string colorConfigPath() {
     return std::string(KILN_SOURCE_DIR) + "/color/config.ocio";
 }
 
-std::string ocioConfigStamp(const std::string& path) {
+namespace {
+
+// A variable's value, or none when unset (a config's declared default applies then).
+std::optional<std::string> environmentValue(const char* name) {
+    const char* value = std::getenv(name);
+    return value ? std::optional<std::string>(value) : std::nullopt;
+}
+
+// The file's identity (inode, size, modification time) and the variables OCIO reads beside it
+// when it builds a config.
+std::string fileStamp(const std::string& path) {
     struct stat st {};
-    std::string stamp = path;
+    std::string stamp;
     if (::stat(path.c_str(), &st) == 0)
-        stamp += fmt::format("\n{} {} {} {}", st.st_ino, st.st_size, st.st_mtim.tv_sec,
-                             st.st_mtim.tv_nsec);
-    // OCIO reads the environment with the config: its context variables ($SHOT in a LUT's path)
-    // and OCIO_ACTIVE_DISPLAYS / _VIEWS / OCIO_INACTIVE_COLORSPACES, which a Python session may
-    // change between renders.
-    for (char** e = environ; e && *e; ++e) stamp += std::string("\n") + *e;
+        stamp = fmt::format("{} {} {} {}", st.st_ino, st.st_size, st.st_mtim.tv_sec,
+                            st.st_mtim.tv_nsec);
+    for (const char* name :
+         {"OCIO_ACTIVE_DISPLAYS", "OCIO_ACTIVE_VIEWS", "OCIO_INACTIVE_COLORSPACES"})
+        stamp += fmt::format("\n{}", environmentValue(name).value_or("(unset)"));
     return stamp;
 }
 
-OCIO::ConstConfigRcPtr sharedOcioConfig(const std::string& path) {
+// The environment's values of the context variables the config captured when read ($SHOT in a
+// LUT's path; every variable of the environment for a config that declares none).
+using ContextValues = std::vector<std::pair<std::string, std::optional<std::string>>>;
+ContextValues contextValues(const OCIO::ConstConfigRcPtr& config) {
+    OCIO::ConstContextRcPtr context = config->getCurrentContext();
+    ContextValues values;
+    for (int i = 0; i < context->getNumStringVars(); ++i) {
+        const char* name = context->getStringVarNameByIndex(i);
+        values.emplace_back(name, environmentValue(name));
+    }
+    return values;
+}
+
+bool contextUnchanged(const ContextValues& values) {
+    for (const auto& [name, value] : values)
+        if (environmentValue(name.c_str()) != value) return false;
+    return true;
+}
+
+struct ReadConfig {
+    std::string stamp;
+    OCIO::ConstConfigRcPtr config;
+    ContextValues context;
+    uint64_t generation = 0;
+};
+
+// The config at path as last read (one per path: a config read again replaces it), and its
+// generation, which changes with every read.
+ReadConfig currentConfig(const std::string& path) {
     static std::mutex mutex;
-    static std::map<std::string, OCIO::ConstConfigRcPtr> read;
-    const std::string stamp = ocioConfigStamp(path);
+    static std::map<std::string, ReadConfig> read;
+    static uint64_t generations = 0;
+    const std::string stamp = fileStamp(path);
     std::lock_guard lock(mutex);
-    auto it = read.find(stamp);
-    if (it == read.end())
-        it = read.emplace(stamp, OCIO::Config::CreateFromFile(path.c_str())).first;
+    auto it = read.find(path);
+    if (it == read.end() || it->second.stamp != stamp || !contextUnchanged(it->second.context)) {
+        OCIO::ConstConfigRcPtr config = OCIO::Config::CreateFromFile(path.c_str());
+        ContextValues context = contextValues(config);
+        it = read.insert_or_assign(path,
+                                   ReadConfig{stamp, config, std::move(context), ++generations})
+                 .first;
+    }
     return it->second;
+}
+
+}  // namespace
+
+OCIO::ConstConfigRcPtr sharedOcioConfig(const std::string& path) {
+    return currentConfig(path).config;
+}
+
+std::string ocioConfigStamp(const std::string& path) {
+    try {
+        return fmt::format("{}\n{}", path, currentConfig(path).generation);
+    } catch (const OCIO::Exception&) {
+        return fmt::format("{}\nunreadable", path);  // checkColorConfig says why
+    }
 }
 
 namespace {
@@ -207,6 +266,7 @@ ColorSetup checkColorConfig(const std::string& display, const std::string& view,
     }
     ColorSetup setup = checkedColorSetup(display, view, look);
     std::lock_guard lock(mutex);
+    if (checked.size() >= kKeptPerProcess) checked.clear();  // configs read again and again
     return checked.emplace(key, std::move(setup)).first->second;
 }
 

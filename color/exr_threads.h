@@ -25,6 +25,9 @@ inline void resizeExrPool(int threads) {
 }  // namespace detail
 
 // A render's -t (0: every core): a farm task given 4 cores compresses its EXR on 4 threads too.
+// Only while no other thread reads or writes an EXR: OpenEXR drops the work queued in its pool
+// when the pool is resized (kiln render and render-frames call it before each load; the Python
+// module, whose threads may overlap, does not).
 inline void setExrThreads(int threads) {
     detail::ExrThreadChoice& c = detail::exrThreadChoice();
     std::lock_guard lock(c.mutex);

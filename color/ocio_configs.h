@@ -5,20 +5,26 @@
 
 #include <OpenColorIO/OpenColorIO.h>
 
+#include <cstddef>
 #include <string>
 
 namespace kiln {
 
-// The config at path, read on first use and kept for the process while the file keeps its size
-// and modification time (OCIO configs are immutable and safe to share between threads). Throws
-// what OCIO::Config::CreateFromFile throws; a config that failed to read is read again next time.
+// The config at path, read on first use and kept for the process while the file keeps its inode,
+// size and modification time and the environment it was read in holds (OCIO_ACTIVE_DISPLAYS,
+// _VIEWS, OCIO_INACTIVE_COLORSPACES, the context variables it captured): a long Python session
+// that edits the config or sets $SHOT gets it read again. A rewrite of the same size within the
+// file system's timestamp granularity (a coarse NFS mtime) is not seen. OCIO configs are immutable
+// and safe to share between threads. Throws what OCIO::Config::CreateFromFile throws; a config
+// that failed to read is read again next time.
 OCIO_NAMESPACE::ConstConfigRcPtr sharedOcioConfig(const std::string& path);
 
-// The path with the file's inode, size and modification time, and the environment (OCIO's context
-// variables and active displays and views): a key that changes when the config is rewritten or the
-// environment it is read in changes (a long Python session, a test writing configs one after
-// another at one path). A rewrite of the same size within the file system's timestamp granularity
-// (a coarse NFS mtime) is not seen.
+// The path and the generation of its config as sharedOcioConfig holds it now: a key for what is
+// made from the config, which changes whenever the config is read again.
 std::string ocioConfigStamp(const std::string& path);
+
+// How many checked setups or display processors a process keeps (configs read again and again
+// start the caches afresh).
+inline constexpr size_t kKeptPerProcess = 32;
 
 }  // namespace kiln

@@ -54,7 +54,10 @@ OCIO::ConstCPUProcessorRcPtr displayProcessor(const std::string& display, const 
     const Key key{ocioConfigStamp(setup.configPath), setup.display, setup.view, setup.look};
     std::lock_guard lock(mutex);
     auto it = made.find(key);
-    if (it == made.end()) it = made.emplace(key, makeDisplayProcessor(setup)).first;
+    if (it == made.end()) {
+        if (made.size() >= kKeptPerProcess) made.clear();
+        it = made.emplace(key, makeDisplayProcessor(setup)).first;
+    }
     return it->second;
 }
 

@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <utility>
 
-#include "color/exr_threads.h"
 #include "renderer/core/log.h"
 #include "renderer/denoise_film.h"
 #include "scene/scene_info.h"
@@ -102,8 +101,7 @@ const Accelerator& LoadedScene::accelerator(const AcceleratorChoice& choice,
 
 LoadedScene::Result LoadedScene::render(RenderCommand c, const RenderControl& control) {
     RenderJobOptions options = renderJobOptions(c);
-    options.settings.progress = false;        // no bar on stderr: the caller has tileDone
-    setExrThreads(options.settings.threads);  // for the EXR the caller may write
+    options.settings.progress = false;  // no bar on stderr: the caller has tileDone
     checkColour(c);
     std::lock_guard lock(mutex_);
     CameraRestore restore(scene_);

@@ -3,6 +3,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include "color/color_config.h"
+#include "color/ocio_configs.h"
 #include "kiln_run.h"
 #include "test_support.h"
 
@@ -66,6 +67,42 @@ TEST(ColourConfig, ShippedConfigHasTheRolesAndPassesEveryCheck) {
     EXPECT_EQ(check.code, 0) << check.out;
     EXPECT_EQ(check.out.find("WARNING"), std::string::npos) << check.out;
     EXPECT_EQ(check.out.find("ERROR"), std::string::npos) << check.out;
+}
+
+// A process reads its config once (each frame of a batch checked it and made the preview's
+// transform from it: 3-4 reads), and again when the file or the environment it was read in changes:
+// a Python session that edits the config, or sets a context variable or the active displays.
+TEST(ColourConfig, AConfigIsReadOnceUntilItsFileOrEnvironmentChanges) {
+    auto dir = test::scratchDir();
+    std::string text = config(kGoodRoles);
+    text.insert(text.find('\n') + 1, "environment: {KILN_TEST_SHOT: a}\n");
+    const std::string path = test::writeFile(dir / "studio.ocio", text);
+    auto shot = [&] {
+        return std::string(
+            sharedOcioConfig(path)->getCurrentContext()->resolveStringVar("$KILN_TEST_SHOT"));
+    };
+    const auto first = sharedOcioConfig(path);
+    EXPECT_EQ(sharedOcioConfig(path), first);
+    std::string stamp = ocioConfigStamp(path);
+    EXPECT_EQ(ocioConfigStamp(path), stamp);
+    EXPECT_EQ(shot(), "a");
+    {
+        test::ScopedEnv set("KILN_TEST_SHOT", "b");
+        EXPECT_EQ(shot(), "b");
+        EXPECT_NE(ocioConfigStamp(path), stamp);
+        stamp = ocioConfigStamp(path);
+    }
+    EXPECT_EQ(shot(), "a");
+    EXPECT_NE(ocioConfigStamp(path), stamp);
+    stamp = ocioConfigStamp(path);
+    {
+        test::ScopedEnv active("OCIO_ACTIVE_DISPLAYS", "Studio Monitor");
+        EXPECT_NE(ocioConfigStamp(path), stamp);
+    }
+    stamp = ocioConfigStamp(path);
+    EXPECT_EQ(ocioConfigStamp(path), stamp);
+    test::writeFile(dir / "studio.ocio", text + "\n");  // edited: one byte more
+    EXPECT_NE(ocioConfigStamp(path), stamp);
 }
 
 TEST(ColourConfig, DefaultsAndWorkingSpaceComeFromOcio) {

@@ -444,6 +444,9 @@ int renderFrame(const std::vector<std::string>& args, LoadedScene& loaded,
         throw UsageError("every render of kiln render-frames needs -o OUT (it writes OUT.done)");
     const std::string& scenePath = pos[0];
     RenderJobOptions jobOptions = checkedJobOptions(c);
+    // OpenEXR's threads too (an environment map read at the load, the EXR written at the end),
+    // before the image module loads: OpenImageIO keeps the count it finds.
+    setExrThreads(c.job.job.settings.threads);
     applyQueueOptions(c, jobOptions);
     checkColour(c);
     OutputPaths out = outputPaths(c, scenePath);
@@ -457,8 +460,6 @@ int renderFrame(const std::vector<std::string>& args, LoadedScene& loaded,
     // Embree's build on the render's threads too: a farm task given 4 cores of a node keeps to
     // them from the first moment.
     c.accel = c.accel.withThreads(c.job.job.settings.threads);
-    // OpenEXR's threads too: an environment map read at the load, the EXR written at the end.
-    setExrThreads(c.job.job.settings.threads);
     const bool sceneReused = loaded.holdsScene(scenePath, c);
     const bool reused = loaded.holdsAccelerator(scenePath, c);
     if (!sceneReused) loaded.expect(scenePath, c.load);

@@ -250,7 +250,8 @@ int writeCheckpointAfterImages(RenderCommand& c, const RenderJob& job, const Lon
     const bool shard = c.rangeStart >= 0 || job.options().settings.hasRegion();
     // --no-final-checkpoint: the caller removes a finished frame's checkpoint (0.7 GB at 1080p)
     // as soon as it is done; one stopped early or a shard's is what --resume or kiln merge reads.
-    // One written during the render is stale then (a --resume would redo its samples): removed.
+    // One written during the render goes too: the flag is for callers that remove the frame's
+    // checkpoint once it is done (it would spare a later refinement only the samples it holds).
     const bool stopped = r.stats.interrupted || r.stats.timeLimitReached;
     if (c.noFinalCheckpoint && imageFailures == 0 && r.stats.complete && !stopped && !shard) {
         std::error_code ec;

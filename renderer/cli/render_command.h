@@ -54,8 +54,8 @@ struct RenderCommand {
     // Long renders (docs/long-renders.md).
     double checkpointEvery = 0, timeLimit = 0;
     bool resume = false;
-    // --no-final-checkpoint: a finished whole frame writes no OUT.ckpt at its end (nothing will
-    // refine it: a batch or farm frame whose checkpoint would be removed right after).
+    // --no-final-checkpoint: a finished whole frame leaves no OUT.ckpt, none written at its end and
+    // one written during it removed (a batch or farm frame whose checkpoint its caller removes).
     bool noFinalCheckpoint = false;
     int rangeStart = -1, rangeEnd = -1;  // --sample-range
     std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();

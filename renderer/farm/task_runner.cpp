@@ -29,7 +29,8 @@ bool taskComplete(const RenderTask& task, const RunOptions& options) {
 
 // What a child's command adds to the task's: the report options, and --no-final-checkpoint where
 // the batch removes a finished frame's checkpoint anyway (0.7 GB at 1080p, written then removed).
-// The done marker leaves them out: they do not change the image.
+// The done marker leaves them out: they do not change the image (the flag is left out by
+// joinLines itself, so only the report options make the batch rewrite a child's marker).
 std::vector<std::string> childOnlyArgs(const RunOptions& options) {
     std::vector<std::string> args = options.childArgs;
     if (!options.keepCheckpoints) args.push_back("--no-final-checkpoint");
@@ -197,7 +198,7 @@ std::vector<size_t> runFrames(std::vector<TaskResult>& results, const std::vecto
         r.seconds = std::max(0.0, std::chrono::duration<double>(end - previous).count());
         previous = end;
         if (done) {
-            if (!childOnlyArgs(options).empty()) markComplete(r.task.output, command);
+            if (!options.childArgs.empty()) markComplete(r.task.output, command);
             r.outcome = resuming[g] ? Outcome::Resumed : Outcome::Rendered;
             if (!options.keepCheckpoints) fs::remove(r.task.output + ".ckpt");
             reportEnd(r, options, group[g], n, clock);

@@ -12,7 +12,6 @@
 #include <mutex>
 #include <optional>
 #include <stdexcept>
-#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -256,18 +255,9 @@ ColorSetup checkedColorSetup(const std::string& display, const std::string& view
 // what the one before did); a failed check is not kept, so it fails again with its message.
 ColorSetup checkColorConfig(const std::string& display, const std::string& view,
                             const std::string& look) {
-    using Key = std::tuple<std::string, std::string, std::string, std::string>;
-    static std::mutex mutex;
-    static std::map<Key, ColorSetup> checked;
-    const Key key{ocioConfigStamp(colorConfigPath()), display, view, look};
-    {
-        std::lock_guard lock(mutex);
-        if (auto it = checked.find(key); it != checked.end()) return it->second;
-    }
-    ColorSetup setup = checkedColorSetup(display, view, look);
-    std::lock_guard lock(mutex);
-    if (checked.size() >= kKeptPerProcess) checked.clear();  // configs read again and again
-    return checked.emplace(key, std::move(setup)).first->second;
+    static MadeFromConfig<ColorSetup> checked;
+    return checked.get(colorConfigPath(), display, view, look,
+                       [&] { return checkedColorSetup(display, view, look); });
 }
 
 ColorConfigNames listColorConfig() {

@@ -6,7 +6,11 @@
 #include <OpenColorIO/OpenColorIO.h>
 
 #include <cstddef>
+#include <map>
+#include <mutex>
 #include <string>
+#include <tuple>
+#include <utility>
 
 namespace kiln {
 
@@ -23,8 +27,31 @@ OCIO_NAMESPACE::ConstConfigRcPtr sharedOcioConfig(const std::string& path);
 // made from the config, which changes whenever the config is read again.
 std::string ocioConfigStamp(const std::string& path);
 
-// How many checked setups or display processors a process keeps (configs read again and again
-// start the caches afresh).
-inline constexpr size_t kKeptPerProcess = 32;
+// What a process makes from its config for a display, view and look (a checked setup, a display
+// processor): made once per read of the config, at most kKept of them (configs read again and
+// again start it afresh). A make that throws keeps nothing, so it fails again with its message.
+template <class T>
+class MadeFromConfig {
+  public:
+    template <class Make>
+    T get(const std::string& configPath, const std::string& display, const std::string& view,
+          const std::string& look, Make make) {
+        const Key key{ocioConfigStamp(configPath), display, view, look};
+        std::lock_guard lock(mutex_);
+        auto it = made_.find(key);
+        if (it == made_.end()) {
+            T value = make();
+            if (made_.size() >= kKept) made_.clear();
+            it = made_.emplace(key, std::move(value)).first;
+        }
+        return it->second;
+    }
+
+  private:
+    static constexpr size_t kKept = 32;
+    using Key = std::tuple<std::string, std::string, std::string, std::string>;
+    std::mutex mutex_;
+    std::map<Key, T> made_;
+};
 
 }  // namespace kiln

@@ -6,10 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <map>
-#include <mutex>
 #include <stdexcept>
-#include <tuple>
 
 #include "color/color_config.h"
 #include "color/image_output.h"
@@ -48,17 +45,9 @@ OCIO::ConstCPUProcessorRcPtr makeDisplayProcessor(const ColorSetup& setup) {
 OCIO::ConstCPUProcessorRcPtr displayProcessor(const std::string& display, const std::string& view,
                                               const std::string& look) {
     const ColorSetup setup = checkColorConfig(display, view, look);
-    using Key = std::tuple<std::string, std::string, std::string, std::string>;
-    static std::mutex mutex;
-    static std::map<Key, OCIO::ConstCPUProcessorRcPtr> made;
-    const Key key{ocioConfigStamp(setup.configPath), setup.display, setup.view, setup.look};
-    std::lock_guard lock(mutex);
-    auto it = made.find(key);
-    if (it == made.end()) {
-        if (made.size() >= kKeptPerProcess) made.clear();
-        it = made.emplace(key, makeDisplayProcessor(setup)).first;
-    }
-    return it->second;
+    static MadeFromConfig<OCIO::ConstCPUProcessorRcPtr> made;
+    return made.get(setup.configPath, setup.display, setup.view, setup.look,
+                    [&] { return makeDisplayProcessor(setup); });
 }
 
 // A display value as an 8-bit code: scaled, rounded half away from zero, clamped, NaN to 0

@@ -222,9 +222,10 @@ std::string ocioConfigStamp(const std::string& path) {
 
 namespace {
 
-ColorSetup checkedColorSetup(const std::string& display, const std::string& view,
+ColorSetup checkedColorSetup(const std::string& configPath, const std::string& stamp,
+                             const std::string& display, const std::string& view,
                              const std::string& look) {
-    ColorSetup setup{colorConfigPath(), "", display, view, look, {}};
+    ColorSetup setup{configPath, stamp, "", display, view, look, {}};
     checkFallback(setup);
     try {
         OCIO::ConstConfigRcPtr config = sharedOcioConfig(setup.configPath);
@@ -256,8 +257,9 @@ ColorSetup checkedColorSetup(const std::string& display, const std::string& view
 ColorSetup checkColorConfig(const std::string& display, const std::string& view,
                             const std::string& look) {
     static MadeFromConfig<ColorSetup> checked;
-    return checked.get(colorConfigPath(), display, view, look,
-                       [&] { return checkedColorSetup(display, view, look); });
+    const std::string path = colorConfigPath(), stamp = ocioConfigStamp(path);
+    return checked.get(stamp, display, view, look,
+                       [&] { return checkedColorSetup(path, stamp, display, view, look); });
 }
 
 ColorConfigNames listColorConfig() {

@@ -19,6 +19,7 @@ void setBundledColorConfig(const std::string& path);
 // What a render uses from the config, resolved and checked.
 struct ColorSetup {
     std::string configPath;
+    std::string configStamp;    // the read of the config checked (ocioConfigStamp)
     std::string sceneLinear;    // the colour space of the scene_linear role (or the "linear" alias)
     std::string display, view;  // as asked, or the config's defaults
     std::string look;           // as asked (empty: none)

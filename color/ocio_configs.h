@@ -33,10 +33,12 @@ std::string ocioConfigStamp(const std::string& path);
 template <class T>
 class MadeFromConfig {
   public:
+    // configStamp: ocioConfigStamp of the config `make` reads, taken once by the caller, so that
+    // what is made and the key it is kept under name the same read.
     template <class Make>
-    T get(const std::string& configPath, const std::string& display, const std::string& view,
+    T get(const std::string& configStamp, const std::string& display, const std::string& view,
           const std::string& look, Make make) {
-        const Key key{ocioConfigStamp(configPath), display, view, look};
+        const Key key{configStamp, display, view, look};
         std::lock_guard lock(mutex_);
         auto it = made_.find(key);
         if (it == made_.end()) {

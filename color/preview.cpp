@@ -46,7 +46,7 @@ OCIO::ConstCPUProcessorRcPtr displayProcessor(const std::string& display, const 
                                               const std::string& look) {
     const ColorSetup setup = checkColorConfig(display, view, look);
     static MadeFromConfig<OCIO::ConstCPUProcessorRcPtr> made;
-    return made.get(setup.configPath, setup.display, setup.view, setup.look,
+    return made.get(setup.configStamp, setup.display, setup.view, setup.look,
                     [&] { return makeDisplayProcessor(setup); });
 }
 

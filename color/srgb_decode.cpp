@@ -71,15 +71,15 @@ OCIO::ConstCPUProcessorRcPtr makeDecoder(const std::string& path) {
     return nullptr;
 }
 
-// The processor of the config kiln follows now ($OCIO may change between scenes of one process),
-// made once per config.
+// The processor of the config kiln follows now, made once per read of it: $OCIO may change
+// between scenes of one process, and a long session may edit the config (ocioConfigStamp).
 OCIO::ConstCPUProcessorRcPtr decoder() {
     static std::mutex mutex;
     static std::string madeFor;
     static OCIO::ConstCPUProcessorRcPtr processor;
-    std::string path = colorConfigPath();
+    const std::string path = colorConfigPath(), stamp = ocioConfigStamp(path);
     std::lock_guard lock(mutex);
-    if (path != madeFor || madeFor.empty()) processor = makeDecoder(path), madeFor = path;
+    if (stamp != madeFor) processor = makeDecoder(path), madeFor = stamp;
     return processor;
 }
 

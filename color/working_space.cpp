@@ -114,11 +114,13 @@ WorkingSpace describe(const std::string& path) {
 
 const WorkingSpace& workingSpace() {
     static std::mutex mutex;
-    static std::map<std::string, WorkingSpace> made;  // $OCIO may change between scenes
-    std::string path = colorConfigPath();
+    // By the config's read ($OCIO may change between scenes, a long session may edit the config);
+    // never erased: callers keep the reference.
+    static std::map<std::string, WorkingSpace> made;
+    const std::string path = colorConfigPath(), stamp = ocioConfigStamp(path);
     std::lock_guard lock(mutex);
-    auto it = made.find(path);
-    if (it == made.end()) it = made.emplace(path, describe(path)).first;
+    auto it = made.find(stamp);
+    if (it == made.end()) it = made.emplace(stamp, describe(path)).first;
     return it->second;
 }
 

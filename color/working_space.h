@@ -21,7 +21,8 @@ struct WorkingSpace {
     double offFromRec709 = 0;  // the largest XYZ difference of its primaries from Rec.709's
 };
 
-// The working space of the config kiln follows now (color_config.h), made once per config path.
+// The working space of the config kiln follows now (color_config.h), made once per read of the
+// config (ocioConfigStamp: a config edited or read in another environment is described again).
 // Throws std::invalid_argument naming the config when it cannot be loaded.
 const WorkingSpace& workingSpace();
 

@@ -4,6 +4,7 @@
 
 #include "color/color_config.h"
 #include "color/ocio_configs.h"
+#include "color/working_space.h"
 #include "kiln_run.h"
 #include "test_support.h"
 
@@ -103,6 +104,21 @@ TEST(ColourConfig, AConfigIsReadOnceUntilItsFileOrEnvironmentChanges) {
     EXPECT_EQ(ocioConfigStamp(path), stamp);
     test::writeFile(dir / "studio.ocio", text + "\n");  // edited: one byte more
     EXPECT_NE(ocioConfigStamp(path), stamp);
+}
+
+// The working space follows an edited config: it is described once per read of the config, not
+// once per path for the life of the process.
+TEST(ColourConfig, AnEditedConfigsWorkingSpaceIsFollowed) {
+    auto dir = test::scratchDir();
+    const std::string path = test::writeFile(dir / "studio.ocio", config(kGoodRoles));
+    test::ScopedEnv ocio("OCIO", path);
+    EXPECT_TRUE(workingSpace().rec709);
+    EXPECT_EQ(workingSpace().name, "linear_srgb");
+    test::writeFile(path, config("  default: acescg\n  scene_linear: acescg\n"
+                                 "  aces_interchange: aces\n"));
+    EXPECT_EQ(workingSpace().name, "acescg");
+    EXPECT_FALSE(workingSpace().rec709);
+    EXPECT_EQ(checkColorConfig().sceneLinear, "acescg");
 }
 
 TEST(ColourConfig, DefaultsAndWorkingSpaceComeFromOcio) {

@@ -69,6 +69,22 @@ TEST(SrgbDecode, FollowsTheConfigsSrgbSpace) {
     EXPECT_NEAR(srgbToLinear(0.5f), iecCurve(0.5), 1e-6) << "no sRGB space: the curve";
 }
 
+// A long session (the Python module, a batch's frames) that edits its config is followed: the
+// decoder is made again from the config as read now, not kept by the config's path.
+TEST(SrgbDecode, AnEditedConfigIsFollowed) {
+    auto withGamma = [](const std::string& gamma) {
+        return writeConfig(
+            "  - !<ColorSpace>\n    name: sRGB\n    to_reference: "
+            "!<ExponentTransform> {value: [" +
+            gamma + ", " + gamma + ", " + gamma + ", 1]}\n");
+    };
+    const std::string path = withGamma("2.2");
+    test::ScopedEnv ocio("OCIO", path);
+    EXPECT_NEAR(srgbToLinear(0.5f), std::pow(0.5, 2.2), 1e-6);
+    ASSERT_EQ(withGamma("2.45"), path);  // the same file, rewritten
+    EXPECT_NEAR(srgbToLinear(0.5f), std::pow(0.5, 2.45), 1e-6);
+}
+
 // A config whose sRGB texture space has a name kiln does not know is found through its
 // texture_paint role, but only when that space is sRGB-encoded: ACES 1.x configs point the role at
 // ACEScc and Blender's at a linear space, which must not decode 8-bit colour.

@@ -1,5 +1,6 @@
 // kiln farm: shard plans, Slurm scripts and status parsing, then end to end against a real
 // single-node Slurm cluster (tools/slurm_local.sh) started once for the suite.
+#include <fmt/format.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -149,23 +150,32 @@ TEST(FarmSubmit, RefusesBadInputBeforeSubmitting) {
 // suite or a default cluster uses. Tests fail with the reason when it cannot start.
 class FarmCluster : public ::testing::Test {
   protected:
+    // Ports below Linux's ephemeral range (32768 up), where the local end of any client's
+    // connection (another suite's sbatch and squeue) may already hold the port slurmctld binds.
+    // A start that fails tries two more port pairs; the error keeps every attempt's output.
     static void SetUpTestSuite() {
-        int base = 20000 + int(::getpid() % 10000) * 2;
-        slurmDir() =
-            (fs::temp_directory_path() / "kiln-tests" / ("slurm-" + std::to_string(::getpid())))
-                .string();
-        ::setenv("KILN_SLURM_DIR", slurmDir().c_str(), 1);
-        ::setenv("KILN_SLURM_CTLD_PORT", std::to_string(base).c_str(), 1);
-        ::setenv("KILN_SLURM_SLURMD_PORT", std::to_string(base + 1).c_str(), 1);
-        farm::CommandResult r = farm::runCapturing(test::repo("tools/slurm_local.sh"), {"start"});
-        size_t at = r.output.find("export SLURM_CONF=");
-        if (r.exitCode != 0 || at == std::string::npos) {
-            startError() = "tools/slurm_local.sh start failed (exit " + std::to_string(r.exitCode) +
-                           "):\n" + r.output;
-            return;
+        for (int attempt = 0; attempt < 3; ++attempt) {
+            const int base = 20000 + int((::getpid() + attempt * 2003) % 6000) * 2;
+            slurmDir() = (fs::temp_directory_path() / "kiln-tests" /
+                          fmt::format("slurm-{}-{}", ::getpid(), attempt))
+                             .string();
+            ::setenv("KILN_SLURM_DIR", slurmDir().c_str(), 1);
+            ::setenv("KILN_SLURM_CTLD_PORT", std::to_string(base).c_str(), 1);
+            ::setenv("KILN_SLURM_SLURMD_PORT", std::to_string(base + 1).c_str(), 1);
+            farm::CommandResult r =
+                farm::runCapturing(test::repo("tools/slurm_local.sh"), {"start"});
+            size_t at = r.output.find("export SLURM_CONF=");
+            if (r.exitCode == 0 && at != std::string::npos) {
+                std::string conf = r.output.substr(at + 18);
+                ::setenv("SLURM_CONF", conf.substr(0, conf.find('\n')).c_str(), 1);
+                startError().clear();
+                return;
+            }
+            startError() += fmt::format(
+                "tools/slurm_local.sh start on ports {}, {} failed (exit "
+                "{}):\n{}\n",
+                base, base + 1, r.exitCode, r.output);
         }
-        std::string conf = r.output.substr(at + 18);
-        ::setenv("SLURM_CONF", conf.substr(0, conf.find('\n')).c_str(), 1);
     }
     static void TearDownTestSuite() {
         farm::runCapturing(test::repo("tools/slurm_local.sh"), {"stop"});

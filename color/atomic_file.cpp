@@ -9,6 +9,7 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <map>
 #include <stdexcept>
 
 namespace kiln {
@@ -96,19 +97,33 @@ void AtomicFile::commit() {
 }
 
 int removeStaleTemporaries(const std::string& path) {
-    fs::path p(path);
-    fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
-    std::string prefix = tempPrefix(p);
-    int removed = 0;
-    std::error_code ec;
-    for (const auto& entry : fs::directory_iterator(dir, ec)) {
-        std::string name = entry.path().filename().string();
-        if (name.rfind(prefix, 0) != 0) continue;
-        long pid = std::strtol(name.c_str() + prefix.size(), nullptr, 10);
-        // Only this host's, and only of a process that is gone (SIGKILL during a write).
-        if (pid > 0 && ::kill(pid_t(pid), 0) != 0 && errno == ESRCH && fs::remove(entry.path(), ec))
-            ++removed;
+    return removeStaleTemporaries(std::vector<std::string>{path})[0];
+}
+
+std::vector<int> removeStaleTemporaries(const std::vector<std::string>& paths) {
+    std::vector<int> removed(paths.size(), 0);
+    std::vector<std::string> prefixes;
+    std::map<fs::path, std::vector<size_t>> byDirectory;
+    for (size_t i = 0; i < paths.size(); ++i) {
+        prefixes.push_back(tempPrefix(fs::path(paths[i])));
+        fs::path dir = fs::path(paths[i]).parent_path();
+        byDirectory[dir.empty() ? fs::path(".") : dir].push_back(i);
     }
+    std::error_code ec;
+    for (const auto& [dir, indices] : byDirectory)
+        for (const auto& entry : fs::directory_iterator(dir, ec)) {
+            const std::string name = entry.path().filename().string();
+            for (size_t i : indices) {
+                const std::string& prefix = prefixes[i];
+                if (name.rfind(prefix, 0) != 0) continue;
+                long pid = std::strtol(name.c_str() + prefix.size(), nullptr, 10);
+                // Only this host's, and only of a process that is gone (SIGKILL during a write).
+                if (pid > 0 && ::kill(pid_t(pid), 0) != 0 && errno == ESRCH &&
+                    fs::remove(entry.path(), ec))
+                    ++removed[i];
+                break;
+            }
+        }
     return removed;
 }
 

@@ -11,6 +11,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace kiln {
 
@@ -51,6 +52,9 @@ void writeFileAtomically(const std::string& path, std::string_view bytes);
 // Removes the temporary files a killed process of this host left for path (SIGKILL during a
 // write); returns how many. Another live process's are kept.
 int removeStaleTemporaries(const std::string& path);
+// The same for several paths, each directory read once (a batch frame's image, preview and
+// checkpoint share one, which holds every frame written so far); how many for each path.
+std::vector<int> removeStaleTemporaries(const std::vector<std::string>& paths);
 
 // Before rendering: throws std::runtime_error unless a file can be created in dir and
 // bytesNeeded fit its free space.

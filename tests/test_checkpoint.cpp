@@ -679,5 +679,22 @@ TEST(AtomicFile, TemporariesOfAKilledProcessAreRemovedALiveOnesKept) {
     EXPECT_TRUE(std::filesystem::exists(mine.tempPath()));
 }
 
+// A frame's outputs in one directory read once: each path's own stale temporaries are counted to
+// it, another path's (a name that begins with the first's) are not.
+TEST(AtomicFile, SeveralPathsInOneDirectoryEachRemoveTheirOwn) {
+    auto dir = test::scratchDir();
+    const std::vector<std::string> paths{(dir / "f.exr").string(), (dir / "f.exr.ckpt").string(),
+                                         (dir / "f.png").string()};
+    pid_t child = ::fork();
+    if (child == 0) {
+        for (const std::string& path : {paths[0], paths[1], paths[1]})
+            (new AtomicFile(path))->write("partial", 7);  // never destroyed
+        ::_exit(0);  // as a SIGKILL would: the temporary files stay
+    }
+    ::waitpid(child, nullptr, 0);
+    EXPECT_EQ(removeStaleTemporaries(paths), (std::vector<int>{1, 2, 0}));
+    EXPECT_EQ(removeStaleTemporaries(paths), (std::vector<int>{0, 0, 0}));
+}
+
 }  // namespace
 }  // namespace kiln

@@ -223,9 +223,12 @@ constexpr const char* kExitCodes =
 void checkOutputsFit(const RenderCommand& c, const RenderJobOptions& o, const OutputPaths& out) {
     OutputSizes need = estimateOutputs(o, c.checkpoints());
     fs::path dir = fs::path(out.exr).parent_path();
-    for (const std::string& path : {out.exr, out.preview, out.checkpoint})
-        if (int n = removeStaleTemporaries(path))
-            logInfo("removed {} temporary file(s) of {} left by a killed kiln", n, path);
+    const std::vector<std::string> paths{out.exr, out.preview, out.checkpoint};
+    const std::vector<int> removed = removeStaleTemporaries(paths);
+    for (size_t i = 0; i < paths.size(); ++i)
+        if (removed[i])
+            logInfo("removed {} temporary file(s) of {} left by a killed kiln", removed[i],
+                    paths[i]);
     try {
         checkOutputSpace(dir.empty() ? "." : dir.string(),
                          need.exr + need.preview + need.checkpoint);

@@ -14,6 +14,7 @@
 #include <mutex>
 #include <optional>
 #include <set>
+#include <string_view>
 #include <thread>
 
 #include "color/color_config.h"
@@ -81,17 +82,39 @@ const std::map<std::string, const Declared*>& loadKeywords() {
                          (hint.empty() ? "" : " (did you mean " + hint + "?)"));
 }
 
+// True and False, numpy's booleans among them (np.bool_: numpy.bool_ before numpy 2).
+bool isBool(const py::handle& v) {
+    const std::string_view type = Py_TYPE(v.ptr())->tp_name;
+    return PyBool_Check(v.ptr()) || type == "numpy.bool_" || type == "numpy.bool";
+}
+
+// A path or name as the C++ side takes it: the bytes os.fsencode gives (a name that is not UTF-8,
+// as os.fsdecode made it, reaches the file), refused with a NUL in it, where the C side would
+// end it and open another file.
+std::string fsText(const py::handle& v, const std::string& what) {
+    const std::string bytes = py::module_::import("os").attr("fsencode")(v).cast<py::bytes>();
+    if (bytes.find('\0') != std::string::npos)
+        throw py::value_error(what + ": embedded null character in " +
+                              py::repr(v).cast<std::string>());
+    return bytes;
+}
+
+// A path or message from the C++ side for Python: os.fsdecode, which gives back the str a
+// non-UTF-8 name came in as.
+py::str fsStr(const std::string& bytes) {
+    return py::module_::import("os").attr("fsdecode")(py::bytes(bytes));
+}
+
 // One value as kiln render's command line would spell it: numbers in their shortest exact form.
 std::string argumentText(const py::handle& v, const std::string& keyword) {
     PyObject* p = v.ptr();
-    if (PyBool_Check(p)) throw py::type_error(keyword + " takes a value, not True or False");
-    if (py::isinstance<py::str>(v)) return v.cast<std::string>();
+    if (isBool(v)) throw py::type_error(keyword + " takes a value, not True or False");
+    if (py::isinstance<py::str>(v) || py::isinstance<py::bytes>(v)) return fsText(v, keyword);
     if (PyLong_Check(p) || PyIndex_Check(p))
         return py::str(py::int_(py::reinterpret_borrow<py::object>(v))).cast<std::string>();
     if (PyFloat_Check(p) || py::hasattr(v, "__float__"))
         return py::repr(py::float_(py::reinterpret_borrow<py::object>(v))).cast<std::string>();
-    if (py::hasattr(v, "__fspath__"))
-        return py::module_::import("os").attr("fsdecode")(v).cast<std::string>();
+    if (py::hasattr(v, "__fspath__")) return fsText(v, keyword);
     throw py::type_error(keyword + " takes a number or a name, got " +
                          py::repr(v).cast<std::string>());
 }
@@ -107,16 +130,17 @@ void appendArguments(std::vector<std::string>& args, const std::string& keyword,
     if (value.is_none()) return;  // the default
     const std::string flag = "--" + d.longName;
     if (d.nargs == 0) {
-        if (!PyBool_Check(value.ptr()))
+        if (!isBool(value))
             throw py::type_error(keyword + " takes True or False, got " +
                                  py::repr(value).cast<std::string>());
-        if (value.ptr() == Py_True) args.push_back(flag);
+        if (PyObject_IsTrue(value.ptr()) == 1) args.push_back(flag);
         return;
     }
     if (d.nargs == 1) {
         // threads=0: all cores, as RenderSettings says (the command line leaves -t out).
-        if (d.longName == "threads" && !PyBool_Check(value.ptr()) && PyIndex_Check(value.ptr()) &&
-            py::int_(py::reinterpret_borrow<py::object>(value)).cast<long long>() == 0)
+        // Compared as Python ints: threads=2**70 is refused by the option's range, not by a cast.
+        if (d.longName == "threads" && !isBool(value) && PyIndex_Check(value.ptr()) &&
+            py::int_(py::reinterpret_borrow<py::object>(value)).equal(py::int_(0)))
             return;
         std::string text;
         if (isSequence(value)) {  // aovs=["direct", "N"]: the command line's comma list
@@ -140,6 +164,9 @@ std::vector<std::string> argumentsOf(const py::dict& kwargs, const std::string& 
                                      const std::map<std::string, const Declared*>& known) {
     std::vector<std::string> args;
     for (const auto& [k, v] : kwargs) {
+        if (!py::isinstance<py::str>(k))
+            throw py::type_error(function + "() takes options by name (str), got the key " +
+                                 py::repr(k).cast<std::string>());
         std::string key = k.cast<std::string>();
         auto found = known.find(key == "aovs" ? "aov" : key);
         if (found == known.end()) unexpectedKeyword(function, key, known);
@@ -252,6 +279,17 @@ struct ProgressChannel {
     bool finished = false;
 };
 
+// A Python truth value; an exception raised by __bool__ propagates.
+bool truthy(const py::handle& v) {
+    const int truth = PyObject_IsTrue(v.ptr());
+    if (truth < 0) throw py::error_already_set();
+    return truth == 1;
+}
+
+// A progress callback's answer: None (or nothing returned) goes on; any false value stops,
+// numpy's False and 0 as well as False.
+bool stops(const py::handle& answer) { return !answer.is_none() && !truthy(answer); }
+
 // Between the Python thread's checks: how long Ctrl-C or a cancel event may wait.
 constexpr auto kPollInterval = std::chrono::milliseconds(50);
 
@@ -267,6 +305,14 @@ py::object render(const SceneHandle& handle, const py::object& options, const py
             "render() takes a kiln.RenderOptions (or a dict of its keywords), got " +
             py::repr(options).cast<std::string>());
     for (const auto& [k, v] : overrides) merged[k] = v;
+    if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
+        throw py::type_error("render() progress takes a callable progress(done, total), got " +
+                             py::repr(progress).cast<std::string>());
+    if (!cancel.is_none() && !py::hasattr(cancel, "is_set"))
+        throw py::type_error(
+            "render() cancel takes a threading.Event (anything with is_set()), "
+            "got " +
+            py::repr(cancel).cast<std::string>());
     RenderOptions o = makeOptions(merged);
     LoadedScene& scene = *handle.scene;
     std::vector<std::string> args = scene.loadArguments();
@@ -317,8 +363,8 @@ py::object render(const SceneHandle& handle, const py::object& options, const py
                 py::gil_scoped_acquire gil;
                 try {
                     if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-                    if (!cancel.is_none() && cancel.attr("is_set")().cast<bool>()) stop = true;
-                    if (report && !stop && progress(done, total).ptr() == Py_False) stop = true;
+                    if (!cancel.is_none() && truthy(cancel.attr("is_set")())) stop = true;
+                    if (report && !stop && stops(progress(done, total))) stop = true;
                 } catch (py::error_already_set& e) {
                     stop = true;
                     if (!pythonError) pythonError.emplace(std::move(e));
@@ -366,10 +412,20 @@ py::object crosscheck(const SceneHandle& handle, const py::dict& kwargs) {
 constexpr const char* kRenderDoc =
     "Renders the scene through kiln's RenderJob with the options (keywords given here override "
     "them), the GIL released. progress(done, total) is called on this thread after each tile "
-    "(samples); returning False stops the render within the tile and returns the samples so far "
+    "(samples); returning False (any false value but None) stops the render within the tile and "
+    "returns the samples so far "
     "(image.interrupted). cancel: a threading.Event; set from another thread, it stops the "
     "render likewise. Ctrl-C raises KeyboardInterrupt once the render has stopped, the image so "
     "far as its .image.";
+
+// An exception whose message may name a file that is not UTF-8: decoded as os.fsdecode would
+// (PyErr_SetString would fail on it, and raise a UnicodeDecodeError in its place).
+void setError(PyObject* type, const char* message) {
+    PyObject* text = PyUnicode_DecodeFSDefault(message);
+    if (!text) return;  // the decoding's own error stands
+    PyErr_SetObject(type, text);
+    Py_DECREF(text);
+}
 
 // Set by the module's initialisation: kiln.SceneWarning.
 py::handle sceneWarning;
@@ -390,6 +446,11 @@ using namespace kiln::python;
 PYBIND11_MODULE(_kiln, m) {
     m.doc() = "kiln, a batch path tracer: load a scene once, render it through kiln's RenderJob.";
     m.attr("__version__") = KILN_VERSION;
+    // numpy's C API set up now, on the importing thread: pybind11 does it on first use, in a
+    // static whose initialisation imports numpy, which releases the GIL; two threads making their
+    // first views at once deadlocked there.
+    py::module_::import("numpy");
+    (void)py::dtype::of<float>();
 
     // Never destroyed: Python may be gone by the time static destructors run.
     static auto* sceneError = new py::exception<kiln::SceneError>(m, "SceneError");
@@ -400,9 +461,9 @@ PYBIND11_MODULE(_kiln, m) {
         try {
             if (p) std::rethrow_exception(p);
         } catch (const kiln::UsageError& e) {
-            PyErr_SetString(PyExc_ValueError, e.what());
+            setError(PyExc_ValueError, e.what());
         } catch (const kiln::SceneError& e) {
-            PyErr_SetString(sceneError->ptr(), e.what());
+            setError(sceneError->ptr(), e.what());
         }
     });
     m.attr("SceneWarning") =
@@ -467,7 +528,7 @@ PYBIND11_MODULE(_kiln, m) {
 
     py::class_<SceneHandle>(m, "Scene",
                             "A loaded scene (kiln.load); render it any number of times.")
-        .def_property_readonly("path", [](const SceneHandle& s) { return s.scene->path(); })
+        .def_property_readonly("path", [](const SceneHandle& s) { return fsStr(s.scene->path()); })
         .def_property_readonly(
             "load_args", [](const SceneHandle& s) { return s.scene->loadArguments(); },
             "The load keywords as kiln render's arguments.")
@@ -490,13 +551,13 @@ PYBIND11_MODULE(_kiln, m) {
             },
             "The accelerators built for this scene so far (each is built once, on first use).")
         .def("__repr__", [](const SceneHandle& s) {
-            return "<kiln.Scene " + py::repr(py::str(s.scene->path())).cast<std::string>() + ">";
+            return "<kiln.Scene " + py::repr(fsStr(s.scene->path())).cast<std::string>() + ">";
         });
 
     m.def(
         "load",
         [](const py::object& path, const py::kwargs& kwargs) {
-            std::string file = py::module_::import("os").attr("fsdecode")(path).cast<std::string>();
+            const std::string file = fsText(path, "path");
             std::vector<std::string> args = argumentsOf(kwargs, "load", loadKeywords());
             std::shared_ptr<LoadedScene> scene;
             {
@@ -505,7 +566,7 @@ PYBIND11_MODULE(_kiln, m) {
             }
             py::object warn = py::module_::import("warnings").attr("warn");
             for (const std::string& w : scene->scene().warnings)
-                warn(file + ": " + w, sceneWarning, 2);
+                warn(fsStr(file + ": " + w), sceneWarning, 2);
             return SceneHandle{scene};
         },
         "path"_a, loadDoc.c_str());
@@ -524,7 +585,7 @@ PYBIND11_MODULE(_kiln, m) {
             "aovs",
             [](const py::object& self) {
                 py::list names;
-                for (const kiln::ExrLayer& l : kiln::exrLayers(self.cast<ImageData&>().result.film))
+                for (const kiln::ExrLayer& l : self.cast<ImageData&>().layers().layers)
                     if (!l.name.empty()) names.append(l.name);
                 return names;
             },
@@ -533,7 +594,7 @@ PYBIND11_MODULE(_kiln, m) {
             "channels",
             [](const py::object& self) {
                 py::dict out;
-                for (const kiln::ExrLayer& l : kiln::exrLayers(self.cast<ImageData&>().result.film))
+                for (const kiln::ExrLayer& l : self.cast<ImageData&>().layers().layers)
                     out[py::str(l.name)] = l.channels;
                 return out;
             },
@@ -586,8 +647,7 @@ PYBIND11_MODULE(_kiln, m) {
             [](const py::object& self, const py::object& out) {
                 static std::mutex writing;  // one OCIO/OIIO set-up at a time
                 ImageData& d = self.cast<ImageData&>();
-                std::string base =
-                    py::module_::import("os").attr("fsdecode")(out).cast<std::string>();
+                const std::string base = fsText(out, "out");
                 kiln::OutputPaths paths;
                 std::string heat;
                 {
@@ -595,8 +655,8 @@ PYBIND11_MODULE(_kiln, m) {
                     std::lock_guard lock(writing);
                     paths = writeImage(d.result, base, heat, d.denoisedFrame());
                 }
-                py::dict written("exr"_a = paths.exr, "preview"_a = paths.preview);
-                if (!heat.empty()) written["heatmap"] = heat;
+                py::dict written("exr"_a = fsStr(paths.exr), "preview"_a = fsStr(paths.preview));
+                if (!heat.empty()) written["heatmap"] = fsStr(heat);
                 return written;
             },
             "out"_a,

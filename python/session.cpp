@@ -103,6 +103,7 @@ LoadedScene::Result LoadedScene::render(RenderCommand c, const RenderControl& co
     RenderJobOptions options = renderJobOptions(c);
     options.settings.progress = false;  // no bar on stderr: the caller has tileDone
     checkColour(c);
+    checkFilmFits(options, false);  // the image's numpy layers are about the EXR write's size
     std::lock_guard lock(mutex_);
     CameraRestore restore(scene_);
     applyCameraOptions(scene_, c, bounds_);

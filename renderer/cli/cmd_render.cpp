@@ -235,11 +235,7 @@ void checkOutputsFit(const RenderCommand& c, const RenderJobOptions& o, const Ou
     } catch (const std::runtime_error& e) {
         throw UsageError(e.what());
     }
-    uint64_t memory = need.film + need.writeMemory, available = availableMemoryBytes();
-    if (memory > available)
-        throw UsageError("the film and the EXR write need " + std::to_string(memory >> 20) +
-                         " MiB, " + std::to_string(available >> 20) +
-                         " MiB available (a smaller -r, --crop or fewer --aov fit)");
+    checkFilmFits(o, c.checkpoints());
 }
 
 // The final checkpoint, after the images: a checkpoint that does not fit (a full disk) cannot cost

@@ -7,8 +7,10 @@
 
 #include "renderer/build_info.h"
 #include "renderer/core/log.h"
+#include "renderer/core/memory.h"
 #include "renderer/denoise_film.h"
 #include "renderer/exr_scene.h"
+#include "renderer/long_render.h"
 
 namespace kiln {
 namespace {
@@ -224,6 +226,15 @@ RenderJobOptions renderJobOptions(const RenderCommand& c) {
 }
 
 // The OCIO config, display and view checked before any work; the defaults filled in.
+void checkFilmFits(const RenderJobOptions& o, bool checkpoints) {
+    const OutputSizes need = estimateOutputs(o, checkpoints);
+    uint64_t memory = need.film + need.writeMemory, available = availableMemoryBytes();
+    if (memory > available)
+        throw UsageError("the film and the EXR write need " + std::to_string(memory >> 20) +
+                         " MiB, " + std::to_string(available >> 20) +
+                         " MiB available (a smaller -r, --crop or fewer --aov fit)");
+}
+
 void checkColour(RenderCommand& c) {
     try {
         ColorSetup setup = checkColorConfig(c.display, c.view, c.look);

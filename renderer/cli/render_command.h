@@ -75,6 +75,10 @@ void addRenderOptions(ArgParser& parser, RenderCommand& c);
 // compositing conventions. Throws UsageError.
 RenderJobOptions renderJobOptions(const RenderCommand& c);
 
+// Before any expensive work: the film and the EXR write fit the memory available. Throws
+// UsageError saying how much they need.
+void checkFilmFits(const RenderJobOptions& o, bool checkpoints);
+
 // The OCIO config, display and view checked before any work; the defaults filled in. Throws
 // UsageError.
 void checkColour(RenderCommand& c);

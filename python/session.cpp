@@ -110,6 +110,7 @@ LoadedScene::Result LoadedScene::render(RenderCommand c, const RenderControl& co
     const Accelerator& accel = accelerator(c.accel, &options);
     RenderJob job(scene_, accel, options);
     warnHemisphereBlind(job, path_);
+    warnIdleOptions(job, c);
     addSceneToOutputs(c, scene_, options);
     Result result;
     result.film = job.makeFilm();

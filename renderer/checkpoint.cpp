@@ -315,8 +315,8 @@ std::string cameraText(const Camera& c) {
 }
 
 std::string aovText(const AovRequest& a) {
-    return std::to_string(a.mask) + " bounces " + std::to_string(a.bounceLayers) + " depth " +
-           toString(a.depth) + (a.transparent ? " transparent" : "") +
+    return AovRequest::allNamesOf(a.mask) + " bounces " + std::to_string(a.bounceLayers) +
+           " depth " + toString(a.depth) + (a.transparent ? " transparent" : "") +
            (a.denoisedLight ? " denoised " + AovRequest::namesOf(a.denoisedLight) : "");
 }
 

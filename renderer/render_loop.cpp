@@ -249,8 +249,14 @@ RenderStats renderImage(const Scene& scene, const Integrator& integrator,
                 // A checkpoint (periodic or SIGUSR1), then the rest of the wave.
                 request.store(false);
                 snapshot();
+                const Clock::time_point written = Clock::now();
                 if (control.checkpoint) control.checkpoint(film, stats);
-                nextCheckpoint = after(Clock::now(), control.checkpointEverySeconds);
+                // Never sooner than a write takes, nor than 10 ms: a shorter period
+                // (--checkpoint-every 1e-6) had every tile pause before its first pixel, and the
+                // render wrote checkpoints without end.
+                const Clock::time_point now = Clock::now();
+                nextCheckpoint = std::max({after(now, control.checkpointEverySeconds),
+                                           now + (now - written), after(now, 0.01)});
             }
             lastWaveSeconds.swap(waveSeconds);
             waveStart = waveEnd;

@@ -137,6 +137,10 @@ void checkSceneFileOpens(const std::string& path) {
     if (!std::filesystem::exists(path, ec)) throw SceneError(path, "no such file");
     if (std::filesystem::is_directory(path, ec))
         throw SceneError(path, "is a directory, not a scene file");
+    // Before any open: opening a FIFO blocks until a writer comes, signals and all.
+    if (!std::filesystem::is_regular_file(path, ec))
+        throw SceneError(path,
+                         "is not a regular file (a FIFO, socket or device), not a scene file");
     if (!std::ifstream(path).good()) throw SceneError(path, "cannot read file (permission?)");
     if (std::filesystem::file_size(path, ec) == 0) throw SceneError(path, "file is empty");
 }

@@ -70,6 +70,8 @@ void validateScene(Scene& scene);
 // Checks, before any ray is traced, what would make rays invalid: a camera with no direction, a
 // field of view outside (0, 180), clip planes out of order, a scene extent float cannot trace.
 void validateView(const Scene& scene);
+// The same with the scene's storedBounds() found already (a camera option's frame of a batch).
+void validateView(const Scene& scene, const Bounds3& storedBounds);
 void validateCamera(const std::string& file, const Camera& camera);
 
 // Largest extent (after recentring) kiln traces: beyond it squared distances leave float's range.

@@ -66,9 +66,11 @@ void validateCamera(const std::string& file, const Camera& c) {
         throw SceneError(file, "the camera's lens has a negative aperture or no focal distance");
 }
 
-void validateView(const Scene& scene) {
+void validateView(const Scene& scene) { validateView(scene, scene.storedBounds()); }
+
+void validateView(const Scene& scene, const Bounds3& storedBounds) {
     validateCamera(scene.sourcePath, scene.camera);
-    Bounds3 b = scene.storedBounds();
+    Bounds3 b = storedBounds;
     b.extend(scene.camera.position);
     float extent = maxComponent(b.diagonal());
     float reach = std::max(maxComponent(abs(b.lo)), maxComponent(abs(b.hi)));

@@ -1,15 +1,21 @@
 #include "renderer/cli/camera_options.h"
 
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 #include "renderer/geometry/turntable.h"
+#include "scene/scene_loader.h"
 
 namespace kiln {
 namespace {
 
-// Three coordinates, each finite once stored as a float (1e39 is not); a direction (nonZero) must
-// not be (0, 0, 0).
+// Three coordinates, each finite once stored as a float (1e39 is not). A point lies within the
+// span kiln traces (kMaxSceneExtent: beyond it float distances overflow, and Embree asserts on
+// the rays); a direction (nonZero) must not be (0, 0, 0), and is scaled to its largest component
+// (a length of (1e30, 0, 0) would overflow).
 ArgParser::Handler vec3Into(std::optional<Vec3>& target, std::string name, bool nonZero = false) {
     return [&target, name, nonZero](const std::vector<std::string>& v) {
         float xyz[3];
@@ -18,10 +24,19 @@ ArgParser::Handler vec3Into(std::optional<Vec3>& target, std::string name, bool 
             if (!std::isfinite(xyz[k]))
                 throw UsageError(name + " takes finite coordinates (at most 3.4e38), got '" +
                                  v[size_t(k)] + "'");
+            if (!nonZero && std::abs(xyz[k]) > kMaxSceneExtent)
+                throw UsageError(
+                    fmt::format("{} takes coordinates within +-{:.0e} (the span "
+                                "kiln traces), got '{}'",
+                                name, double(kMaxSceneExtent), v[size_t(k)]));
         }
-        if (nonZero && xyz[0] == 0 && xyz[1] == 0 && xyz[2] == 0)
-            throw UsageError(name + " takes a direction, got (0, 0, 0)");
-        target = Vec3(xyz[0], xyz[1], xyz[2]);
+        if (!nonZero) {
+            target = Vec3(xyz[0], xyz[1], xyz[2]);
+            return;
+        }
+        const float largest = std::max({std::abs(xyz[0]), std::abs(xyz[1]), std::abs(xyz[2])});
+        if (largest == 0) throw UsageError(name + " takes a direction, got (0, 0, 0)");
+        target = Vec3(xyz[0] / largest, xyz[1] / largest, xyz[2] / largest);
     };
 }
 
@@ -90,6 +105,8 @@ void CameraOptions::apply(Scene& scene, const Bounds3& storedBounds) const {
     } catch (const std::invalid_argument& e) {
         throw UsageError(e.what());
     }
+    // The camera moved: within the span kiln traces with the scene, as a file's camera must be.
+    if (position || lookAt || up || fovDeg > 0 || turntable > 0) validateView(scene, storedBounds);
 }
 
 }  // namespace kiln

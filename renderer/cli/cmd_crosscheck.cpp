@@ -62,14 +62,28 @@ int runCrosscheck(const std::vector<std::string>& args) {
     }
     if (pos.size() != 1)
         throw UsageError("needs exactly one scene file (see 'kiln crosscheck --help')");
+    // Checked before the load and the builds; the origin against the span kiln traces after it.
+    Ray ray;
+    if (!replay.empty() && !parseRay(replay, ray))
+        throw UsageError(
+            "--replay needs 8 numbers: ox oy oz dx dy dz tmin tmax, finite (tmax may "
+            "be inf), a direction that is not zero and 0 <= tmin <= tmax; got '" +
+            replay + "'");
     Scene scene = loadScene(pos[0]);
+    if (!replay.empty()) {
+        Bounds3 withRay = scene.storedBounds();
+        withRay.extend(ray.origin);
+        if (!(maxComponent(withRay.diagonal()) <= kMaxSceneExtent &&
+              maxComponent(abs(ray.origin)) <= kMaxSceneExtent))
+            throw UsageError(
+                fmt::format("--replay: the ray's origin is beyond the span kiln "
+                            "traces ({:.0e} units)",
+                            double(kMaxSceneExtent)));
+    }
     auto embree = makeEmbreeAccelerator(scene, choice.embree);
     auto reference = makeReferenceAccelerator(scene, choice.reference);
 
     if (!replay.empty()) {
-        Ray ray;
-        if (!parseRay(replay, ray))
-            throw UsageError("--replay needs 8 numbers: ox oy oz dx dy dz tmin tmax");
         RayComparison c = compareRay(scene, *embree, *reference, ray, true);
         std::printf("ray %s\n", formatRay(ray).c_str());
         printHit("embree   ", c.a);

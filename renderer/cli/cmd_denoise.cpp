@@ -5,6 +5,7 @@
 
 #include "renderer/cli/cli_args.h"
 #include "renderer/cli/commands.h"
+#include "renderer/cli/output_check.h"
 #include "renderer/cli/render_options.h"
 #include "renderer/core/log.h"
 #include "renderer/denoise_film.h"
@@ -43,9 +44,8 @@ int runDenoise(const std::vector<std::string>& args) {
     }
     if (inputs.size() != 1) throw UsageError("needs one IN.exr");
     if (output.empty()) throw UsageError("needs -o OUT.exr");
-    std::filesystem::path dir = std::filesystem::path(output).parent_path();
-    if (!dir.empty() && !std::filesystem::is_directory(dir))
-        throw UsageError("output directory '" + dir.string() + "' does not exist");
+    checkOutputBase(output);
+    checkOutputFiles({output});
     double seconds = 0;
     try {
         seconds = denoiseExr(inputs[0], output, options, denoisedLight);

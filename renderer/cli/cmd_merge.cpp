@@ -7,6 +7,7 @@
 #include "color/image_output.h"
 #include "renderer/cli/cli_args.h"
 #include "renderer/cli/commands.h"
+#include "renderer/cli/output_check.h"
 #include "renderer/core/log.h"
 #include "renderer/denoise_film.h"
 #include "renderer/shard_merge.h"
@@ -59,9 +60,8 @@ int runMerge(const std::vector<std::string>& args) {
     std::string base = output;
     if (std::filesystem::path(base).extension() == ".exr")
         base = std::filesystem::path(base).replace_extension("").string();
-    std::filesystem::path dir = std::filesystem::path(base).parent_path();
-    if (!dir.empty() && !std::filesystem::is_directory(dir))
-        throw UsageError("output directory '" + dir.string() + "' does not exist");
+    checkOutputBase(base);
+    checkOutputFiles({base + ".exr", base + ".png"});
     auto t0 = std::chrono::steady_clock::now();
     MergedRender merged = [&] {
         try {

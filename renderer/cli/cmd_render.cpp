@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <map>
 #include <optional>
 
 #include "color/atomic_file.h"
@@ -16,6 +17,7 @@
 #include "color/image_module.h"
 #include "renderer/accel/recording_accelerator.h"
 #include "renderer/cli/commands.h"
+#include "renderer/cli/output_check.h"
 #include "renderer/cli/render_command.h"
 #include "renderer/core/json.h"
 #include "renderer/core/log.h"
@@ -44,8 +46,9 @@ double seconds(std::chrono::steady_clock::time_point since) {
 void checkOutputWritable(const RenderCommand& c, const OutputPaths& out) {
     std::vector<OutputWrite> outputs{{"exr", out.exr, ""}, {"preview", out.preview, ""}};
     if (c.checkpoints()) outputs.push_back({"checkpoint", out.checkpoint, ""});
+    std::error_code ec;
     for (OutputWrite& o : outputs)
-        if (fs::is_directory(o.path)) throw OutputError({o.kind, o.path, "is a directory"});
+        if (fs::is_directory(o.path, ec)) throw OutputError({o.kind, o.path, "is a directory"});
     fs::path dir = fs::path(out.exr).parent_path();
     std::string probe = ((dir.empty() ? fs::path(".") : dir) / ".kiln-write-test-XXXXXX").string();
     int fd = ::mkstemp(probe.data());
@@ -54,6 +57,9 @@ void checkOutputWritable(const RenderCommand& c, const OutputPaths& out) {
                                      dir.empty() ? "." : dir.string(), std::strerror(errno)));
     ::close(fd);
     ::unlink(probe.c_str());
+    std::vector<std::string> paths;
+    for (const OutputWrite& o : outputs) paths.push_back(o.path);
+    checkOutputFiles(paths);  // names the file system refuses (too long with the temporary's)
 }
 
 void applyQueueOptions(const RenderCommand& c, RenderJobOptions& options) {
@@ -408,7 +414,7 @@ struct LoadedScene {
 // decides (the camera, the plan, the other files) is checked after (resumeFilm).
 void refuseResumeBeforeLoad(const RenderCommand& c, const RenderJobOptions& options,
                             const OutputPaths& out, LoadedScene& loaded) {
-    if (!c.resume || !fs::exists(out.checkpoint)) return;
+    if (std::error_code ec; !c.resume || !fs::exists(out.checkpoint, ec)) return;
     const SceneFileIdentity* files = nullptr;
     try {
         files = &loaded.topFiles();
@@ -507,6 +513,7 @@ int renderFrame(const std::vector<std::string>& args, LoadedScene& loaded,
         return RenderJob(scene, *loaded.accel, jobOptions);
     }();
     warnHemisphereBlind(job, scenePath);
+    warnIdleOptions(job, c);
     if (debugSample) return printDebugSample(job, c);
     // What the camera will see decides the black-image warning (a few thousand samples).
     if (std::optional<std::string> black = blackImageWarning(probeFrame(job), c.exposure)) {
@@ -532,7 +539,30 @@ constexpr const char* kRenderFramesUsage =
 
 }  // namespace
 
-void checkRenderArguments(const std::vector<std::string>& args) {
+namespace {
+
+// Every render's command line checked before the first renders (a bad last one failed after the
+// others had rendered), and no two writing one output (the second overwrote the first).
+void checkEveryFrame(const std::vector<std::vector<std::string>>& frames) {
+    std::map<std::string, size_t> outputs;
+    for (size_t i = 0; i < frames.size(); ++i) {
+        std::string base;
+        try {
+            base = checkRenderArguments(frames[i]);
+        } catch (const UsageError& e) {
+            throw UsageError(fmt::format("render {} of {}: {}", i + 1, frames.size(), e.what()));
+        }
+        std::error_code ec;
+        const std::string key = fs::absolute(base, ec).lexically_normal().string();
+        if (auto [at, fresh] = outputs.emplace(key, i); !fresh)
+            throw UsageError(fmt::format("renders {} and {} of {} both write -o {}", at->second + 1,
+                                         i + 1, frames.size(), base));
+    }
+}
+
+}  // namespace
+
+std::string checkRenderArguments(const std::vector<std::string>& args) {
     RenderCommand c;
     ArgParser parser("render", "SCENE [options]");
     addRenderOptions(parser, c);
@@ -545,6 +575,7 @@ void checkRenderArguments(const std::vector<std::string>& args) {
     } catch (const std::invalid_argument& e) {
         throw UsageError(e.what());
     }
+    return c.output.empty() ? fs::path(pos[0]).stem().string() : c.output;
 }
 
 int runRender(const std::vector<std::string>& args) {
@@ -566,6 +597,7 @@ int runRenderFrames(const std::vector<std::string>& args) {
             frames.emplace_back();
         else
             frames.back().push_back(a);
+    checkEveryFrame(frames);
     SignalScope signals;
     LoadedScene loaded;
     for (const std::vector<std::string>& frame : frames) {

@@ -1,9 +1,11 @@
 // kiln tools: mesh generators for scale tests.
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 
 #include "renderer/cli/cli_args.h"
 #include "renderer/cli/commands.h"
+#include "renderer/cli/output_check.h"
 #include "renderer/core/log.h"
 #include "scene/importers.h"
 #include "scene/mesh_tools.h"
@@ -27,7 +29,15 @@ int runTools(const std::vector<std::string>& args) {
         return 0;
     }
     if (pos.size() != 2) throw UsageError("needs IN and OUT.ply (or OUT.obj)");
-    bool obj = pos[1].size() > 4 && pos[1].compare(pos[1].size() - 4, 4, ".obj") == 0;
+    const std::string ext = std::filesystem::path(pos[1]).extension().string();
+    if (ext != ".ply" && ext != ".obj")
+        throw UsageError(pos[1] + ": OUT is written as binary PLY or OBJ: name it .ply or .obj");
+    // The input is read whole before OUT is written, but an OUT that is IN would replace it.
+    if (std::error_code ec; std::filesystem::equivalent(pos[0], pos[1], ec))
+        throw UsageError(pos[1] + ": OUT is IN; write the subdivided mesh to another file");
+    checkOutputBase(pos[1]);
+    checkOutputFiles({pos[1]});
+    const bool obj = ext == ".obj";
     auto t0 = std::chrono::steady_clock::now();
     Scene scene = loadScene(pos[0]);
     // All world-space meshes joined into one (the scene was recentred: add the origin back).

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "renderer/build_info.h"
+#include "renderer/cli/output_check.h"
 #include "renderer/core/log.h"
 #include "renderer/core/memory.h"
 #include "renderer/denoise_film.h"
@@ -269,6 +270,20 @@ void warnHemisphereBlind(const RenderJob& job, const std::string& scenePath) {
             scenePath);
 }
 
+void warnIdleOptions(const RenderJob& job, const RenderCommand& c) {
+    const RenderSettings& s = job.options().settings;
+    if (const int step = s.adaptiveStep(); step > 0 && step >= s.spp)
+        logWarning(
+            "adaptive sampling tests a pixel first at {} samples and -s is {}: every pixel takes "
+            "all {} (a smaller -a batch or --adaptive-min-spp, or a larger -s, lets it stop early)",
+            step, s.spp, s.spp);
+    if (c.denoise && s.spp < 2)
+        logWarning(
+            "--denoise needs 2 samples a pixel or more (its two half buffers); at -s {} "
+            "the image is written as rendered",
+            s.spp);
+}
+
 void addSceneToOutputs(RenderCommand& c, const Scene& scene, const RenderJobOptions& options) {
     addSceneToExr(c.exr, scene, options.settings, options.aovs);
     c.exr.software = fmt::format("kiln {} (commit {})", KILN_VERSION, gitCommit());
@@ -283,9 +298,7 @@ OutputPaths outputPaths(const RenderCommand& c, const std::string& scenePath) {
     else if (ext == ".exr")
         out = {base, fs::path(base).replace_extension(".png").string(), ""};
     out.checkpoint = fs::path(out.exr).replace_extension(".ckpt").string();
-    fs::path dir = fs::path(out.exr).parent_path();
-    if (!dir.empty() && !fs::is_directory(dir))
-        throw UsageError("output directory '" + dir.string() + "' does not exist");
+    checkOutputBase(base);
     return out;
 }
 

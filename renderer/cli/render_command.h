@@ -91,6 +91,10 @@ void applyCameraOptions(Scene& scene, const RenderCommand& c, const Bounds3& sto
 // A warning when the direct-light sampling cannot see the scene's only lights.
 void warnHemisphereBlind(const RenderJob& job, const std::string& scenePath);
 
+// Warnings for options that would do nothing in this render: adaptive sampling whose first test
+// comes at or after the last sample, --denoise with fewer than two samples a pixel.
+void warnIdleOptions(const RenderJob& job, const RenderCommand& c);
+
 // What the EXR states about the scene (camera matrices, Cryptomatte manifests) and which kiln
 // wrote it (Software).
 void addSceneToOutputs(RenderCommand& c, const Scene& scene, const RenderJobOptions& options);

@@ -28,14 +28,25 @@ LogSink& sink() {
     return s;
 }
 
+// An error or warning is one line: a file name with a newline in it (a hostile name) is written
+// with the newline escaped, so a reader of stderr sees one message, not two.
+std::string oneLine(std::string_view message) {
+    std::string out;
+    for (char c : message) out += c == '\n' ? "\\n" : c == '\r' ? "\\r" : std::string(1, c);
+    return out;
+}
+
 std::string textLine(LogLevel level, std::string_view message, std::string_view command) {
+    const std::string text = level == LogLevel::Error || level == LogLevel::Warning
+                                 ? oneLine(message)
+                                 : std::string(message);
     std::string_view label = level == LogLevel::Error     ? "error: "
                              : level == LogLevel::Warning ? "warning: "
                              : level == LogLevel::Debug   ? "debug: "
                                                           : "";
     // A usage error names its command instead of a label: "kiln render: unknown option ...".
-    if (!command.empty()) return fmt::format("kiln {}: {}\n", command, message);
-    return fmt::format("kiln: {}{}\n", label, message);
+    if (!command.empty()) return fmt::format("kiln {}: {}\n", command, text);
+    return fmt::format("kiln: {}{}\n", label, text);
 }
 
 std::string jsonLine(LogLevel level, std::string_view message, std::string_view command) {

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -44,16 +45,34 @@ void onlyKeys(const json& object, const std::set<std::string>& allowed, const st
 }
 
 std::string numberText(const json& v, const std::string& where) {
+    // Unsigned as written: 18446744073709551615 read as a long long was "-1" in the message.
+    if (v.is_number_unsigned()) return std::to_string(v.get<unsigned long long>());
     if (v.is_number_integer()) return std::to_string(v.get<long long>());
     if (v.is_number()) return fmt::format("{:.9g}", v.get<double>());
     if (v.is_string()) return v.get<std::string>();
     fail(where, "must be a string or a number");
 }
 
+// An option that names the render's files: the job's 'output' pattern does that for every render
+// (-o 0 and -o 1 are CS184's accumulate-bounces switch, not a name).
+bool namesOutput(const std::vector<std::string>& args, size_t i) {
+    const std::string& a = args[i];
+    if (a == "-o" || a == "--accumulate")
+        return i + 1 < args.size() && args[i + 1] != "0" && args[i + 1] != "1";
+    for (const char* flag : {"--output", "--file", "-f"})
+        if (a == flag || a.rfind(std::string(flag) + "=", 0) == 0) return true;
+    return false;
+}
+
 std::vector<std::string> argList(const json& v, const std::string& where) {
     if (!v.is_array()) fail(where, "must be an array of render options");
     std::vector<std::string> args;
     for (const json& a : v) args.push_back(numberText(a, where));
+    for (size_t i = 0; i < args.size(); ++i)
+        if (namesOutput(args, i))
+            fail(where, "'" + args[i] +
+                            "' names the output, which the job's 'output' pattern names for "
+                            "every render (it was silently replaced)");
     return args;
 }
 
@@ -183,13 +202,24 @@ std::string expandOutputName(const std::string& pattern, const OutputVariables& 
         size_t close = pattern.find('}', i);
         if (close == std::string::npos) throw FarmInputError("unclosed '{' in '" + pattern + "'");
         std::string name = pattern.substr(i + 1, close - i - 1), width;
+        bool widthGiven = false;
         if (size_t colon = name.find(':'); colon != std::string::npos)
-            width = name.substr(colon + 1), name = name.substr(0, colon);
+            width = name.substr(colon + 1), name = name.substr(0, colon), widthGiven = true;
         if (name == "frame" || name == "index") {
+            // A width of digits, at most 12: '{frame:-4}' made fmt pad to 4e9 characters.
+            const bool digitsOnly = !width.empty() && width.size() <= 2 &&
+                                    std::all_of(width.begin(), width.end(),
+                                                [](char c) { return c >= '0' && c <= '9'; });
+            if (widthGiven && !(digitsOnly && std::stoi(width) <= 12))
+                throw FarmInputError("'{" + name + ":" + width + "}' in '" + pattern +
+                                     "': the width is a number of digits from 0 to 12, e.g. {" +
+                                     name + ":04}");
             int value = name == "frame" ? vars.frame : vars.index;
-            int digits = width.empty() ? 0 : std::atoi(width.c_str());
-            out += fmt::format("{:0{}}", value, std::min(digits, 12));
+            out += fmt::format("{:0{}}", value, widthGiven ? std::stoi(width) : 0);
         } else if (name == "scene" || name == "camera" || name == "settings") {
+            if (widthGiven)
+                throw FarmInputError("'{" + name + ":" + width + "}' in '" + pattern +
+                                     "': only {frame} and {index} take a width");
             out += name == "scene" ? vars.scene : name == "camera" ? vars.camera : vars.settings;
         } else {
             throw FarmInputError("unknown variable '{" + name + "}' in '" + pattern +

@@ -1,8 +1,12 @@
 #include "renderer/film/aov.h"
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include <algorithm>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 namespace kiln {
 namespace {
@@ -118,6 +122,14 @@ uint32_t AovRequest::parseDenoised(const std::string& list) {
 }
 
 std::string AovRequest::namesOf(uint32_t bits) { return lightNamesIn(bits, ","); }
+
+std::string AovRequest::allNamesOf(uint32_t mask) {
+    std::vector<std::string> names;
+    for (const NamedAov& n : kNames)
+        if (mask & bit(n.kind)) names.push_back(n.name), mask &= ~bit(n.kind);
+    if (mask) names.push_back(std::to_string(mask));  // kinds without a name
+    return names.empty() ? "none" : fmt::format("{}", fmt::join(names, ","));
+}
 
 AovRequest AovRequest::defaults() {
     AovRequest r;

@@ -84,6 +84,8 @@ struct AovRequest {
     static const char* lightNames();  // the light-path AOVs, for --help
     // The names of the light-path kinds in bits (as --aov spells them), comma-separated.
     static std::string namesOf(uint32_t bits);
+    // Every AOV's name in a mask, joined by commas ("none" for none): the fingerprint's words.
+    static std::string allNamesOf(uint32_t mask);
 };
 
 // How light left the path's first vertex, as Cycles' Diffuse, Glossy, Transmission, Subsurface

@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
@@ -178,6 +179,8 @@ std::string formatRay(const Ray& r) {
     return text;
 }
 
+// Eight numbers and nothing after; a ray Embree takes: a finite origin, a finite direction that
+// is not zero, 0 <= tmin <= tmax (tmax may be infinite), no NaN.
 bool parseRay(const std::string& text, Ray& r) {
     const char* p = text.c_str();
     float v[8];
@@ -187,6 +190,12 @@ bool parseRay(const std::string& text, Ray& r) {
         if (end == p) return false;
         p = end;
     }
+    while (std::isspace(static_cast<unsigned char>(*p))) ++p;
+    if (*p != '\0') return false;
+    for (int k = 0; k < 7; ++k)
+        if (!std::isfinite(v[k])) return false;
+    if (v[3] == 0 && v[4] == 0 && v[5] == 0) return false;
+    if (!(v[6] >= 0 && v[7] >= v[6])) return false;  // NaN fails too
     r = Ray{Vec3(v[0], v[1], v[2]), v[6], Vec3(v[3], v[4], v[5]), v[7]};
     return true;
 }

@@ -64,6 +64,8 @@ CrosscheckReport crosscheck(const Scene& scene, const Accelerator& a, const Acce
                             size_t raysPerCategory, uint64_t seed, size_t worstToKeep = 5);
 
 std::string formatRay(const Ray& ray);  // exact (hex-float) form, accepted by --replay
+// False unless text is 8 numbers and a ray Embree can trace (finite origin and direction, a
+// direction that is not zero, 0 <= tmin <= tmax).
 bool parseRay(const std::string& text, Ray& ray);
 
 }  // namespace kiln

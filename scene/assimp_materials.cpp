@@ -69,8 +69,14 @@ bool assimpTextureSource(const aiScene* as, const std::string& assetPath, const 
     std::filesystem::path p(path);
     if (p.is_relative()) p = std::filesystem::path(assetPath).parent_path() / p;
     source.name = p.lexically_normal().string();
-    if (!std::filesystem::exists(p)) {
+    std::error_code ec;
+    if (!std::filesystem::exists(p, ec)) {
         reason = "texture file " + source.name + " not found";
+        return false;
+    }
+    // Opening a FIFO would block the load until a writer comes.
+    if (!std::filesystem::is_regular_file(p, ec)) {
+        reason = "texture file " + source.name + " is not a regular file";
         return false;
     }
     return true;

@@ -270,7 +270,8 @@ void warnFloatResolution(Scene& scene) {
 std::optional<Light> environmentLight(const LoadOptions& options,
                                       std::vector<std::string>& warnings) {
     if (options.environmentMap.empty()) return std::nullopt;
-    if (!std::filesystem::exists(options.environmentMap))
+    // The error_code form: a name too long for the file system is "no such map", not a throw.
+    if (std::error_code ec; !std::filesystem::exists(options.environmentMap, ec))
         throw SceneError(options.environmentMap, "no such environment map");
     Light env;
     env.environmentImage = loadEnvironmentMap(options.environmentMap, warnings);

@@ -83,6 +83,15 @@ TEST(CliHostile, AFifoIsNotASceneNorAnEnvironmentMap) {
     expectRefused("render " + including + out, "is not a regular file");
     expectRefused("render " + scene() + " -e " + (dir / "fifo.exr").string() + out,
                   "is not a regular file");
+    // A texture is something the importer cannot honour: a warning, the plain colour.
+    ASSERT_EQ(::mkfifo((dir / "fifo.png").c_str(), 0600), 0);
+    test::writeFile(dir / "t.mtl", "newmtl m\nKd 1 1 1\nmap_Kd fifo.png\n");
+    const std::string textured = test::writeFile(dir / "t.obj",
+                                                 "mtllib t.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 "
+                                                 "0\nvt 1 0\nvt 0 1\nusemtl m\nf 1/1 2/2 3/3\n");
+    CliRun r = runKiln("render " + textured + out);
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.err.find("fifo.png is not a regular file"), std::string::npos) << r.err;
 }
 
 // A name the file system refuses was exit 1 with the library's text; a directory as an output

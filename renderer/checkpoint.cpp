@@ -315,8 +315,8 @@ std::string cameraText(const Camera& c) {
 }
 
 std::string aovText(const AovRequest& a) {
-    return AovRequest::allNamesOf(a.mask) + " bounces " + std::to_string(a.bounceLayers) +
-           " depth " + toString(a.depth) + (a.transparent ? " transparent" : "") +
+    return std::to_string(a.mask) + " bounces " + std::to_string(a.bounceLayers) + " depth " +
+           toString(a.depth) + (a.transparent ? " transparent" : "") +
            (a.denoisedLight ? " denoised " + AovRequest::namesOf(a.denoisedLight) : "");
 }
 
@@ -418,6 +418,20 @@ std::string inputsDifference(const std::string& saved, const std::string& here,
     return "";
 }
 
+// The fingerprint's AOV field (aovText: the mask first, as every checkpoint holds it) with the
+// mask's AOVs named, for a message: "60423 bounces 0" said nothing to a reader.
+std::string aovWords(const std::string& field) {
+    const size_t space = field.find(' ');
+    const std::string head = field.substr(0, space);
+    if (head.empty() || head.size() > 10 ||
+        head.find_first_not_of("0123456789") != std::string::npos)
+        return field;
+    const unsigned long long mask = std::stoull(head);
+    if (mask > 0xffffffffull) return field;
+    return AovRequest::allNamesOf(uint32_t(mask)) +
+           (space == std::string::npos ? "" : field.substr(space));
+}
+
 }  // namespace
 
 std::string fingerprintDifference(const Fingerprint& saved, const Fingerprint& here,
@@ -427,8 +441,10 @@ std::string fingerprintDifference(const Fingerprint& saved, const Fingerprint& h
     auto differ = [&](const std::string& key, const std::string* was, const std::string* is) {
         if (key == "scene_inputs")
             return inputsDifference(was ? *was : "", is ? *is : "", savedName);
-        return key + " is " + (was ? "'" + *was + "'" : "absent") + " in " + savedName + ", " +
-               (is ? "'" + *is + "'" : "absent") + " here";
+        auto shown = [&](const std::string* v) {
+            return v ? "'" + (key == "aovs" ? aovWords(*v) : *v) + "'" : std::string("absent");
+        };
+        return key + " is " + shown(was) + " in " + savedName + ", " + shown(is) + " here";
     };
     for (const auto& [key, value] : here) {
         auto it = theirs.find(key);

@@ -53,11 +53,18 @@ TEST(CliHostile, AnOutputPatternsWidthIsDigitsUpToTwelve) {
          {std::pair{"{frame:-4}", "the width is a number of digits"},
           std::pair{"{frame:abc}", "the width is a number of digits"},
           std::pair{"{frame:13}", "the width is a number of digits"},
+          std::pair{"{frame:0013}", "the width is a number of digits"},
           std::pair{"{scene:04}", "only {frame} and {index} take a width"}}) {
         const std::string job = test::writeFile(
             dir / "job.json", R"({"output": "o/)" + std::string(pattern) + R"(", "scenes": [")" +
                                   scene() + R"("], "cameras": [{"name": "a", "turntable": 2}]})");
         expectRefused("batch " + job + " --dry-run", what);
+    }
+    for (const char* pattern : {"{frame:012}", "{frame:004}", "{frame:}", "{frame:12}"}) {
+        const std::string job = test::writeFile(
+            dir / "job.json", R"({"output": "o/)" + std::string(pattern) + R"(", "scenes": [")" +
+                                  scene() + R"("], "cameras": [{"name": "a", "turntable": 2}]})");
+        EXPECT_EQ(runKiln("batch " + job + " --dry-run").code, 0) << pattern;
     }
 }
 
@@ -114,6 +121,9 @@ TEST(CliHostile, SubdivideNeverWritesOverItsInput) {
         test::writeFile(dir / "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     expectRefused("tools subdivide " + mesh + " " + mesh, "OUT is IN");
     expectRefused("tools subdivide " + mesh + " " + (dir / "out.stl").string(), ".ply or .obj");
+    EXPECT_EQ(runKiln("tools subdivide " + mesh + " " + (dir / "OUT.OBJ").string()).code, 0);
+    std::ifstream obj(dir / "OUT.OBJ");
+    EXPECT_EQ(obj.get(), 'v');  // written as OBJ, not PLY
     std::ifstream kept(dir / "tri.obj");
     EXPECT_EQ(std::string(std::istreambuf_iterator<char>(kept), {}),
               "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
@@ -130,6 +140,9 @@ TEST(CliHostile, RenderFramesChecksEveryRenderFirst) {
     EXPECT_FALSE(fs::exists(a + ".exr"));
     expectRefused("render-frames " + scene() + " -r 16 12 -s 1 -q -o " + a + " --then " + scene() +
                       " -r 16 12 -s 1 -q -o " + a,
+                  "renders 1 and 2 of 2 both write");
+    expectRefused("render-frames " + scene() + " -r 16 12 -s 1 -q -o " + a + " --then " + scene() +
+                      " -r 16 12 -s 1 -q -o " + a + ".exr",
                   "renders 1 and 2 of 2 both write");
 }
 

@@ -546,17 +546,17 @@ namespace {
 void checkEveryFrame(const std::vector<std::vector<std::string>>& frames) {
     std::map<std::string, size_t> outputs;
     for (size_t i = 0; i < frames.size(); ++i) {
-        std::string base;
+        std::string exr;
         try {
-            base = checkRenderArguments(frames[i]);
+            exr = checkRenderArguments(frames[i]);
         } catch (const UsageError& e) {
             throw UsageError(fmt::format("render {} of {}: {}", i + 1, frames.size(), e.what()));
         }
         std::error_code ec;
-        const std::string key = fs::absolute(base, ec).lexically_normal().string();
+        const std::string key = fs::absolute(exr, ec).lexically_normal().string();
         if (auto [at, fresh] = outputs.emplace(key, i); !fresh)
-            throw UsageError(fmt::format("renders {} and {} of {} both write -o {}", at->second + 1,
-                                         i + 1, frames.size(), base));
+            throw UsageError(fmt::format("renders {} and {} of {} both write {}", at->second + 1,
+                                         i + 1, frames.size(), exr));
     }
 }
 
@@ -575,7 +575,7 @@ std::string checkRenderArguments(const std::vector<std::string>& args) {
     } catch (const std::invalid_argument& e) {
         throw UsageError(e.what());
     }
-    return c.output.empty() ? fs::path(pos[0]).stem().string() : c.output;
+    return outputNames(c, pos[0]).exr;
 }
 
 int runRender(const std::vector<std::string>& args) {

@@ -1,4 +1,6 @@
 // kiln tools: mesh generators for scale tests.
+#include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -29,7 +31,9 @@ int runTools(const std::vector<std::string>& args) {
         return 0;
     }
     if (pos.size() != 2) throw UsageError("needs IN and OUT.ply (or OUT.obj)");
-    const std::string ext = std::filesystem::path(pos[1]).extension().string();
+    std::string ext = std::filesystem::path(pos[1]).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char ch) { return char(std::tolower(ch)); });
     if (ext != ".ply" && ext != ".obj")
         throw UsageError(pos[1] + ": OUT is written as binary PLY or OBJ: name it .ply or .obj");
     // The input is read whole before OUT is written, but an OUT that is IN would replace it.

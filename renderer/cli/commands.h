@@ -24,8 +24,8 @@ int runDenoise(const std::vector<std::string>& args);          // kiln denoise I
 
 // kiln render's checks of a command line (SCENE and options, without "render") that need no scene
 // and no output: the parser, option ranges and combinations, the camera override, the colour
-// config's display and view. Throws UsageError. Returns the output base the render would write
-// (-o, else the scene's name).
+// config's display and view. Throws UsageError. Returns the EXR the render would write (-o OUT,
+// OUT.exr and OUT.png name the same files).
 std::string checkRenderArguments(const std::vector<std::string>& args);
 
 }  // namespace kiln

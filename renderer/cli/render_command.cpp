@@ -290,6 +290,12 @@ void addSceneToOutputs(RenderCommand& c, const Scene& scene, const RenderJobOpti
 }
 
 OutputPaths outputPaths(const RenderCommand& c, const std::string& scenePath) {
+    OutputPaths out = outputNames(c, scenePath);
+    checkOutputBase(c.output.empty() ? fs::path(scenePath).stem().string() : c.output);
+    return out;
+}
+
+OutputPaths outputNames(const RenderCommand& c, const std::string& scenePath) {
     std::string base = c.output.empty() ? fs::path(scenePath).stem().string() : c.output;
     std::string ext = fs::path(base).extension().string();
     OutputPaths out{base + ".exr", base + ".png", ""};
@@ -298,7 +304,6 @@ OutputPaths outputPaths(const RenderCommand& c, const std::string& scenePath) {
     else if (ext == ".exr")
         out = {base, fs::path(base).replace_extension(".png").string(), ""};
     out.checkpoint = fs::path(out.exr).replace_extension(".ckpt").string();
-    checkOutputBase(base);
     return out;
 }
 

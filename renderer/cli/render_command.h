@@ -102,6 +102,8 @@ void addSceneToOutputs(RenderCommand& c, const Scene& scene, const RenderJobOpti
 // OUT.exr, OUT.png (or the -f file and the EXR beside it) and OUT.ckpt. Throws UsageError when the
 // output directory does not exist.
 OutputPaths outputPaths(const RenderCommand& c, const std::string& scenePath);
+// The same names, unchecked (a batch's outputs before their directories are made).
+OutputPaths outputNames(const RenderCommand& c, const std::string& scenePath);
 
 // The EXR header's kiln: attributes: the job's options and results, the scene, the AOV list, the
 // display, the build.

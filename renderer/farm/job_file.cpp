@@ -206,16 +206,18 @@ std::string expandOutputName(const std::string& pattern, const OutputVariables& 
         if (size_t colon = name.find(':'); colon != std::string::npos)
             width = name.substr(colon + 1), name = name.substr(0, colon), widthGiven = true;
         if (name == "frame" || name == "index") {
-            // A width of digits, at most 12: '{frame:-4}' made fmt pad to 4e9 characters.
-            const bool digitsOnly = !width.empty() && width.size() <= 2 &&
-                                    std::all_of(width.begin(), width.end(),
-                                                [](char c) { return c >= '0' && c <= '9'; });
-            if (widthGiven && !(digitsOnly && std::stoi(width) <= 12))
+            // A width of digits, at most 12 ({frame:012} too; {frame:} is 0, as it was):
+            // '{frame:-4}' made fmt pad to 4e9 characters.
+            const bool digitsOnly =
+                width.size() <= 4 && std::all_of(width.begin(), width.end(),
+                                                 [](char c) { return c >= '0' && c <= '9'; });
+            const int digits = digitsOnly && !width.empty() ? std::stoi(width) : 0;
+            if (!digitsOnly || digits > 12)
                 throw FarmInputError("'{" + name + ":" + width + "}' in '" + pattern +
                                      "': the width is a number of digits from 0 to 12, e.g. {" +
                                      name + ":04}");
             int value = name == "frame" ? vars.frame : vars.index;
-            out += fmt::format("{:0{}}", value, widthGiven ? std::stoi(width) : 0);
+            out += fmt::format("{:0{}}", value, digits);
         } else if (name == "scene" || name == "camera" || name == "settings") {
             if (widthGiven)
                 throw FarmInputError("'{" + name + ":" + width + "}' in '" + pattern +

@@ -144,6 +144,16 @@ TEST(CliHostile, RenderFramesChecksEveryRenderFirst) {
     expectRefused("render-frames " + scene() + " -r 16 12 -s 1 -q -o " + a + " --then " + scene() +
                       " -r 16 12 -s 1 -q -o " + a + ".exr",
                   "renders 1 and 2 of 2 both write");
+    const std::string first = "render-frames " + scene() + " -r 16 12 -s 1 -q -o " + a;
+    expectRefused(
+        first + " --heatmap --then " + scene() + " -r 16 12 -s 1 -q -o " + a + ".samples.png",
+        "renders 1 and 2 of 2 both write");
+    expectRefused(first + " --then " + scene() + " -r 16 12 -s 1 -q",
+                  "render 2 of 2: every render of kiln render-frames needs -o");
+    expectRefused(
+        first + " --then " + scene() + " -r 16 12 -s 1 -q -o " + (dir / "nodir" / "b").string(),
+        "render 2 of 2: output directory");
+    EXPECT_FALSE(fs::exists(a + ".exr"));
 }
 
 // NaN, infinite and negative texels are set to 0 as before, and now said so.

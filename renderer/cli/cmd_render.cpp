@@ -546,23 +546,30 @@ namespace {
 void checkEveryFrame(const std::vector<std::vector<std::string>>& frames) {
     std::map<std::string, size_t> outputs;
     for (size_t i = 0; i < frames.size(); ++i) {
-        std::string exr;
+        CheckedRender render;
         try {
-            exr = checkRenderArguments(frames[i]);
+            render = checkRenderArguments(frames[i]);
+            if (!render.outputGiven)
+                throw UsageError(
+                    "every render of kiln render-frames needs -o OUT (it writes "
+                    "OUT.done)");
+            checkOutputBase(render.files[0]);  // its directory exists (a batch has made it)
         } catch (const UsageError& e) {
             throw UsageError(fmt::format("render {} of {}: {}", i + 1, frames.size(), e.what()));
         }
-        std::error_code ec;
-        const std::string key = fs::absolute(exr, ec).lexically_normal().string();
-        if (auto [at, fresh] = outputs.emplace(key, i); !fresh)
-            throw UsageError(fmt::format("renders {} and {} of {} both write {}", at->second + 1,
-                                         i + 1, frames.size(), exr));
+        for (const std::string& file : render.files) {
+            std::error_code ec;
+            const std::string key = fs::absolute(file, ec).lexically_normal().string();
+            if (auto [at, fresh] = outputs.emplace(key, i); !fresh && at->second != i)
+                throw UsageError(fmt::format("renders {} and {} of {} both write {}",
+                                             at->second + 1, i + 1, frames.size(), file));
+        }
     }
 }
 
 }  // namespace
 
-std::string checkRenderArguments(const std::vector<std::string>& args) {
+CheckedRender checkRenderArguments(const std::vector<std::string>& args) {
     RenderCommand c;
     ArgParser parser("render", "SCENE [options]");
     addRenderOptions(parser, c);
@@ -575,7 +582,11 @@ std::string checkRenderArguments(const std::vector<std::string>& args) {
     } catch (const std::invalid_argument& e) {
         throw UsageError(e.what());
     }
-    return outputNames(c, pos[0]).exr;
+    const OutputPaths out = outputNames(c, pos[0]);
+    CheckedRender checked{!c.output.empty(), {out.exr, out.preview}};
+    if (writesHeatMap(c))
+        checked.files.push_back(fs::path(out.exr).replace_extension(".samples.png").string());
+    return checked;
 }
 
 int runRender(const std::vector<std::string>& args) {

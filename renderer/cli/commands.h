@@ -24,9 +24,12 @@ int runDenoise(const std::vector<std::string>& args);          // kiln denoise I
 
 // kiln render's checks of a command line (SCENE and options, without "render") that need no scene
 // and no output: the parser, option ranges and combinations, the camera override, the colour
-// config's display and view. Throws UsageError. Returns the EXR the render would write (-o OUT,
-// OUT.exr and OUT.png name the same files).
-std::string checkRenderArguments(const std::vector<std::string>& args);
+// config's display and view. Throws UsageError.
+struct CheckedRender {
+    bool outputGiven = false;        // -o or -f
+    std::vector<std::string> files;  // the images it writes: EXR, preview, the heat map if any
+};
+CheckedRender checkRenderArguments(const std::vector<std::string>& args);
 
 }  // namespace kiln
 
